@@ -1,0 +1,132 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/env_config.h"
+#include "jetbot_rl/robot_model.h"
+#include "jetbot_rl/task.h"
+
+namespace jetbot_rl {
+
+class EnvWorld;
+class PhysicsModel;
+class ThreadPool;
+struct WorkerContext;
+
+/// An env that was reset on its own because its physics diverged.
+struct Divergence {
+  std::uint32_t env = 0;
+  std::string reason;
+};
+
+/// The batch after a step() or a reset(); field names follow the EnvStep message.
+struct StepResult {
+  std::vector<float> observations;          ///< num_envs x obs_dim, after auto-reset.
+  std::vector<float> rewards;               ///< num_envs (0 after a reset()).
+  std::vector<std::uint8_t> terminated;     ///< num_envs.
+  std::vector<std::uint8_t> truncated;      ///< num_envs: time-out or divergence.
+  std::vector<std::uint32_t> episode_steps;  ///< num_envs: steps into the current episode.
+  std::vector<std::uint32_t> reset_env_ids;  ///< Envs that ended in this step and were reset.
+  std::vector<float> final_observations;    ///< len(reset_env_ids) x obs_dim, before the reset.
+  std::vector<Divergence> divergences;      ///< Envs among reset_env_ids that diverged.
+};
+
+/// Pose of one URDF link in the world frame (env origin included).
+struct LinkPose {
+  std::string link;
+  Eigen::Isometry3d pose;
+};
+
+/**
+ * A batch of independent Jetbot environments stepped by Bullet in parallel, with the step
+ * semantics of Isaac Lab's DirectRLEnv (see README): decimated physics, time-outs at
+ * max_episode_length - 1, auto-reset of ended envs, observations after the reset, and the final
+ * observation of every ended episode kept.
+ *
+ * Each env has its own world in its own frame, so an env's trajectory depends only on its seed and
+ * actions, bit for bit, whatever the thread count or the rest of the batch.
+ */
+class BatchedEnv {
+ public:
+  /// Validates `config` (ConfigError) and the dofs against the robot (ModelError), resets all envs.
+  BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
+             std::unique_ptr<Task> task = std::make_unique<VelocityTask>());
+  ~BatchedEnv();
+  BatchedEnv(const BatchedEnv&) = delete;
+  BatchedEnv& operator=(const BatchedEnv&) = delete;
+
+  /// Advances every env by one control step with velocity targets [rad/s], num_envs x action_dim
+  /// row-major; targets beyond a joint's velocity limit are clamped. Throws InputError naming the
+  /// env and value for a wrong size or a non-finite value, and then nothing advances.
+  const StepResult& step(const float* actions, std::size_t count);
+  const StepResult& step(const std::vector<float>& actions) {
+    return step(actions.data(), actions.size());
+  }
+  /// Resets the listed envs (all when empty) to the rest pose, reseeding their random streams
+  /// first when `seed` is given. Throws InputError for an unknown or repeated id; nothing is reset
+  /// then. Rewards of the returned state are zero and no env is flagged.
+  const StepResult& reset(const std::vector<std::uint32_t>& env_ids = {},
+                          std::optional<std::uint64_t> seed = std::nullopt);
+  /// The batch after the last step() or reset().
+  const StepResult& state() const { return result_; }
+
+  int numEnvs() const { return config_.num_envs; }
+  int obsDim() const { return obs_dim_; }
+  int actionDim() const { return static_cast<int>(config_.dof_names.size()); }
+  int numThreads() const;
+  double controlDt() const { return config_.controlDt(); }
+  int maxEpisodeLength() const { return config_.maxEpisodeLength(); }
+  const EnvConfig& config() const { return config_; }
+  const Task& task() const { return *task_; }
+  Task& task() { return *task_; }
+  const RobotModel& robot() const { return *robot_; }
+  /// Lower and upper action bounds per dof: -/+ the URDF velocity limit [rad/s].
+  const std::vector<float>& actionLow() const { return action_low_; }
+  const std::vector<float>& actionHigh() const { return action_high_; }
+  /// Number of envs reset because they diverged, since construction.
+  std::uint64_t divergedCount() const { return diverged_count_; }
+
+  /// Origin of env `env` on the square grid, Isaac Lab's layout [m].
+  Eigen::Vector3d envOrigin(int env) const;
+  /// Root state of env `env` in its own frame.
+  RootState rootState(int env) const;
+  /// Overwrites env `env`'s root pose and velocity (for tests and tools); InputError when invalid.
+  void setRootState(int env, const RootState& state);
+  /// World pose of every URDF link of env `env`.
+  std::vector<LinkPose> linkPoses(int env) const;
+  /// Largest anchor separation over the env's joints [m].
+  double maxJointError(int env) const;
+  /// Velocity of dof `dof` of env `env` [rad/s].
+  double dofVelocity(int env, int dof) const;
+
+ private:
+  void checkEnv(int env) const;
+  void stepRange(int begin, int end);
+  void resetEnv(int env);
+  int workerOf(int env) const;
+  int firstEnvOf(int worker) const;
+
+  RobotModelConstPtr robot_;
+  EnvConfig config_;
+  std::unique_ptr<Task> task_;
+  int obs_dim_ = 0;
+  std::unique_ptr<PhysicsModel> physics_;
+  std::unique_ptr<ThreadPool> pool_;
+  std::vector<std::unique_ptr<WorkerContext>> contexts_;
+  std::vector<std::unique_ptr<EnvWorld>> worlds_;
+  std::vector<Rng> rngs_;
+  std::vector<float> action_low_, action_high_;
+  std::vector<float> targets_;          // clamped actions of the current step
+  std::vector<std::uint8_t> ended_;     // per env: ended in the current step
+  std::vector<float> final_scratch_;    // per env final observation slot
+  std::vector<std::string> diverged_;   // per env divergence reason of the current step
+  StepResult result_;
+  std::uint64_t diverged_count_ = 0;
+};
+
+}  // namespace jetbot_rl

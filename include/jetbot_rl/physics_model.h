@@ -1,0 +1,77 @@
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/env_config.h"
+#include "jetbot_rl/robot_model.h"
+
+namespace jetbot_rl {
+
+/**
+ * The Bullet side of the robot: collision shapes, masses and joint frames, built once from a
+ * RobotModel and shared read-only by every env (MuJoCo's mjModel to EnvWorld's mjData).
+ */
+class PhysicsModel {
+ public:
+  struct Body {
+    btCollisionShape* shape = nullptr;  ///< Owned by shapes_.
+    btScalar mass = 0;                  ///< [kg]
+    btVector3 inertia{0, 0, 0};         ///< Principal moments [kg m^2].
+    btTransform com_in_link;            ///< Principal inertia frame in the link frame.
+    btTransform rest_pose;              ///< COM frame in the env frame at rest.
+    btScalar friction = 0;              ///< Coulomb friction coefficient with the ground.
+  };
+  struct Joint {
+    int parent = 0;              ///< Body index of the parent.
+    int child = 0;               ///< Body index of the child.
+    btTransform frame_in_parent;  ///< Hinge frame (z = axis) in the parent's COM frame.
+    btTransform frame_in_child;   ///< Hinge frame (z = axis) in the child's COM frame.
+    bool limited = false;
+    btScalar lower = 0, upper = 0;  ///< [rad]
+  };
+  struct Dof {
+    std::string name;
+    int joint = 0;                ///< Index into joints().
+    double velocity_limit = 0.0;  ///< [rad/s]
+    double effort_limit = 0.0;    ///< [N m]
+  };
+
+  /// Friction of bodies driven by a dof joint (rubber tyre on a floor).
+  static constexpr btScalar kWheelFriction = 1.0;
+  /// Friction of every other body: the chassis and its caster ball slide freely.
+  static constexpr btScalar kBodyFriction = 0.0;
+  /// Collision margin of boxes and cylinders, kept inside their URDF size [m].
+  static constexpr btScalar kCollisionMargin = 0.001;
+
+  /// Throws ModelError naming a dof joint the URDF lacks or whose limits are unusable.
+  PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config);
+  ~PhysicsModel();
+  PhysicsModel(const PhysicsModel&) = delete;
+  PhysicsModel& operator=(const PhysicsModel&) = delete;
+
+  const RobotModel& robot() const { return *robot_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<Joint>& joints() const { return joints_; }
+  const std::vector<Dof>& dofs() const { return dofs_; }
+  const btCollisionShape* groundShape() const { return ground_.get(); }
+  double driveGain() const { return drive_gain_; }
+  int solverIterations() const { return solver_iterations_; }
+
+ private:
+  btCollisionShape* makeShape(const BodyModel& body, const btTransform& com_in_link);
+
+  RobotModelConstPtr robot_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::unique_ptr<btCollisionShape> ground_;
+  std::vector<Body> bodies_;
+  std::vector<Joint> joints_;
+  std::vector<Dof> dofs_;
+  double drive_gain_;
+  int solver_iterations_;
+};
+
+}  // namespace jetbot_rl

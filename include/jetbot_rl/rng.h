@@ -1,0 +1,27 @@
+#pragma once
+
+#include <cstdint>
+
+namespace jetbot_rl {
+
+/// Small counter-based random stream (SplitMix64): one per env, reproducible on every platform.
+class Rng {
+ public:
+  /// The stream of env `env_id` under `seed`; independent of every other env's.
+  Rng(std::uint64_t seed = 0, std::uint64_t env_id = 0)
+      : state_(mix(seed ^ mix(env_id + 0x632be59bd9b4e019ULL))) {}
+  /// Next 64 random bits.
+  std::uint64_t next() { return mix(state_ += 0x9e3779b97f4a7c15ULL); }
+  /// Uniform double in [0, 1).
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+ private:
+  static std::uint64_t mix(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t state_;
+};
+
+}  // namespace jetbot_rl

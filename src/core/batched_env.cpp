@@ -1,0 +1,246 @@
+#include "jetbot_rl/batched_env.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/env_world.h"
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/physics_model.h"
+#include "jetbot_rl/thread_pool.h"
+
+namespace jetbot_rl {
+
+BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config, std::unique_ptr<Task> task)
+    : robot_(std::move(robot)), config_(config), task_(std::move(task)) {
+  config_.validate();
+  if (!robot_) throw ModelError("no robot model given");
+  if (!task_) throw ConfigError("invalid task = null: a task object is required");
+  obs_dim_ = static_cast<int>(task_->observationNames().size());
+  physics_ = std::make_unique<PhysicsModel>(robot_, config_);
+
+  const int n = config_.num_envs;
+  const int workers = std::min(config_.resolvedThreads(), n);
+  pool_ = std::make_unique<ThreadPool>(workers);
+  for (int w = 0; w < workers; ++w) contexts_.push_back(std::make_unique<WorkerContext>());
+  worlds_.reserve(n);
+  for (int e = 0; e < n; ++e) {
+    worlds_.push_back(std::make_unique<EnvWorld>(*physics_, *contexts_[workerOf(e)]));
+  }
+  for (const auto& dof : physics_->dofs()) {
+    action_low_.push_back(static_cast<float>(-dof.velocity_limit));
+    action_high_.push_back(static_cast<float>(dof.velocity_limit));
+  }
+  task_->resize(n);
+  targets_.assign(static_cast<std::size_t>(n) * actionDim(), 0.0f);
+  ended_.assign(n, 0);
+  final_scratch_.assign(static_cast<std::size_t>(n) * obs_dim_, 0.0f);
+  diverged_.assign(n, std::string());
+  result_.observations.assign(static_cast<std::size_t>(n) * obs_dim_, 0.0f);
+  result_.rewards.assign(n, 0.0f);
+  result_.terminated.assign(n, 0);
+  result_.truncated.assign(n, 0);
+  result_.episode_steps.assign(n, 0);
+  result_.reset_env_ids.reserve(n);
+  result_.final_observations.reserve(static_cast<std::size_t>(n) * obs_dim_);
+  for (int e = 0; e < n; ++e) rngs_.emplace_back(config_.seed, e);
+  reset();
+}
+
+BatchedEnv::~BatchedEnv() = default;
+
+int BatchedEnv::numThreads() const { return pool_->size(); }
+
+// Envs are split into contiguous blocks, one per worker; a world uses its worker's scratch only.
+int BatchedEnv::firstEnvOf(int worker) const {
+  return static_cast<int>(static_cast<long long>(worker) * config_.num_envs / pool_->size());
+}
+
+int BatchedEnv::workerOf(int env) const {
+  int w = static_cast<int>(static_cast<long long>(env) * pool_->size() / config_.num_envs);
+  while (firstEnvOf(w + 1) <= env) ++w;
+  while (firstEnvOf(w) > env) --w;
+  return w;
+}
+
+const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
+  const int n = config_.num_envs;
+  const int a = actionDim();
+  const std::size_t expected = static_cast<std::size_t>(n) * a;
+  if (actions == nullptr || count != expected) {
+    std::ostringstream s;
+    s << "actions: expected " << expected << " values (" << n << " envs x " << a
+      << " dofs), got " << (actions == nullptr ? 0 : count);
+    throw InputError(s.str());
+  }
+  for (std::size_t i = 0; i < expected; ++i) {
+    if (!std::isfinite(actions[i])) {
+      std::ostringstream s;
+      s << "actions[env " << i / a << ", " << config_.dof_names[i % a] << "] = " << actions[i]
+        << " is not finite";
+      throw InputError(s.str());
+    }
+  }
+  for (std::size_t i = 0; i < expected; ++i) {
+    targets_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
+  }
+
+  pool_->run(pool_->size(), [this](int w) { stepRange(firstEnvOf(w), firstEnvOf(w + 1)); });
+
+  result_.reset_env_ids.clear();
+  result_.final_observations.clear();
+  result_.divergences.clear();
+  for (int e = 0; e < n; ++e) {
+    if (!ended_[e]) continue;
+    result_.reset_env_ids.push_back(static_cast<std::uint32_t>(e));
+    const float* f = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
+    result_.final_observations.insert(result_.final_observations.end(), f, f + obs_dim_);
+    if (!diverged_[e].empty()) {
+      result_.divergences.push_back({static_cast<std::uint32_t>(e), diverged_[e]});
+      ++diverged_count_;
+    }
+  }
+  return result_;
+}
+
+void BatchedEnv::stepRange(int begin, int end) {
+  const int a = actionDim();
+  const int last_step = config_.maxEpisodeLength() - 1;
+  for (int e = begin; e < end; ++e) {
+    EnvWorld& world = *worlds_[e];
+    world.setTargets(&targets_[static_cast<std::size_t>(e) * a]);
+    for (int k = 0; k < config_.decimation; ++k) world.step(config_.physics_dt);
+    ++result_.episode_steps[e];
+
+    // Isaac Lab order: dones, then rewards, then reset, then observations.
+    RootState state = world.rootState();
+    diverged_[e] = world.divergence();
+    const bool diverged = !diverged_[e].empty();
+    if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
+    const bool terminated = !diverged && task_->terminated(e, state);
+    const bool truncated =
+        diverged || result_.episode_steps[e] >= static_cast<std::uint32_t>(last_step);
+    result_.terminated[e] = terminated;
+    result_.truncated[e] = truncated;
+    result_.rewards[e] = diverged ? 0.0f : task_->reward(e, state);
+    ended_[e] = terminated || truncated;
+    if (ended_[e]) {
+      float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
+      task_->observe(e, state, final_obs);
+      if (diverged) std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
+      resetEnv(e);
+      state = world.rootState();
+    }
+    task_->observe(e, state, &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+  }
+}
+
+void BatchedEnv::resetEnv(int env) {
+  worlds_[env]->reset();
+  result_.episode_steps[env] = 0;
+  task_->resetEnv(env, rngs_[env]);
+}
+
+const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
+                                    std::optional<std::uint64_t> seed) {
+  const int n = config_.num_envs;
+  std::vector<std::uint8_t> selected(n, env_ids.empty() ? 1 : 0);
+  for (std::uint32_t id : env_ids) {
+    std::ostringstream s;
+    if (id >= static_cast<std::uint32_t>(n)) {
+      s << "env_ids: id " << id << " is out of range [0, " << n << ")";
+      throw InputError(s.str());
+    }
+    if (selected[id]) {
+      s << "env_ids: id " << id << " is listed twice";
+      throw InputError(s.str());
+    }
+    selected[id] = 1;
+  }
+  for (int e = 0; e < n; ++e) {
+    if (!selected[e]) continue;
+    if (seed) rngs_[e] = Rng(*seed, e);
+    resetEnv(e);
+  }
+  for (int e = 0; e < n; ++e) {
+    task_->observe(e, worlds_[e]->rootState(),
+                   &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+  }
+  std::fill(result_.rewards.begin(), result_.rewards.end(), 0.0f);
+  std::fill(result_.terminated.begin(), result_.terminated.end(), 0);
+  std::fill(result_.truncated.begin(), result_.truncated.end(), 0);
+  result_.reset_env_ids.clear();
+  result_.final_observations.clear();
+  result_.divergences.clear();
+  return result_;
+}
+
+void BatchedEnv::checkEnv(int env) const {
+  if (env < 0 || env >= config_.num_envs) {
+    std::ostringstream s;
+    s << "env " << env << " is out of range [0, " << config_.num_envs << ")";
+    throw InputError(s.str());
+  }
+}
+
+Eigen::Vector3d BatchedEnv::envOrigin(int env) const {
+  checkEnv(env);
+  // Isaac Sim's GridCloner layout: rows along -x, columns along +y, centred on the world origin.
+  const int n = config_.num_envs;
+  const int per_row = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(n))));
+  const int rows = (n + per_row - 1) / per_row;
+  const int cols = (n + rows - 1) / rows;
+  const double spacing = config_.env_spacing;
+  const int row = env / cols;
+  const int col = env % cols;
+  return {0.5 * spacing * (rows - 1) - row * spacing, col * spacing - 0.5 * spacing * (cols - 1),
+          0.0};
+}
+
+RootState BatchedEnv::rootState(int env) const {
+  checkEnv(env);
+  return worlds_[env]->rootState();
+}
+
+void BatchedEnv::setRootState(int env, const RootState& state) {
+  checkEnv(env);
+  const bool finite = state.position.allFinite() && state.orientation.coeffs().allFinite() &&
+                      state.com_linear_velocity.allFinite() && state.angular_velocity.allFinite();
+  if (!finite || state.orientation.norm() < 1e-6) {
+    throw InputError("root state of env " + std::to_string(env) +
+                     ": values must be finite and the orientation a non-zero quaternion");
+  }
+  worlds_[env]->setRootState(state);
+}
+
+std::vector<LinkPose> BatchedEnv::linkPoses(int env) const {
+  checkEnv(env);
+  std::vector<LinkPose> poses;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  origin.translation() = envOrigin(env);
+  const auto& bodies = robot_->bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const btTransform t = worlds_[env]->linkPose(static_cast<int>(b));
+    const btQuaternion q = t.getRotation();
+    Eigen::Isometry3d body = Eigen::Isometry3d::Identity();
+    body.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).toRotationMatrix();
+    body.translation() << t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z();
+    for (const auto& link : bodies[b].links) {
+      poses.push_back({link.name, origin * body * link.offset});
+    }
+  }
+  return poses;
+}
+
+double BatchedEnv::maxJointError(int env) const {
+  checkEnv(env);
+  return worlds_[env]->maxJointError();
+}
+
+double BatchedEnv::dofVelocity(int env, int dof) const {
+  checkEnv(env);
+  if (dof < 0 || dof >= actionDim()) throw InputError("dof " + std::to_string(dof) + " is out of range");
+  return worlds_[env]->dofVelocity(dof);
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,133 @@
+#include "jetbot_rl/physics_model.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace {
+
+btTransform toBullet(const Eigen::Isometry3d& t) {
+  const Eigen::Matrix3d& r = t.linear();
+  return btTransform(btMatrix3x3(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0),
+                                 r(2, 1), r(2, 2)),
+                     btVector3(t.translation().x(), t.translation().y(), t.translation().z()));
+}
+
+/// A frame whose z axis is `axis` (unit), at the origin.
+Eigen::Isometry3d frameAlongAxis(const Eigen::Vector3d& axis) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+  return t;
+}
+
+std::string jointError(const std::string& joint, const std::string& what) {
+  return "joint '" + joint + "': " + what;
+}
+
+}  // namespace
+
+PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
+    : robot_(std::move(robot)),
+      ground_(new btStaticPlaneShape(btVector3(0, 0, 1), 0)),
+      drive_gain_(config.drive_gain),
+      solver_iterations_(config.solver_iterations) {
+  const auto& models = robot_->bodies();
+  std::vector<bool> driven(models.size(), false);
+  for (const auto& name : config.dof_names) {
+    const int body = robot_->bodyOfJoint(name);
+    if (body < 0) {
+      throw ModelError(jointError(name, "named in dof_names but not a revolute or continuous joint "
+                                        "of the URDF"));
+    }
+    driven[body] = true;
+  }
+
+  std::vector<Eigen::Isometry3d> link_poses;  // link frames in the env frame at rest
+  std::vector<int> joint_of_body(models.size(), -1);
+  for (size_t i = 0; i < models.size(); ++i) {
+    const BodyModel& m = models[i];
+    Eigen::Isometry3d rest = Eigen::Isometry3d::Identity();
+    rest.translation().z() = robot_->restHeight();
+    link_poses.push_back(m.parent < 0 ? rest : link_poses[m.parent] * m.joint_origin);
+
+    Body b;
+    b.mass = m.mass;
+    b.inertia = btVector3(m.principal_inertia.x(), m.principal_inertia.y(), m.principal_inertia.z());
+    b.com_in_link = toBullet(m.com_frame);
+    b.rest_pose = toBullet(link_poses.back() * m.com_frame);
+    b.friction = driven[i] ? kWheelFriction : kBodyFriction;
+    b.shape = makeShape(m, b.com_in_link);
+    bodies_.push_back(b);
+
+    if (m.parent >= 0) {
+      Joint j;
+      j.parent = m.parent;
+      j.child = static_cast<int>(i);
+      const Eigen::Isometry3d hinge = frameAlongAxis(m.axis);  // in the child link frame
+      j.frame_in_parent = toBullet(models[m.parent].com_frame.inverse() * m.joint_origin * hinge);
+      j.frame_in_child = toBullet(m.com_frame.inverse() * hinge);
+      j.limited = m.has_position_limits;
+      j.lower = m.lower;
+      j.upper = m.upper;
+      joint_of_body[i] = static_cast<int>(joints_.size());
+      joints_.push_back(j);
+    }
+  }
+
+  for (const auto& name : config.dof_names) {
+    const BodyModel& m = models[robot_->bodyOfJoint(name)];
+    Dof d;
+    d.name = name;
+    d.joint = joint_of_body[robot_->bodyOfJoint(name)];
+    d.velocity_limit = m.velocity_limit;
+    d.effort_limit = config.effort_limit > 0.0 ? config.effort_limit : m.effort_limit;
+    if (!(std::isfinite(d.velocity_limit) && d.velocity_limit > 0.0)) {
+      std::ostringstream s;
+      s << "needs <limit velocity> > 0 [rad/s] to clamp targets, got " << d.velocity_limit;
+      throw ModelError(jointError(name, s.str()));
+    }
+    if (!(std::isfinite(d.effort_limit) && d.effort_limit > 0.0)) {
+      std::ostringstream s;
+      s << "needs <limit effort> > 0 [N m] (or an effort_limit override), got " << d.effort_limit;
+      throw ModelError(jointError(name, s.str()));
+    }
+    dofs_.push_back(d);
+  }
+}
+
+PhysicsModel::~PhysicsModel() = default;
+
+btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransform& com_in_link) {
+  if (body.collisions.empty()) {
+    shapes_.push_back(std::make_unique<btEmptyShape>());
+    return shapes_.back().get();
+  }
+  auto compound = std::make_unique<btCompoundShape>(/*enableDynamicAabbTree=*/false);
+  const btTransform link_in_com = com_in_link.inverse();
+  for (const auto& g : body.collisions) {
+    std::unique_ptr<btCollisionShape> primitive;
+    switch (g.type) {
+      case CollisionGeometry::Type::kBox:
+        primitive = std::make_unique<btBoxShape>(
+            btVector3(g.size.x() / 2, g.size.y() / 2, g.size.z() / 2));
+        break;
+      case CollisionGeometry::Type::kCylinder:
+        primitive = std::make_unique<btCylinderShapeZ>(
+            btVector3(g.size.x(), g.size.x(), g.size.y() / 2));
+        break;
+      case CollisionGeometry::Type::kSphere:
+        primitive = std::make_unique<btSphereShape>(g.size.x());
+        break;
+    }
+    if (g.type != CollisionGeometry::Type::kSphere) primitive->setMargin(kCollisionMargin);
+    compound->addChildShape(link_in_com * toBullet(g.origin), primitive.get());
+    shapes_.push_back(std::move(primitive));
+  }
+  btCollisionShape* shape = compound.get();
+  shapes_.push_back(std::move(compound));
+  return shape;
+}
+
+}  // namespace jetbot_rl

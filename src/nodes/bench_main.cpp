@@ -1,0 +1,46 @@
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/bench_args.h"
+
+int main(int argc, char** argv) {
+  using namespace jetbot_rl;
+  BenchArgs args;
+  std::string error;
+  if (!parseBenchArgs(argc, argv, args, error)) {
+    std::fprintf(stderr, "jetbot_rl_bench: %s\nusage: jetbot_rl_bench [--envs N] [--steps S] "
+                         "[--threads T] [--urdf PATH]\n", error.c_str());
+    return 2;
+  }
+  try {
+    EnvConfig config;
+    config.num_envs = args.envs;
+    config.num_threads = args.threads;
+    BatchedEnv env(RobotModel::fromUrdfFile(args.urdf), config);
+    std::mt19937 gen(1);
+    std::uniform_real_distribution<float> target(-20.0f, 20.0f);
+    std::vector<float> actions(static_cast<size_t>(env.numEnvs()) * env.actionDim());
+    for (auto& a : actions) a = target(gen);
+    const int warmup = std::max(1, args.steps / 10);
+    for (int s = 0; s < warmup; ++s) env.step(actions);
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < args.steps; ++s) {
+      if (s % 50 == 0) for (auto& a : actions) a = target(gen);  // new targets every 50 steps
+      env.step(actions);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double env_steps = static_cast<double>(args.steps) * env.numEnvs();
+    std::printf("envs=%d threads=%d steps=%d wall_s=%.3f us_per_control_step=%.1f\n", env.numEnvs(),
+                env.numThreads(), args.steps, seconds, 1e6 * seconds / args.steps);
+    std::printf("env_steps_per_s=%.0f\n", env_steps / seconds);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "jetbot_rl_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
