@@ -1,0 +1,49 @@
+# The ROS-free core (Bullet, Eigen, urdfdom), its programs and its gtests; included by CMakeLists.txt
+# after catkin_package().
+
+# ---- ROS-free core: Bullet, Eigen, urdfdom ----
+add_library(jetbot_rl_core
+  src/core/batched_env.cpp
+  src/core/env_config.cpp
+  src/core/env_world.cpp
+  src/core/physics_model.cpp
+  src/core/robot_model.cpp
+  src/core/thread_pool.cpp
+  src/core/velocity_task.cpp
+)
+target_include_directories(jetbot_rl_core PUBLIC include ${BULLET_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIRS}
+  ${URDFDOM_INCLUDE_DIRS})
+target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
+target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
+
+add_executable(jetbot_rl_bench src/nodes/bench_main.cpp)
+target_compile_definitions(jetbot_rl_bench PRIVATE JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
+target_link_libraries(jetbot_rl_bench jetbot_rl_core)
+
+add_executable(jetbot_rl_demo src/nodes/demo_main.cpp)
+target_compile_definitions(jetbot_rl_demo PRIVATE JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
+target_link_libraries(jetbot_rl_demo jetbot_rl_core)
+
+install(TARGETS jetbot_rl_core
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
+install(TARGETS jetbot_rl_bench jetbot_rl_demo
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY include/jetbot_rl/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
+
+# ---- Tests ----
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_core
+    test/core/test_main.cpp
+    test/core/test_robot_model.cpp
+    test/core/test_env_config.cpp
+    test/core/test_kinematics.cpp
+    test/core/test_step_semantics.cpp
+    test/core/test_bad_input.cpp
+    test/core/test_determinism.cpp
+    test/core/test_thread_pool.cpp
+  )
+  target_link_libraries(test_core jetbot_rl_core)
+  target_compile_definitions(test_core PRIVATE JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
+endif()
