@@ -26,14 +26,14 @@ struct Divergence {
 
 /// The batch after a step() or a reset(); field names follow the EnvStep message.
 struct StepResult {
-  std::vector<float> observations;          ///< num_envs x obs_dim, after auto-reset.
-  std::vector<float> rewards;               ///< num_envs (0 after a reset()).
-  std::vector<std::uint8_t> terminated;     ///< num_envs.
-  std::vector<std::uint8_t> truncated;      ///< num_envs: time-out or divergence.
+  std::vector<float> observations;           ///< num_envs x obs_dim, after auto-reset.
+  std::vector<float> rewards;                ///< num_envs (0 after a reset()).
+  std::vector<std::uint8_t> terminated;      ///< num_envs.
+  std::vector<std::uint8_t> truncated;       ///< num_envs: time-out or divergence.
   std::vector<std::uint32_t> episode_steps;  ///< num_envs: steps into the current episode.
   std::vector<std::uint32_t> reset_env_ids;  ///< Envs that ended in this step and were reset.
-  std::vector<float> final_observations;    ///< len(reset_env_ids) x obs_dim, before the reset.
-  std::vector<Divergence> divergences;      ///< Envs among reset_env_ids that diverged.
+  std::vector<float> final_observations;     ///< len(reset_env_ids) x obs_dim, before the reset.
+  std::vector<Divergence> divergences;       ///< Envs among reset_env_ids that diverged.
 };
 
 /// Pose of one URDF link in the world frame (env origin included).
@@ -121,10 +121,10 @@ class BatchedEnv {
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<Rng> rngs_;
   std::vector<float> action_low_, action_high_;
-  std::vector<float> targets_;          // clamped actions of the current step
-  std::vector<std::uint8_t> ended_;     // per env: ended in the current step
-  std::vector<float> final_scratch_;    // per env final observation slot
-  std::vector<std::string> diverged_;   // per env divergence reason of the current step
+  std::vector<float> targets_;         // clamped actions of the current step
+  std::vector<std::uint8_t> ended_;    // per env: ended in the current step
+  std::vector<float> final_scratch_;   // per env final observation slot
+  std::vector<std::string> diverged_;  // per env divergence reason of the current step
   StepResult result_;
   std::uint64_t diverged_count_ = 0;
 };

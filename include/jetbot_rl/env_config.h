@@ -8,17 +8,17 @@ namespace jetbot_rl {
 
 /// Configuration of a batch of environments; defaults are the Isaac Lab Jetbot seed's.
 struct EnvConfig {
-  int num_envs = 100;                ///< Number of environments in the batch.
-  double env_spacing = 4.0;          ///< Distance between env origins on the square grid [m].
-  double physics_dt = 1.0 / 120.0;   ///< Physics step [s].
-  int decimation = 2;                ///< Physics steps per control step.
-  double episode_length_s = 5.0;     ///< Episode length [s].
+  int num_envs = 100;               ///< Number of environments in the batch.
+  double env_spacing = 4.0;         ///< Distance between env origins on the square grid [m].
+  double physics_dt = 1.0 / 120.0;  ///< Physics step [s].
+  int decimation = 2;               ///< Physics steps per control step.
+  double episode_length_s = 5.0;    ///< Episode length [s].
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  std::uint64_t seed = 0;            ///< Seed of the per-env random streams.
-  int num_threads = 0;               ///< Worker threads; 0 means all cores.
-  double drive_gain = 10.0;          ///< Velocity drive gain [N m s/rad].
-  double effort_limit = 0.0;         ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
-  int solver_iterations = 10;        ///< Bullet constraint solver iterations per physics step.
+  std::uint64_t seed = 0;      ///< Seed of the per-env random streams.
+  int num_threads = 0;         ///< Worker threads; 0 means all cores.
+  double drive_gain = 10.0;    ///< Velocity drive gain [N m s/rad].
+  double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
+  int solver_iterations = 30;  ///< Bullet constraint solver iterations per physics step.
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;

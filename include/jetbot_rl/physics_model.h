@@ -26,8 +26,8 @@ class PhysicsModel {
     btScalar friction = 0;              ///< Coulomb friction coefficient with the ground.
   };
   struct Joint {
-    int parent = 0;              ///< Body index of the parent.
-    int child = 0;               ///< Body index of the child.
+    int parent = 0;               ///< Body index of the parent.
+    int child = 0;                ///< Body index of the child.
     btTransform frame_in_parent;  ///< Hinge frame (z = axis) in the parent's COM frame.
     btTransform frame_in_child;   ///< Hinge frame (z = axis) in the child's COM frame.
     bool limited = false;
@@ -44,8 +44,10 @@ class PhysicsModel {
   static constexpr btScalar kWheelFriction = 1.0;
   /// Friction of every other body: the chassis and its caster ball slide freely.
   static constexpr btScalar kBodyFriction = 0.0;
-  /// Collision margin of boxes and cylinders, kept inside their URDF size [m].
+  /// Collision margin of boxes, kept inside their URDF size [m].
   static constexpr btScalar kCollisionMargin = 0.001;
+  /// Cylinder edge rounding as a fraction of min(radius, half length), kept inside the URDF size.
+  static constexpr btScalar kTreadRounding = 0.98;
 
   /// Throws ModelError naming a dof joint the URDF lacks or whose limits are unusable.
   PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config);

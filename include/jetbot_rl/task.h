@@ -10,7 +10,7 @@ namespace jetbot_rl {
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).
 struct RootState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< Root link frame origin [m].
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< Root link frame origin [m].
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< Root link frame.
   Eigen::Vector3d com_linear_velocity = Eigen::Vector3d::Zero();    ///< COM velocity [m/s].
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       ///< [rad/s].

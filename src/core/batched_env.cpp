@@ -11,7 +11,8 @@
 
 namespace jetbot_rl {
 
-BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config, std::unique_ptr<Task> task)
+BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
+                       std::unique_ptr<Task> task)
     : robot_(std::move(robot)), config_(config), task_(std::move(task)) {
   config_.validate();
   if (!robot_) throw ModelError("no robot model given");
@@ -69,8 +70,8 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   const std::size_t expected = static_cast<std::size_t>(n) * a;
   if (actions == nullptr || count != expected) {
     std::ostringstream s;
-    s << "actions: expected " << expected << " values (" << n << " envs x " << a
-      << " dofs), got " << (actions == nullptr ? 0 : count);
+    s << "actions: expected " << expected << " values (" << n << " envs x " << a << " dofs), got "
+      << (actions == nullptr ? 0 : count);
     throw InputError(s.str());
   }
   for (std::size_t i = 0; i < expected; ++i) {
@@ -239,7 +240,8 @@ double BatchedEnv::maxJointError(int env) const {
 
 double BatchedEnv::dofVelocity(int env, int dof) const {
   checkEnv(env);
-  if (dof < 0 || dof >= actionDim()) throw InputError("dof " + std::to_string(dof) + " is out of range");
+  if (dof < 0 || dof >= actionDim())
+    throw InputError("dof " + std::to_string(dof) + " is out of range");
   return worlds_[env]->dofVelocity(dof);
 }
 

@@ -9,11 +9,11 @@ namespace {
 // Robots collide with the ground only: never with each other's parts.
 constexpr int kRobotGroup = btBroadphaseProxy::CharacterFilter;
 constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
-constexpr btScalar kGravity = -9.81;          // [m/s^2]
-constexpr btScalar kGroundFriction = 1.0;     // multiplied with each body's friction
-constexpr double kMaxPosition = 1000.0;       // [m] from the env origin
-constexpr double kMinHeight = -1.0;           // [m]: below means it fell through the ground
-constexpr double kMaxLinearVelocity = 100.0;  // [m/s]
+constexpr btScalar kGravity = -9.81;            // [m/s^2]
+constexpr btScalar kGroundFriction = 1.0;       // multiplied with each body's friction
+constexpr double kMaxPosition = 1000.0;         // [m] from the env origin
+constexpr double kMinHeight = -1.0;             // [m]: below means it fell through the ground
+constexpr double kMaxLinearVelocity = 100.0;    // [m/s]
 constexpr double kMaxAngularVelocity = 1000.0;  // [rad/s]
 
 Eigen::Vector3d toEigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
@@ -64,8 +64,7 @@ void EnvWorld::reset() {
   const auto& models = model_.bodies();
   for (size_t i = 0; i < bodies_.size(); ++i) {
     btRigidBody& body = *bodies_[i];
-    body.setWorldTransform(models[i].rest_pose);
-    body.setInterpolationWorldTransform(models[i].rest_pose);
+    body.setCenterOfMassTransform(models[i].rest_pose);  // also refreshes the world inertia
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
     body.setInterpolationLinearVelocity(btVector3(0, 0, 0));
@@ -80,7 +79,9 @@ void EnvWorld::reset() {
   std::fill(targets_.begin(), targets_.end(), 0.0f);
 }
 
-void EnvWorld::setTargets(const float* targets) { std::copy(targets, targets + targets_.size(), targets_.begin()); }
+void EnvWorld::setTargets(const float* targets) {
+  std::copy(targets, targets + targets_.size(), targets_.begin());
+}
 
 void EnvWorld::step(double dt) {
   const auto& dofs = model_.dofs();
@@ -90,7 +91,8 @@ void EnvWorld::step(double dt) {
     const double error = targets_[d] - dofVelocity(static_cast<int>(d));
     const double torque = std::min(dofs[d].effort_limit, model_.driveGain() * std::abs(error));
     // Bullet's hinge motor drives (w_parent - w_child) . axis, the opposite of URDF's sign.
-    joints_[dofs[d].joint]->enableAngularMotor(true, -targets_[d], static_cast<btScalar>(torque * dt));
+    joints_[dofs[d].joint]->enableAngularMotor(true, -targets_[d],
+                                               static_cast<btScalar>(torque * dt));
   }
   world_->stepSimulation(static_cast<btScalar>(dt), 0);
 }
@@ -118,9 +120,9 @@ void EnvWorld::setRootState(const RootState& state) {
   for (auto& body : bodies_) {
     const btTransform pose = delta * body->getWorldTransform();
     const btVector3 spin = body->getAngularVelocity() - old_omega;  // wheels keep spinning
-    body->setWorldTransform(pose);
-    body->setInterpolationWorldTransform(pose);
-    body->setLinearVelocity(toBullet(state.com_linear_velocity) + omega.cross(pose.getOrigin() - root_com));
+    body->setCenterOfMassTransform(pose);
+    body->setLinearVelocity(toBullet(state.com_linear_velocity) +
+                            omega.cross(pose.getOrigin() - root_com));
     body->setAngularVelocity(omega + delta.getBasis() * spin);
     world_->updateSingleAabb(body.get());
   }
@@ -169,7 +171,8 @@ double EnvWorld::dofVelocity(int dof) const {
   const auto& j = model_.joints()[model_.dofs()[dof].joint];
   const btRigidBody& parent = *bodies_[j.parent];
   const btRigidBody& child = *bodies_[j.child];
-  const btVector3 axis = child.getWorldTransform().getBasis() * j.frame_in_child.getBasis().getColumn(2);
+  const btVector3 axis =
+      child.getWorldTransform().getBasis() * j.frame_in_child.getBasis().getColumn(2);
   return (child.getAngularVelocity() - parent.getAngularVelocity()).dot(axis);
 }
 

@@ -10,15 +10,16 @@ namespace {
 
 btTransform toBullet(const Eigen::Isometry3d& t) {
   const Eigen::Matrix3d& r = t.linear();
-  return btTransform(btMatrix3x3(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0),
-                                 r(2, 1), r(2, 2)),
-                     btVector3(t.translation().x(), t.translation().y(), t.translation().z()));
+  return btTransform(
+      btMatrix3x3(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)),
+      btVector3(t.translation().x(), t.translation().y(), t.translation().z()));
 }
 
 /// A frame whose z axis is `axis` (unit), at the origin.
 Eigen::Isometry3d frameAlongAxis(const Eigen::Vector3d& axis) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+  t.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
   return t;
 }
 
@@ -38,8 +39,9 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
   for (const auto& name : config.dof_names) {
     const int body = robot_->bodyOfJoint(name);
     if (body < 0) {
-      throw ModelError(jointError(name, "named in dof_names but not a revolute or continuous joint "
-                                        "of the URDF"));
+      throw ModelError(jointError(name,
+                                  "named in dof_names but not a revolute or continuous joint "
+                                  "of the URDF"));
     }
     driven[body] = true;
   }
@@ -54,7 +56,8 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
 
     Body b;
     b.mass = m.mass;
-    b.inertia = btVector3(m.principal_inertia.x(), m.principal_inertia.y(), m.principal_inertia.z());
+    b.inertia =
+        btVector3(m.principal_inertia.x(), m.principal_inertia.y(), m.principal_inertia.z());
     b.com_in_link = toBullet(m.com_frame);
     b.rest_pose = toBullet(link_poses.back() * m.com_frame);
     b.friction = driven[i] ? kWheelFriction : kBodyFriction;
@@ -110,18 +113,22 @@ btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransfo
     std::unique_ptr<btCollisionShape> primitive;
     switch (g.type) {
       case CollisionGeometry::Type::kBox:
-        primitive = std::make_unique<btBoxShape>(
-            btVector3(g.size.x() / 2, g.size.y() / 2, g.size.z() / 2));
+        primitive =
+            std::make_unique<btBoxShape>(btVector3(g.size.x() / 2, g.size.y() / 2, g.size.z() / 2));
         break;
       case CollisionGeometry::Type::kCylinder:
-        primitive = std::make_unique<btCylinderShapeZ>(
-            btVector3(g.size.x(), g.size.x(), g.size.y() / 2));
+        primitive =
+            std::make_unique<btCylinderShapeZ>(btVector3(g.size.x(), g.size.x(), g.size.y() / 2));
+        // A flat tread touches the ground at one of its edges (Bullet's support point), which
+        // makes left and right wheels roll differently; a fully rounded tread of the same outer
+        // size touches in its middle plane, like a real tyre.
+        primitive->setMargin(std::min(g.size.x(), g.size.y() / 2) * kTreadRounding);
         break;
       case CollisionGeometry::Type::kSphere:
         primitive = std::make_unique<btSphereShape>(g.size.x());
         break;
     }
-    if (g.type != CollisionGeometry::Type::kSphere) primitive->setMargin(kCollisionMargin);
+    if (g.type == CollisionGeometry::Type::kBox) primitive->setMargin(kCollisionMargin);
     compound->addChildShape(link_in_com * toBullet(g.origin), primitive.get());
     shapes_.push_back(std::move(primitive));
   }

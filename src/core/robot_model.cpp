@@ -75,8 +75,10 @@ MassElement massElement(const urdf::Link& link, const Eigen::Isometry3d& offset)
   }
   Eigen::Matrix3d inertia;
   inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-  if (!inertia.allFinite()) throw ModelError(linkError(link.name, "inertia has a non-finite entry"));
-  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+  if (!inertia.allFinite())
+    throw ModelError(linkError(link.name, "inertia has a non-finite entry"));
+  const Eigen::Vector3d moments =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
   const double tolerance = 1e-9 * moments.cwiseAbs().maxCoeff();
   const bool triangle = moments(0) + moments(1) >= moments(2) - tolerance &&
                         moments(0) + moments(2) >= moments(1) - tolerance &&
@@ -245,7 +247,8 @@ class BodyBuilder {
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
     for (const auto& m : masses) {  // parallel-axis theorem
       const Eigen::Vector3d d = m.com - com;
-      inertia += m.inertia + m.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+      inertia +=
+          m.inertia + m.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(inertia);
     Eigen::Matrix3d axes = eigen.eigenvectors();
@@ -265,7 +268,8 @@ class BodyBuilder {
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& urdf_xml) {
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseCapturingErrors(urdf_xml, errors);
-  if (!urdf) throw ModelError("URDF could not be parsed: " + (errors.empty() ? "unknown error" : errors));
+  if (!urdf)
+    throw ModelError("URDF could not be parsed: " + (errors.empty() ? "unknown error" : errors));
   const urdf::LinkConstSharedPtr root = urdf->getRoot();
   if (!root) throw ModelError("URDF has no root link");
 

@@ -13,8 +13,10 @@ int main(int argc, char** argv) {
   BenchArgs args;
   std::string error;
   if (!parseBenchArgs(argc, argv, args, error)) {
-    std::fprintf(stderr, "jetbot_rl_bench: %s\nusage: jetbot_rl_bench [--envs N] [--steps S] "
-                         "[--threads T] [--urdf PATH]\n", error.c_str());
+    std::fprintf(stderr,
+                 "jetbot_rl_bench: %s\nusage: jetbot_rl_bench [--envs N] [--steps S] "
+                 "[--threads T] [--urdf PATH]\n",
+                 error.c_str());
     return 2;
   }
   try {
@@ -30,10 +32,12 @@ int main(int argc, char** argv) {
     for (int s = 0; s < warmup; ++s) env.step(actions);
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < args.steps; ++s) {
-      if (s % 50 == 0) for (auto& a : actions) a = target(gen);  // new targets every 50 steps
+      if (s % 50 == 0)
+        for (auto& a : actions) a = target(gen);  // new targets every 50 steps
       env.step(actions);
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double env_steps = static_cast<double>(args.steps) * env.numEnvs();
     std::printf("envs=%d threads=%d steps=%d wall_s=%.3f us_per_control_step=%.1f\n", env.numEnvs(),
                 env.numThreads(), args.steps, seconds, 1e6 * seconds / args.steps);

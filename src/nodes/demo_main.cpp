@@ -38,11 +38,12 @@ int main(int argc, char** argv) {
         const float mean_reward =
             std::accumulate(r.rewards.begin(), r.rewards.end(), 0.0f) / env.numEnvs();
         const int last = env.numEnvs() - 1;
-        std::printf("step %4d  t=%5.2fs  mean reward %.4f m/s  env %d v_b=(%+.3f %+.3f %+.3f) m/s  "
-                    "episode step %3u  resets %zu\n",
-                    s, s * env.controlDt(), mean_reward, last, r.observations[last * 3],
-                    r.observations[last * 3 + 1], r.observations[last * 3 + 2],
-                    r.episode_steps[last], resets);
+        std::printf(
+            "step %4d  t=%5.2fs  mean reward %.4f m/s  env %d v_b=(%+.3f %+.3f %+.3f) m/s  "
+            "episode step %3u  resets %zu\n",
+            s, s * env.controlDt(), mean_reward, last, r.observations[last * 3],
+            r.observations[last * 3 + 1], r.observations[last * 3 + 2], r.episode_steps[last],
+            resets);
       }
     }
     const double seconds =

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# One-command set-up for a fresh Debian 12 machine (idempotent):
+#   bash scripts/setup.sh main   install Debian packages, build, run the main job
+#   bash scripts/setup.sh test   install Debian packages, build, run every test (non-zero on failure)
+# The catkin workspace lives outside the source tree: $JETBOT_RL_WS, default ~/jetbot_rl_ws.
+set -euo pipefail
+
+mode=${1:-main}
+case "$mode" in main | test) ;; *) echo "usage: bash scripts/setup.sh main|test" >&2; exit 2 ;; esac
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+ws=${JETBOT_RL_WS:-$HOME/jetbot_rl_ws}
+jobs=${JETBOT_RL_JOBS:-$(nproc)}
+
+install_packages() {
+  local missing=()
+  while read -r pkg; do
+    [ -n "$pkg" ] || continue
+    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
+  done < "$repo/scripts/debian-packages.txt"
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "== installing Debian packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  echo "== building in $ws"
+  mkdir -p "$ws/src"
+  ln -sfn "$repo" "$ws/src/jetbot_rl"
+  cd "$ws"
+  # ROS's Python tools need Debian's interpreter, not a pyenv python3 on the PATH.
+  catkin_make -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
+  set +u
+  # shellcheck disable=SC1091
+  source "$ws/devel/setup.bash"
+  set -u
+}
+
+run_tests() {
+  cd "$ws"
+  rm -rf "$ws/build/test_results"
+  catkin_make run_tests -j1 -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
+  local summary status=0
+  summary=$(catkin_test_results --verbose "$ws/build/test_results") || status=$?
+  echo "$summary"
+  # catkin_test_results: "Summary: N tests, E errors, F failures, S skipped"
+  local line total errors failures skipped
+  line=$(echo "$summary" | grep '^Summary:' | tail -n 1)
+  read -r total errors failures skipped < <(echo "$line" | sed -E 's/[^0-9]+/ /g')
+  if [ -z "${total:-}" ] || [ "$total" -eq 0 ]; then
+    echo "no test results found" >&2
+    exit 1
+  fi
+  echo "$((total - errors - failures - skipped)) passed, $((errors + failures)) failed, $skipped skipped"
+  exit "$status"
+}
+
+install_packages
+build
+if [ "$mode" = test ]; then
+  run_tests
+else
+  rosrun jetbot_rl jetbot_rl_demo --envs 100 --steps 600
+fi
