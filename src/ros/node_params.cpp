@@ -1,0 +1,118 @@
+#include "jetbot_rl/ros/node_params.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace {
+
+const char* typeName(bool) { return "a bool"; }
+const char* typeName(int) { return "an integer"; }
+const char* typeName(double) { return "a number"; }
+const char* typeName(const std::string&) { return "a string"; }
+const char* typeName(const std::vector<std::string>&) { return "a list of strings"; }
+
+/// Reads ~name into `value` when it is set; throws ConfigError when it has the wrong type.
+template <typename T>
+void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
+  if (!pnh.hasParam(name)) return;
+  if (pnh.getParam(name, value)) return;
+  XmlRpc::XmlRpcValue raw;
+  pnh.getParam(name, raw);
+  std::ostringstream s;
+  s << "invalid " << name << " = " << raw.toXml() << ": must be " << typeName(value);
+  throw ConfigError(s.str());
+}
+
+template <typename T>
+[[noreturn]] void fail(const std::string& name, const T& value, const std::string& rule) {
+  std::ostringstream s;
+  s << "invalid " << name << " = " << value << ": " << rule;
+  throw ConfigError(s.str());
+}
+
+}  // namespace
+
+std::string modeName(EnvMode mode) { return mode == EnvMode::kRealtime ? "realtime" : "lockstep"; }
+
+NodeParams loadNodeParams(const ros::NodeHandle& pnh) {
+  NodeParams p;
+  EnvConfig& e = p.env;
+  readParam(pnh, "num_envs", e.num_envs);
+  readParam(pnh, "env_spacing", e.env_spacing);
+  readParam(pnh, "physics_dt", e.physics_dt);
+  readParam(pnh, "decimation", e.decimation);
+  readParam(pnh, "episode_length_s", e.episode_length_s);
+  readParam(pnh, "dof_names", e.dof_names);
+  int seed = static_cast<int>(e.seed);
+  readParam(pnh, "seed", seed);
+  if (seed < 0) fail("seed", seed, "must be >= 0");
+  e.seed = static_cast<std::uint64_t>(seed);
+  readParam(pnh, "num_threads", e.num_threads);
+  readParam(pnh, "drive_gain", e.drive_gain);
+  readParam(pnh, "effort_limit", e.effort_limit);
+  readParam(pnh, "solver_iterations", e.solver_iterations);
+
+  readParam(pnh, "task", p.task);
+  std::string mode = modeName(p.mode);
+  readParam(pnh, "mode", mode);
+  if (mode == "lockstep") {
+    p.mode = EnvMode::kLockstep;
+  } else if (mode == "realtime") {
+    p.mode = EnvMode::kRealtime;
+  } else {
+    fail("mode", "'" + mode + "'", "must be 'lockstep' or 'realtime'");
+  }
+  readParam(pnh, "real_time_factor", p.real_time_factor);
+  readParam(pnh, "action_timeout", p.action_timeout);
+  readParam(pnh, "publish_clock", p.publish_clock);
+  readParam(pnh, "tf_envs", p.tf_envs);
+  readParam(pnh, "tf_rate", p.tf_rate);
+  validateNodeParams(p);
+  return p;
+}
+
+void validateNodeParams(const NodeParams& p) {
+  p.env.validate();
+  makeTask(p.task);
+  if (!std::isfinite(p.real_time_factor) || p.real_time_factor <= 0.0 ||
+      p.real_time_factor > 1000.0) {
+    fail("real_time_factor", p.real_time_factor, "must be in (0, 1000]");
+  }
+  if (!std::isfinite(p.action_timeout) || p.action_timeout <= 0.0) {
+    fail("action_timeout", p.action_timeout, "must be a positive number of seconds");
+  }
+  if (p.tf_envs < 0) fail("tf_envs", p.tf_envs, "must be >= 0 (0: no tf)");
+  if (!std::isfinite(p.tf_rate) || p.tf_rate <= 0.0) {
+    fail("tf_rate", p.tf_rate, "must be a positive rate in Hz of simulation time");
+  }
+}
+
+std::string describeNodeParams(const NodeParams& p) {
+  const EnvConfig& e = p.env;
+  std::ostringstream s;
+  s << "num_envs: " << e.num_envs << "\nenv_spacing: " << e.env_spacing << " m"
+    << "\nphysics_dt: " << e.physics_dt << " s\ndecimation: " << e.decimation << " (control step "
+    << e.controlDt() << " s)\nepisode_length_s: " << e.episode_length_s << " s (max_episode_length "
+    << e.maxEpisodeLength() << ")\ndof_names: [";
+  for (std::size_t i = 0; i < e.dof_names.size(); ++i) {
+    s << (i ? ", " : "") << e.dof_names[i];
+  }
+  s << "]\nseed: " << e.seed << "\nnum_threads: " << e.num_threads << " (resolved "
+    << e.resolvedThreads() << ")\ndrive_gain: " << e.drive_gain
+    << " N m s/rad\neffort_limit: " << e.effort_limit
+    << " N m\nsolver_iterations: " << e.solver_iterations << "\ntask: " << p.task
+    << "\nmode: " << modeName(p.mode) << "\nreal_time_factor: " << p.real_time_factor
+    << "\naction_timeout: " << p.action_timeout << " s\npublish_clock: " << std::boolalpha
+    << p.publish_clock << "\ntf_envs: " << p.tf_envs << "\ntf_rate: " << p.tf_rate << " Hz";
+  return s.str();
+}
+
+std::unique_ptr<Task> makeTask(const std::string& name) {
+  if (name == "velocity") return std::make_unique<VelocityTask>();
+  fail("task", "'" + name + "'", "must be 'velocity'");
+}
+
+}  // namespace jetbot_rl
