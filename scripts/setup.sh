@@ -43,18 +43,9 @@ run_tests() {
   cd "$ws"
   rm -rf "$ws/build/test_results"
   catkin_make run_tests -j1 -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
-  local summary status=0
-  summary=$(catkin_test_results --verbose "$ws/build/test_results") || status=$?
-  echo "$summary"
-  # catkin_test_results: "Summary: N tests, E errors, F failures, S skipped"
-  local line total errors failures skipped
-  line=$(echo "$summary" | grep '^Summary:' | tail -n 1)
-  read -r total errors failures skipped < <(echo "$line" | sed -E 's/[^0-9]+/ /g')
-  if [ -z "${total:-}" ] || [ "$total" -eq 0 ]; then
-    echo "no test results found" >&2
-    exit 1
-  fi
-  echo "$((total - errors - failures - skipped)) passed, $((errors + failures)) failed, $skipped skipped"
+  local status=0
+  catkin_test_results --verbose "$ws/build/test_results" || status=$?
+  /usr/bin/python3 "$repo/scripts/summarize_test_results.py" "$ws/build/test_results" || status=1
   exit "$status"
 }
 
