@@ -15,7 +15,14 @@ std::string EnvTfPublisher::frameName(int env, const std::string& link) {
 
 void EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool force) {
   if (!broadcaster_) return;
-  if (!force && published_ && stamp - last_ < period_) return;
+  if (published_ && stamp == last_) {
+    // tf2 listeners drop a second batch with the same stamp (TF_REPEATED_DATA): a forced batch
+    // at an unchanged time (a reset) goes out with the next step instead.
+    pending_ = pending_ || force;
+    return;
+  }
+  if (!force && !pending_ && published_ && stamp - last_ < period_) return;
+  pending_ = false;
   const int envs = std::min(tf_envs_, env.numEnvs());
   std::size_t k = 0;
   for (int e = 0; e < envs; ++e) {

@@ -18,7 +18,9 @@ class EnvTfPublisher {
   /// `tf_envs`: envs that get frames (0 disables); `tf_rate` [Hz of simulation time].
   EnvTfPublisher(int tf_envs, double tf_rate);
   /// Publishes when at least 1/tf_rate of simulation time passed since the last batch, or when
-  /// `force` (start-up, resets). `stamp` is the simulation time of the current state.
+  /// `force` (start-up, resets). `stamp` is the simulation time of the current state [s]; a
+  /// forced batch at the stamp of the previous batch is sent with the next step instead, since
+  /// tf2 listeners ignore repeated stamps.
   void update(const BatchedEnv& env, const ros::Time& stamp, bool force);
   /// Frame name of `link` of env `env`: "env_<env>/<link>".
   static std::string frameName(int env, const std::string& link);
@@ -28,6 +30,7 @@ class EnvTfPublisher {
   ros::Duration period_;
   ros::Time last_{0, 0};
   bool published_ = false;
+  bool pending_ = false;  // a forced batch waits for a new stamp
   std::vector<geometry_msgs::TransformStamped> transforms_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> broadcaster_;
 };
