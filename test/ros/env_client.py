@@ -70,11 +70,15 @@ class EnvClient(object):
         self.pub.publish(self.targets(step, velocities))
 
     def step_topic(self, step, velocities):
-        """Publishes targets for `step` and returns the EnvStep with step + 1."""
+        """Publishes targets for `step` and returns the EnvStep with step + 1 (a reset's state
+        published just before may still be on its way: messages up to `step` are skipped)."""
         count = len(self.received())
         self.publish(step, velocities)
-        wait_for(lambda: len(self.received()) > count, what='EnvStep %d' % (step + 1))
-        msg = self.received()[count]
+
+        def answered():
+            return any(m.step > step for m in self.received()[count:])
+        wait_for(answered, what='EnvStep %d' % (step + 1))
+        msg = next(m for m in self.received()[count:] if m.step > step)
         assert msg.step == step + 1, 'expected EnvStep %d, got %d' % (step + 1, msg.step)
         return msg
 

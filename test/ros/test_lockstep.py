@@ -7,7 +7,7 @@ import unittest
 import rospy
 import rostest
 
-from env_client import EnvClient
+from env_client import EnvClient, wait_for
 
 NUM_ENVS = 3
 STEPS = 600
@@ -25,7 +25,8 @@ class TestLockstep(unittest.TestCase):
         start = env.reset_srv(env_ids=[], seed=0)
         self.assertTrue(start.success, start.message)
         self.assertEqual(start.state.step, 0)
-        self.assertEqual(len(env.received()), 1)  # the reset published its state
+        wait_for(lambda: len(env.received()) == 1, what='the published reset state')
+        self.assertEqual(env.received()[0].step, 0)
         obs_dim = start.state.obs_dim
 
         for step in range(STEPS):
