@@ -18,7 +18,7 @@ struct EnvConfig {
   int num_threads = 0;         ///< Worker threads; 0 means all cores.
   double drive_gain = 10.0;    ///< Velocity drive gain [N m s/rad].
   double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
-  int solver_iterations = 30;  ///< Bullet constraint solver iterations per physics step.
+  int solver_iterations = 10;  ///< Bullet constraint solver iterations per physics step.
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;

@@ -1,5 +1,11 @@
 #pragma once
 
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
@@ -15,12 +21,14 @@ namespace jetbot_rl {
 /// and carry no state from one world's step to the next.
 struct WorkerContext {
   btDefaultCollisionConfiguration collision_configuration;
-  btSequentialImpulseConstraintSolver solver;
+  btMultiBodyConstraintSolver solver;
 };
 
 /**
  * One env's mutable physics state: its own Bullet world in the env's local frame, so that an env
  * never interacts with another and its trajectory does not depend on its origin or on the batch.
+ * The robot is a btMultiBody (Featherstone, reduced coordinates): joints cannot drift apart and
+ * the light wheels on the heavy chassis need no extra solver iterations.
  */
 class EnvWorld {
  public:
@@ -29,7 +37,7 @@ class EnvWorld {
   EnvWorld(const EnvWorld&) = delete;
   EnvWorld& operator=(const EnvWorld&) = delete;
 
-  /// Puts every body at its rest pose with zero velocity and forgets contacts.
+  /// Puts the robot at its rest pose with zero velocity and forgets contacts.
   void reset();
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
   void setTargets(const float* targets);
@@ -37,7 +45,7 @@ class EnvWorld {
   void step(double dt);
   /// Root body state in the env frame.
   RootState rootState() const;
-  /// Overwrites the root pose and velocity; other bodies move rigidly with the root.
+  /// Overwrites the root pose and velocity; joint positions and velocities are kept.
   void setRootState(const RootState& state);
   /// Empty when the state is sane, otherwise why it is not (non-finite or absurd values).
   std::string divergence() const;
@@ -49,13 +57,19 @@ class EnvWorld {
   btTransform linkPose(int body) const;
 
  private:
+  /// World transform of body `body`'s principal COM frame.
+  btTransform comPose(int body) const;
+  void syncColliders();
+
   const PhysicsModel& model_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world_;
   std::unique_ptr<btCollisionObject> ground_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-  std::vector<std::unique_ptr<btHingeConstraint>> joints_;
+  std::unique_ptr<btMultiBody> robot_;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
+  std::vector<btMultiBodyJointMotor*> motors_;  // per dof, owned by constraints_
   std::vector<float> targets_;
 };
 

@@ -25,11 +25,14 @@ class PhysicsModel {
     btTransform rest_pose;              ///< COM frame in the env frame at rest.
     btScalar friction = 0;              ///< Coulomb friction coefficient with the ground.
   };
+  /// A revolute joint in btMultiBody's terms; frames are the bodies' principal COM frames.
   struct Joint {
-    int parent = 0;               ///< Body index of the parent.
-    int child = 0;                ///< Body index of the child.
-    btTransform frame_in_parent;  ///< Hinge frame (z = axis) in the parent's COM frame.
-    btTransform frame_in_child;   ///< Hinge frame (z = axis) in the child's COM frame.
+    int parent = 0;                    ///< Body index of the parent.
+    int child = 0;                     ///< Body index of the child.
+    btQuaternion rot_parent_to_child;  ///< Rotates parent-frame vectors into the child frame.
+    btVector3 axis_in_child;           ///< Unit joint axis in the child frame.
+    btVector3 parent_com_to_pivot;     ///< In the parent frame [m].
+    btVector3 pivot_to_child_com;      ///< In the child frame [m].
     bool limited = false;
     btScalar lower = 0, upper = 0;  ///< [rad]
   };

@@ -25,8 +25,8 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
     : model_(model),
       dispatcher_(new btCollisionDispatcher(&context.collision_configuration)),
       broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1)),
-      world_(new btDiscreteDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
-                                         &context.collision_configuration)),
+      world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
+                                          &context.collision_configuration)),
       ground_(new btCollisionObject()),
       targets_(model.dofs().size(), 0.0f) {
   world_->setGravity(btVector3(0, 0, kGravity));
@@ -36,42 +36,76 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
   ground_->setFriction(kGroundFriction);
   world_->addCollisionObject(ground_.get(), kGroundGroup, kRobotGroup);
 
-  for (const auto& b : model.bodies()) {
-    btRigidBody::btRigidBodyConstructionInfo info(b.mass, nullptr, b.shape, b.inertia);
-    info.m_startWorldTransform = b.rest_pose;
-    info.m_friction = b.friction;
-    auto body = std::make_unique<btRigidBody>(info);
-    body->setActivationState(DISABLE_DEACTIVATION);  // an RL env never sleeps
-    world_->addRigidBody(body.get(), kRobotGroup, kGroundGroup);
-    bodies_.push_back(std::move(body));
+  const auto& bodies = model.bodies();
+  const int links = static_cast<int>(bodies.size()) - 1;
+  robot_ = std::make_unique<btMultiBody>(links, bodies[0].mass, bodies[0].inertia,
+                                         /*fixedBase=*/false, /*canSleep=*/false);
+  for (const auto& j : model.joints()) {
+    const PhysicsModel::Body& child = bodies[j.child];
+    robot_->setupRevolute(j.child - 1, child.mass, child.inertia, j.parent - 1,
+                          j.rot_parent_to_child, j.axis_in_child, j.parent_com_to_pivot,
+                          j.pivot_to_child_com, /*disableParentCollision=*/true);
+  }
+  robot_->finalizeMultiDof();
+  // btMultiBody damps by default and caps joint speeds; the environment wants neither.
+  robot_->setLinearDamping(0);
+  robot_->setAngularDamping(0);
+  robot_->setMaxCoordinateVelocity(1e4);
+  robot_->setHasSelfCollision(false);
+  world_->addMultiBody(robot_.get(), kRobotGroup, kGroundGroup);
+
+  for (int b = 0; b <= links; ++b) {
+    auto collider = std::make_unique<btMultiBodyLinkCollider>(robot_.get(), b - 1);
+    collider->setCollisionShape(bodies[b].shape);
+    collider->setFriction(bodies[b].friction);
+    world_->addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
+    if (b == 0) {
+      robot_->setBaseCollider(collider.get());
+    } else {
+      robot_->getLink(b - 1).m_collider = collider.get();
+    }
+    colliders_.push_back(std::move(collider));
   }
   for (const auto& j : model.joints()) {
-    auto hinge = std::make_unique<btHingeConstraint>(*bodies_[j.parent], *bodies_[j.child],
-                                                     j.frame_in_parent, j.frame_in_child);
-    if (j.limited) hinge->setLimit(j.lower, j.upper);
-    world_->addConstraint(hinge.get(), /*disableCollisionsBetweenLinkedBodies=*/true);
-    joints_.push_back(std::move(hinge));
+    if (!j.limited) continue;
+    constraints_.push_back(std::make_unique<btMultiBodyJointLimitConstraint>(
+        robot_.get(), j.child - 1, j.lower, j.upper));
   }
+  for (const auto& dof : model.dofs()) {
+    const int link = model.joints()[dof.joint].child - 1;
+    auto motor = std::make_unique<btMultiBodyJointMotor>(robot_.get(), link, 0.0, 0.0);
+    motors_.push_back(motor.get());
+    constraints_.push_back(std::move(motor));
+  }
+  for (auto& c : constraints_) world_->addMultiBodyConstraint(c.get());
+  reset();
 }
 
 EnvWorld::~EnvWorld() {
-  for (auto& j : joints_) world_->removeConstraint(j.get());
-  for (auto& b : bodies_) world_->removeRigidBody(b.get());
+  for (auto& c : constraints_) world_->removeMultiBodyConstraint(c.get());
+  for (auto& c : colliders_) world_->removeCollisionObject(c.get());
+  world_->removeMultiBody(robot_.get());
   world_->removeCollisionObject(ground_.get());
 }
 
+void EnvWorld::syncColliders() {
+  btAlignedObjectArray<btQuaternion> rotations;
+  btAlignedObjectArray<btVector3> offsets;
+  robot_->updateCollisionObjectWorldTransforms(rotations, offsets);
+  for (auto& c : colliders_) world_->updateSingleAabb(c.get());
+}
+
 void EnvWorld::reset() {
-  const auto& models = model_.bodies();
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    btRigidBody& body = *bodies_[i];
-    body.setCenterOfMassTransform(models[i].rest_pose);  // also refreshes the world inertia
-    body.setLinearVelocity(btVector3(0, 0, 0));
-    body.setAngularVelocity(btVector3(0, 0, 0));
-    body.setInterpolationLinearVelocity(btVector3(0, 0, 0));
-    body.setInterpolationAngularVelocity(btVector3(0, 0, 0));
-    body.clearForces();
-    world_->updateSingleAabb(&body);
+  const PhysicsModel::Body& root = model_.bodies()[0];
+  robot_->setBaseWorldTransform(root.rest_pose);
+  robot_->setBaseVel(btVector3(0, 0, 0));
+  robot_->setBaseOmega(btVector3(0, 0, 0));
+  for (int l = 0; l < robot_->getNumLinks(); ++l) {
+    robot_->setJointPos(l, 0);
+    robot_->setJointVel(l, 0);
   }
+  robot_->clearForcesAndTorques();
+  syncColliders();
   // Forget contact points so a reset env behaves exactly like a fresh one (no warm start).
   for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
     dispatcher_->getManifoldByIndexInternal(i)->clearManifold();
@@ -90,64 +124,67 @@ void EnvWorld::step(double dt) {
     // as a velocity constraint so it never overshoots the target (stable at any gain).
     const double error = targets_[d] - dofVelocity(static_cast<int>(d));
     const double torque = std::min(dofs[d].effort_limit, model_.driveGain() * std::abs(error));
-    // Bullet's hinge motor drives (w_parent - w_child) . axis, the opposite of URDF's sign.
-    joints_[dofs[d].joint]->enableAngularMotor(true, -targets_[d],
-                                               static_cast<btScalar>(torque * dt));
+    motors_[d]->setVelocityTarget(targets_[d]);
+    motors_[d]->setMaxAppliedImpulse(static_cast<btScalar>(torque * dt));
   }
   world_->stepSimulation(static_cast<btScalar>(dt), 0);
 }
 
+btTransform EnvWorld::comPose(int body) const {
+  // Colliders carry the poses after the last integration (a link's m_cachedWorldTransform is the
+  // one before it).
+  return colliders_[body]->getWorldTransform();
+}
+
+btTransform EnvWorld::linkPose(int body) const {
+  return comPose(body) * model_.bodies()[body].com_in_link.inverse();
+}
+
 RootState EnvWorld::rootState() const {
-  const btRigidBody& root = *bodies_[0];
   const btTransform link = linkPose(0);
   const btQuaternion q = link.getRotation();
   RootState s;
   s.position = toEigen(link.getOrigin());
   s.orientation = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());
-  s.com_linear_velocity = toEigen(root.getLinearVelocity());
-  s.angular_velocity = toEigen(root.getAngularVelocity());
+  s.com_linear_velocity = toEigen(robot_->getBaseVel());
+  s.angular_velocity = toEigen(robot_->getBaseOmega());
   return s;
 }
 
 void EnvWorld::setRootState(const RootState& state) {
-  const btTransform old_link = linkPose(0);
-  const btVector3 old_omega = bodies_[0]->getAngularVelocity();
   const Eigen::Quaterniond q = state.orientation.normalized();
-  const btTransform new_link(btQuaternion(q.x(), q.y(), q.z(), q.w()), toBullet(state.position));
-  const btTransform delta = new_link * old_link.inverse();
-  const btVector3 omega = toBullet(state.angular_velocity);
-  const btVector3 root_com = delta * bodies_[0]->getWorldTransform().getOrigin();
-  for (auto& body : bodies_) {
-    const btTransform pose = delta * body->getWorldTransform();
-    const btVector3 spin = body->getAngularVelocity() - old_omega;  // wheels keep spinning
-    body->setCenterOfMassTransform(pose);
-    body->setLinearVelocity(toBullet(state.com_linear_velocity) +
-                            omega.cross(pose.getOrigin() - root_com));
-    body->setAngularVelocity(omega + delta.getBasis() * spin);
-    world_->updateSingleAabb(body.get());
-  }
+  const btTransform link(btQuaternion(q.x(), q.y(), q.z(), q.w()), toBullet(state.position));
+  robot_->setBaseWorldTransform(link * model_.bodies()[0].com_in_link);
+  robot_->setBaseVel(toBullet(state.com_linear_velocity));
+  robot_->setBaseOmega(toBullet(state.angular_velocity));
+  syncColliders();
 }
 
 std::string EnvWorld::divergence() const {
   const auto& models = model_.robot().bodies();
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const btRigidBody& body = *bodies_[i];
-    const btVector3& p = body.getWorldTransform().getOrigin();
-    const btVector3& v = body.getLinearVelocity();
-    const btVector3& w = body.getAngularVelocity();
+  const btVector3 v = robot_->getBaseVel();
+  const btVector3 w = robot_->getBaseOmega();
+  for (size_t b = 0; b < models.size(); ++b) {
+    const btTransform pose = comPose(static_cast<int>(b));
+    const btVector3& p = pose.getOrigin();
+    const double joint_velocity = b == 0 ? 0.0 : robot_->getJointVel(static_cast<int>(b) - 1);
     std::ostringstream why;
-    why << "link '" << models[i].link_name << "' ";
-    if (!std::isfinite(p.length2()) || !std::isfinite(v.length2()) || !std::isfinite(w.length2()) ||
-        !std::isfinite(body.getWorldTransform().getBasis()[0].length2())) {
+    why << "link '" << models[b].link_name << "' ";
+    if (!std::isfinite(p.length2()) || !std::isfinite(pose.getBasis()[0].length2()) ||
+        !std::isfinite(v.length2()) || !std::isfinite(w.length2()) ||
+        !std::isfinite(joint_velocity)) {
       why << "has a non-finite state";
     } else if (p.length() > kMaxPosition) {
       why << "is " << p.length() << " m from its env origin (limit " << kMaxPosition << " m)";
     } else if (p.z() < kMinHeight) {
       why << "fell through the ground (z = " << p.z() << " m)";
-    } else if (v.length() > kMaxLinearVelocity) {
+    } else if (b == 0 && v.length() > kMaxLinearVelocity) {
       why << "moves at " << v.length() << " m/s (limit " << kMaxLinearVelocity << " m/s)";
-    } else if (w.length() > kMaxAngularVelocity) {
+    } else if (b == 0 && w.length() > kMaxAngularVelocity) {
       why << "spins at " << w.length() << " rad/s (limit " << kMaxAngularVelocity << " rad/s)";
+    } else if (std::abs(joint_velocity) > kMaxAngularVelocity) {
+      why << "joint spins at " << joint_velocity << " rad/s (limit " << kMaxAngularVelocity
+          << " rad/s)";
     } else {
       continue;
     }
@@ -158,26 +195,17 @@ std::string EnvWorld::divergence() const {
 
 double EnvWorld::maxJointError() const {
   double worst = 0.0;
-  const auto& joints = model_.joints();
-  for (const auto& j : joints) {
-    const btVector3 a = bodies_[j.parent]->getWorldTransform() * j.frame_in_parent.getOrigin();
-    const btVector3 b = bodies_[j.child]->getWorldTransform() * j.frame_in_child.getOrigin();
-    worst = std::max(worst, static_cast<double>((a - b).length()));
+  for (const auto& j : model_.joints()) {
+    const btVector3 from_parent = comPose(j.parent) * j.parent_com_to_pivot;
+    const btTransform child = comPose(j.child);
+    const btVector3 from_child = child * (-j.pivot_to_child_com);
+    worst = std::max(worst, static_cast<double>((from_parent - from_child).length()));
   }
   return worst;
 }
 
 double EnvWorld::dofVelocity(int dof) const {
-  const auto& j = model_.joints()[model_.dofs()[dof].joint];
-  const btRigidBody& parent = *bodies_[j.parent];
-  const btRigidBody& child = *bodies_[j.child];
-  const btVector3 axis =
-      child.getWorldTransform().getBasis() * j.frame_in_child.getBasis().getColumn(2);
-  return (child.getAngularVelocity() - parent.getAngularVelocity()).dot(axis);
-}
-
-btTransform EnvWorld::linkPose(int body) const {
-  return bodies_[body]->getWorldTransform() * model_.bodies()[body].com_in_link.inverse();
+  return robot_->getJointVel(model_.joints()[model_.dofs()[dof].joint].child - 1);
 }
 
 }  // namespace jetbot_rl

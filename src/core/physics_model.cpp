@@ -15,13 +15,7 @@ btTransform toBullet(const Eigen::Isometry3d& t) {
       btVector3(t.translation().x(), t.translation().y(), t.translation().z()));
 }
 
-/// A frame whose z axis is `axis` (unit), at the origin.
-Eigen::Isometry3d frameAlongAxis(const Eigen::Vector3d& axis) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
-  return t;
-}
+btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 
 std::string jointError(const std::string& joint, const std::string& what) {
   return "joint '" + joint + "': " + what;
@@ -68,9 +62,16 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
       Joint j;
       j.parent = m.parent;
       j.child = static_cast<int>(i);
-      const Eigen::Isometry3d hinge = frameAlongAxis(m.axis);  // in the child link frame
-      j.frame_in_parent = toBullet(models[m.parent].com_frame.inverse() * m.joint_origin * hinge);
-      j.frame_in_child = toBullet(m.com_frame.inverse() * hinge);
+      // Child link frame at zero angle, and both COM frames, in the parent's link frame.
+      const Eigen::Isometry3d& parent_com = models[m.parent].com_frame;
+      const Eigen::Isometry3d child_com = m.joint_origin * m.com_frame;
+      const Eigen::Matrix3d parent_to_child = child_com.linear().transpose() * parent_com.linear();
+      const Eigen::Quaterniond q(parent_to_child);
+      j.rot_parent_to_child = btQuaternion(q.x(), q.y(), q.z(), q.w());
+      j.axis_in_child = toBullet(m.com_frame.linear().transpose() * m.axis);
+      j.parent_com_to_pivot = toBullet(parent_com.linear().transpose() *
+                                       (m.joint_origin.translation() - parent_com.translation()));
+      j.pivot_to_child_com = toBullet(m.com_frame.linear().transpose() * m.com_frame.translation());
       j.limited = m.has_position_limits;
       j.lower = m.lower;
       j.upper = m.upper;
