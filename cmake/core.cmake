@@ -4,10 +4,12 @@
 # ---- ROS-free core: Bullet, Eigen, urdfdom ----
 add_library(jetbot_rl_core
   src/core/batched_env.cpp
+  src/core/command_task.cpp
   src/core/env_config.cpp
   src/core/env_world.cpp
   src/core/physics_model.cpp
   src/core/robot_model.cpp
+  src/core/task_factory.cpp
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp
 )
@@ -41,6 +43,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_kinematics.cpp
     test/core/test_step_semantics.cpp
     test/core/test_bad_input.cpp
+    test/core/test_command_task.cpp
     test/core/test_determinism.cpp
     test/core/test_thread_pool.cpp
   )

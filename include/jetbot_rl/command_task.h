@@ -1,0 +1,55 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/task.h"
+
+namespace jetbot_rl {
+
+/**
+ * The walkthrough's command-following task: every reset draws a random unit command in the ground
+ * plane from the env's seeded stream; the robot should turn towards it and drive along it.
+ *
+ * Observation: [dot(forward, command), cross(forward, command).z, v_body.x], forward being the body
+ * +x axis in the world frame. Reward by `Variant`: kExp v_x * exp(dot) (the walkthrough's final
+ * choice), kSum v_x + dot (naive), kProduct v_x * dot (learns to reverse).
+ */
+class CommandTask : public Task {
+ public:
+  enum class Variant { kExp, kSum, kProduct };
+
+  explicit CommandTask(Variant variant = Variant::kExp) : variant_(variant) {}
+  /// Parses "exp", "sum" or "product"; throws ConfigError naming the value otherwise.
+  static Variant parseVariant(const std::string& name);
+  static std::string variantName(Variant variant);
+
+  std::string name() const override { return "command"; }
+  std::vector<std::string> observationNames() const override {
+    return {"forward_dot_command", "forward_cross_command_z", "lin_vel_b_x"};
+  }
+  void resize(int num_envs) override { commands_.assign(num_envs, Eigen::Vector2d::UnitX()); }
+  void resetEnv(int env, Rng& rng) override;
+  void observe(int env, const RootState& state, float* obs) const override;
+  float reward(int env, const RootState& state) const override;
+
+  Variant variant() const { return variant_; }
+  /// Unit command of env `env` in the world (= env) frame's x-y plane.
+  const Eigen::Vector2d& command(int env) const { return commands_.at(env); }
+  /// Sets env `env`'s command (normalised); throws InputError for a bad env id or a zero or
+  /// non-finite vector. Kept until the env's next reset.
+  void setCommand(int env, const Eigen::Vector2d& command);
+
+ private:
+  struct Heading {
+    double dot;    ///< cos of the angle from forward to the command
+    double cross;  ///< sin of that angle (counter-clockwise positive)
+  };
+  Heading heading(int env, const RootState& state) const;
+
+  Variant variant_;
+  std::vector<Eigen::Vector2d> commands_;
+};
+
+}  // namespace jetbot_rl

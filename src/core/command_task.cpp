@@ -1,0 +1,76 @@
+#include "jetbot_rl/command_task.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+
+CommandTask::Variant CommandTask::parseVariant(const std::string& name) {
+  if (name == "exp") return Variant::kExp;
+  if (name == "sum") return Variant::kSum;
+  if (name == "product") return Variant::kProduct;
+  throw ConfigError("invalid reward = '" + name + "': must be exp, sum or product");
+}
+
+std::string CommandTask::variantName(Variant variant) {
+  switch (variant) {
+    case Variant::kExp:
+      return "exp";
+    case Variant::kSum:
+      return "sum";
+    case Variant::kProduct:
+      return "product";
+  }
+  return "?";
+}
+
+void CommandTask::resetEnv(int env, Rng& rng) {
+  const double angle = 2.0 * M_PI * rng.uniform();
+  commands_[env] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+}
+
+void CommandTask::setCommand(int env, const Eigen::Vector2d& command) {
+  if (env < 0 || env >= static_cast<int>(commands_.size())) {
+    std::ostringstream s;
+    s << "command: env " << env << " is out of range [0, " << commands_.size() << ")";
+    throw InputError(s.str());
+  }
+  if (!command.allFinite() || command.norm() < 1e-9) {
+    std::ostringstream s;
+    s << "command of env " << env << ": (" << command.x() << ", " << command.y()
+      << ") must be a finite non-zero vector";
+    throw InputError(s.str());
+  }
+  commands_[env] = command.normalized();
+}
+
+CommandTask::Heading CommandTask::heading(int env, const RootState& state) const {
+  const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
+  const Eigen::Vector2d& c = commands_[env];
+  return {forward.x() * c.x() + forward.y() * c.y(), forward.x() * c.y() - forward.y() * c.x()};
+}
+
+void CommandTask::observe(int env, const RootState& state, float* obs) const {
+  const Heading h = heading(env, state);
+  obs[0] = static_cast<float>(h.dot);
+  obs[1] = static_cast<float>(h.cross);
+  obs[2] = static_cast<float>(state.comLinearVelocityBody().x());
+}
+
+float CommandTask::reward(int env, const RootState& state) const {
+  const double dot = heading(env, state).dot;
+  const double forward_speed = state.comLinearVelocityBody().x();
+  switch (variant_) {
+    case Variant::kExp:
+      return static_cast<float>(forward_speed * std::exp(dot));
+    case Variant::kSum:
+      return static_cast<float>(forward_speed + dot);
+    case Variant::kProduct:
+      return static_cast<float>(forward_speed * dot);
+  }
+  return 0.0f;
+}
+
+}  // namespace jetbot_rl
