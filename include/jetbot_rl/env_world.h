@@ -55,6 +55,8 @@ class EnvWorld {
   double dofVelocity(int dof) const;
   /// Pose of body `body`'s link frame in the env frame.
   btTransform linkPose(int body) const;
+  /// Contact points of the last collision detection, and the pairs they belong to.
+  int contactPoints(int* pairs = nullptr) const;
 
  private:
   /// World transform of body `body`'s principal COM frame.

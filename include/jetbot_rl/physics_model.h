@@ -51,6 +51,8 @@ class PhysicsModel {
   static constexpr btScalar kCollisionMargin = 0.001;
   /// Cylinder edge rounding as a fraction of min(radius, half length), kept inside the URDF size.
   static constexpr btScalar kTreadRounding = 0.98;
+  /// Contact breaking threshold of round shapes (spheres, cylinders) [m].
+  static constexpr btScalar kRollingContactBreakingThreshold = 1e-4;
 
   /// Throws ModelError naming a dof joint the URDF lacks or whose limits are unusable.
   PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config);

@@ -204,6 +204,15 @@ double EnvWorld::maxJointError() const {
   return worst;
 }
 
+int EnvWorld::contactPoints(int* pairs) const {
+  int points = 0;
+  for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
+    points += dispatcher_->getManifoldByIndexInternal(i)->getNumContacts();
+  }
+  if (pairs) *pairs = dispatcher_->getNumManifolds();
+  return points;
+}
+
 double EnvWorld::dofVelocity(int dof) const {
   return robot_->getJointVel(model_.joints()[model_.dofs()[dof].joint].child - 1);
 }

@@ -1,5 +1,6 @@
 #include "jetbot_rl/physics_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -103,39 +104,98 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
 
 PhysicsModel::~PhysicsModel() = default;
 
-btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransform& com_in_link) {
-  if (body.collisions.empty()) {
-    shapes_.push_back(std::make_unique<btEmptyShape>());
-    return shapes_.back().get();
+namespace {
+
+/// Round shapes roll: their contact point moves on every step, so a point from an earlier step is
+/// useless as soon as the surface lifts off; a small breaking threshold drops it at once instead
+/// of solving for it on every iteration.
+template <class Shape>
+class RollingShape : public Shape {
+ public:
+  using Shape::Shape;
+  btScalar getContactBreakingThreshold(btScalar) const override {
+    return PhysicsModel::kRollingContactBreakingThreshold;
   }
-  auto compound = std::make_unique<btCompoundShape>(/*enableDynamicAabbTree=*/false);
-  const btTransform link_in_com = com_in_link.inverse();
-  for (const auto& g : body.collisions) {
-    std::unique_ptr<btCollisionShape> primitive;
-    switch (g.type) {
-      case CollisionGeometry::Type::kBox:
-        primitive =
-            std::make_unique<btBoxShape>(btVector3(g.size.x() / 2, g.size.y() / 2, g.size.z() / 2));
-        break;
-      case CollisionGeometry::Type::kCylinder:
-        primitive =
-            std::make_unique<btCylinderShapeZ>(btVector3(g.size.x(), g.size.x(), g.size.y() / 2));
-        // A flat tread touches the ground at one of its edges (Bullet's support point), which
-        // makes left and right wheels roll differently; a fully rounded tread of the same outer
-        // size touches in its middle plane, like a real tyre.
-        primitive->setMargin(std::min(g.size.x(), g.size.y() / 2) * kTreadRounding);
-        break;
-      case CollisionGeometry::Type::kSphere:
-        primitive = std::make_unique<btSphereShape>(g.size.x());
-        break;
+};
+
+bool isRound(const CollisionGeometry& g) { return g.type != CollisionGeometry::Type::kBox; }
+
+/// A cylinder along the COM frame's axis `axis` (0, 1, 2), with a rounded tread.
+std::unique_ptr<btCollisionShape> makeCylinder(double radius, double length, int axis) {
+  std::unique_ptr<btCollisionShape> cylinder;
+  const btScalar r = radius, h = length / 2;
+  switch (axis) {
+    case 0:
+      cylinder = std::make_unique<RollingShape<btCylinderShapeX>>(btVector3(h, r, r));
+      break;
+    case 1:
+      cylinder = std::make_unique<RollingShape<btCylinderShape>>(btVector3(r, h, r));
+      break;
+    default:
+      cylinder = std::make_unique<RollingShape<btCylinderShapeZ>>(btVector3(r, r, h));
+  }
+  // A flat tread touches the ground at one of its edges (Bullet's support point), which makes
+  // left and right wheels roll differently; a fully rounded tread of the same outer size touches
+  // in its middle plane, like a real tyre.
+  cylinder->setMargin(std::min(radius, length / 2) * PhysicsModel::kTreadRounding);
+  return cylinder;
+}
+
+std::unique_ptr<btCollisionShape> makePrimitive(const CollisionGeometry& g) {
+  switch (g.type) {
+    case CollisionGeometry::Type::kBox: {
+      auto box =
+          std::make_unique<btBoxShape>(btVector3(g.size.x() / 2, g.size.y() / 2, g.size.z() / 2));
+      box->setMargin(PhysicsModel::kCollisionMargin);
+      return box;
     }
-    if (g.type == CollisionGeometry::Type::kBox) primitive->setMargin(kCollisionMargin);
+    case CollisionGeometry::Type::kCylinder:
+      return makeCylinder(g.size.x(), g.size.y(), 2);
+    case CollisionGeometry::Type::kSphere:
+      break;
+  }
+  return std::make_unique<RollingShape<btSphereShape>>(g.size.x());
+}
+
+/// The axis (0, 1, 2) of the frame that `direction` lies along, or -1.
+int alignedAxis(const btVector3& direction) {
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(std::abs(direction[k]) - 1.0) < 1e-6) return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransform& com_in_link) {
+  auto keep = [this](std::unique_ptr<btCollisionShape> shape) {
+    shapes_.push_back(std::move(shape));
+    return shapes_.back().get();
+  };
+  if (body.collisions.empty()) return keep(std::make_unique<btEmptyShape>());
+  const btTransform link_in_com = com_in_link.inverse();
+
+  // A lone sphere or cylinder centred on the COM (a wheel) needs no compound around it.
+  if (body.collisions.size() == 1 && isRound(body.collisions[0])) {
+    const CollisionGeometry& g = body.collisions[0];
+    const btTransform in_com = link_in_com * toBullet(g.origin);
+    if (in_com.getOrigin().length() < 1e-9) {
+      if (g.type == CollisionGeometry::Type::kSphere) return keep(makePrimitive(g));
+      const int axis = alignedAxis(in_com.getBasis().getColumn(2));
+      if (axis >= 0) return keep(makeCylinder(g.size.x(), g.size.y(), axis));
+    }
+  }
+
+  const bool all_round = std::all_of(body.collisions.begin(), body.collisions.end(), isRound);
+  std::unique_ptr<btCompoundShape> compound =
+      all_round ? std::make_unique<RollingShape<btCompoundShape>>(false)
+                : std::make_unique<btCompoundShape>(/*enableDynamicAabbTree=*/false);
+  for (const auto& g : body.collisions) {
+    std::unique_ptr<btCollisionShape> primitive = makePrimitive(g);
     compound->addChildShape(link_in_com * toBullet(g.origin), primitive.get());
     shapes_.push_back(std::move(primitive));
   }
-  btCollisionShape* shape = compound.get();
-  shapes_.push_back(std::move(compound));
-  return shape;
+  return keep(std::move(compound));
 }
 
 }  // namespace jetbot_rl
