@@ -7,6 +7,7 @@ add_library(jetbot_rl_core
   src/core/command_task.cpp
   src/core/env_config.cpp
   src/core/env_world.cpp
+  src/core/lean_dispatcher.cpp
   src/core/physics_model.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp

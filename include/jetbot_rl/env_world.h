@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/lean_dispatcher.h"
 #include "jetbot_rl/physics_model.h"
 #include "jetbot_rl/task.h"
 
@@ -64,7 +65,7 @@ class EnvWorld {
   void syncColliders();
 
   const PhysicsModel& model_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<LeanDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btMultiBodyDynamicsWorld> world_;
   std::unique_ptr<btCollisionObject> ground_;

@@ -23,7 +23,7 @@ btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.
 
 EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
     : model_(model),
-      dispatcher_(new btCollisionDispatcher(&context.collision_configuration)),
+      dispatcher_(new LeanDispatcher(&context.collision_configuration)),
       broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1)),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           &context.collision_configuration)),
