@@ -22,7 +22,7 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
   XmlRpc::XmlRpcValue raw;
   pnh.getParam(name, raw);
   std::ostringstream s;
-  s << "invalid " << name << " = " << raw.toXml() << ": must be " << typeName(value);
+  s << "invalid " << name << " = " << raw << ": must be " << typeName(value);
   throw ConfigError(s.str());
 }
 

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""jetbot_env_node refuses to start, with a non-zero exit and a FATAL naming the culprit, when a
+parameter is invalid or robot_description is missing or broken; with valid ones it starts."""
+import os
+import subprocess
+import tempfile
+import unittest
+
+import rospkg
+import rospy
+import rostest
+
+RUN_TIMEOUT = 60.0  # s, for one node start-up on a loaded machine
+
+URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot.urdf')).read()
+
+
+class TestRefuseStart(unittest.TestCase):
+    count = 0
+
+    def setUp(self):
+        rospy.set_param('/robot_description', URDF)
+
+    def node_command(self, *args):
+        TestRefuseStart.count += 1
+        return ['rosrun', 'jetbot_rl', 'jetbot_env_node',
+                '__name:=refuse_%d' % TestRefuseStart.count] + list(args)
+
+    def refuses(self, args, *texts, **params):
+        """Runs the node with private params `args` ("_name:=value", typed by roscpp) and `params`
+        (set on the master); it must exit non-zero with a FATAL line containing every text."""
+        command = self.node_command(*args)
+        name = command[3][len('__name:='):]
+        for key, value in params.items():
+            rospy.set_param('/%s/%s' % (name, key), value)
+        proc = subprocess.run(command, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, timeout=RUN_TIMEOUT,
+                              universal_newlines=True)
+        self.assertNotEqual(proc.returncode, 0, proc.stdout)
+        fatal = [line for line in proc.stdout.splitlines() if 'FATAL' in line]
+        self.assertTrue(fatal, 'no FATAL line in:\n' + proc.stdout)
+        for text in texts:
+            self.assertIn(text, fatal[0], proc.stdout)
+        self.assertNotIn('jetbot_env ready', proc.stdout)
+        return fatal[0]
+
+    # --- parameters ---
+    def test_num_envs_zero(self):
+        self.refuses(['_num_envs:=0'], 'num_envs = 0')
+
+    def test_mode_bogus(self):
+        self.refuses(['_mode:=bogus'], 'mode', 'bogus')
+
+    def test_task_unknown(self):
+        self.refuses(['_task:=dance'], 'task', 'dance')
+
+    def test_physics_dt_too_large(self):
+        self.refuses(['_physics_dt:=0.5'], 'physics_dt = 0.5')
+
+    def test_decimation_wrong_type(self):
+        self.refuses(['_decimation:=two'], 'decimation', 'two')
+
+    def test_negative_seed(self):
+        self.refuses(['_seed:=-3'], 'seed = -3')
+
+    def test_tf_rate_zero(self):
+        self.refuses(['_tf_rate:=0.0'], 'tf_rate = 0')
+
+    def test_real_time_factor_negative(self):
+        self.refuses(['_real_time_factor:=-1.0'], 'real_time_factor = -1')
+
+    def test_action_timeout_zero(self):
+        self.refuses(['_action_timeout:=0.0'], 'action_timeout = 0')
+
+    def test_dof_names_unknown_joint(self):
+        self.refuses([], 'dof_names', 'tail_joint', dof_names=['left_wheel_joint', 'tail_joint'])
+
+    def test_dof_names_not_a_list(self):
+        self.refuses([], 'dof_names = 5', 'list of strings', dof_names=5)
+
+    def test_publish_clock_not_bool(self):
+        self.refuses([], 'publish_clock', 'bool', publish_clock='yes')
+
+    # --- robot_description ---
+    def test_robot_description_missing(self):
+        rospy.delete_param('/robot_description')
+        self.refuses([], 'robot_description', 'not set')
+
+    def test_robot_description_not_xml(self):
+        rospy.set_param('/robot_description', 'this is not a robot <')
+        self.refuses([], 'robot_description', 'could not be parsed')
+
+    def test_robot_description_bad_mass(self):
+        start = URDF.index('<link name="left_wheel">')
+        broken = URDF[:start] + URDF[start:].replace('<mass value="', '<mass value="-1', 1)
+        rospy.set_param('/robot_description', broken)
+        self.refuses([], 'robot_description', 'left_wheel', 'mass')
+
+    # --- control: valid parameters start (the harness does not fail every start) ---
+    def test_valid_parameters_start(self):
+        command = self.node_command('_num_envs:=2')
+        name = command[3][len('__name:='):]
+        with tempfile.TemporaryFile(mode='w+') as output:
+            proc = subprocess.Popen(command, stdout=output, stderr=subprocess.STDOUT)
+            try:
+                rospy.wait_for_service('/%s/reset' % name, RUN_TIMEOUT)
+                self.assertIsNone(proc.poll(), 'the node exited after starting')
+            finally:
+                proc.terminate()  # SIGTERM: roscpp shuts down cleanly
+                try:
+                    proc.wait(timeout=RUN_TIMEOUT)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+            output.seek(0)
+            self.assertNotIn('FATAL', output.read())
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_refuse_start')
+    rostest.rosrun('jetbot_rl', 'test_refuse_start', TestRefuseStart)
