@@ -8,6 +8,7 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/msg_conversion.h"
+#include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
 namespace {

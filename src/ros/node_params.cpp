@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
 namespace {
@@ -108,11 +109,6 @@ std::string describeNodeParams(const NodeParams& p) {
     << "\naction_timeout: " << p.action_timeout << " s\npublish_clock: " << std::boolalpha
     << p.publish_clock << "\ntf_envs: " << p.tf_envs << "\ntf_rate: " << p.tf_rate << " Hz";
   return s.str();
-}
-
-std::unique_ptr<Task> makeTask(const std::string& name) {
-  if (name == "velocity") return std::make_unique<VelocityTask>();
-  fail("task", "'" + name + "'", "must be 'velocity'");
 }
 
 }  // namespace jetbot_rl

@@ -2,11 +2,10 @@
 
 #include <ros/node_handle.h>
 
-#include <memory>
 #include <string>
 
 #include "jetbot_rl/env_config.h"
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/task_factory.h"  // makeTask(): the valid `task` names
 
 namespace jetbot_rl {
 
@@ -40,8 +39,5 @@ void validateNodeParams(const NodeParams& params);
 
 /// One line per parameter, "name: value", for the start-up INFO echo.
 std::string describeNodeParams(const NodeParams& params);
-
-/// Creates the task named by the `task` parameter; ConfigError for an unknown name.
-std::unique_ptr<Task> makeTask(const std::string& name);
 
 }  // namespace jetbot_rl
