@@ -1,0 +1,43 @@
+# The PPO trainer and policy player (libtorch); included at the end of CMakeLists.txt.
+#   jetbot_rl_ppo      ROS-free PPO core: model, normaliser, storage, GAE, update, checkpoints,
+#                      training loop over the VecEnv interface
+#   jetbot_rl_ppo_ros  the lockstep ROS client of jetbot_env and the two nodes' logic
+find_package(Torch REQUIRED)
+
+# ---- ROS-free PPO core ----
+add_library(jetbot_rl_ppo
+  src/ppo/action_scaler.cpp
+  src/ppo/actor_critic.cpp
+  src/ppo/checkpoint.cpp
+  src/ppo/episode_tracker.cpp
+  src/ppo/gae.cpp
+  src/ppo/iteration_stats.cpp
+  src/ppo/obs_normalizer.cpp
+  src/ppo/policy.cpp
+  src/ppo/ppo.cpp
+  src/ppo/ppo_config.cpp
+  src/ppo/progress_csv.cpp
+  src/ppo/rollout_storage.cpp
+  src/ppo/runner.cpp
+)
+target_include_directories(jetbot_rl_ppo PUBLIC include)
+target_compile_options(jetbot_rl_ppo PUBLIC ${TORCH_CXX_FLAGS})
+# libtorch's headers are not -Wextra clean: include them as system headers.
+target_include_directories(jetbot_rl_ppo SYSTEM PUBLIC ${TORCH_INCLUDE_DIRS})
+target_link_libraries(jetbot_rl_ppo PUBLIC ${TORCH_LIBRARIES})
+
+install(TARGETS jetbot_rl_ppo
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_ppo
+    test/ppo/test_main.cpp
+    test/ppo/test_gae.cpp
+    test/ppo/test_checkpoint.cpp
+    test/ppo/test_config.cpp
+    test/ppo/test_runner.cpp
+  )
+  target_link_libraries(test_ppo jetbot_rl_ppo)
+endif()

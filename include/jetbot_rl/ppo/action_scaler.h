@@ -1,0 +1,30 @@
+#pragma once
+
+#include <torch/types.h>
+
+#include <string>
+#include <vector>
+
+namespace jetbot_rl {
+namespace ppo {
+
+/// Maps policy actions (normalised units) to the env's limits: squash to [-1, 1] (clip or
+/// tanh), then affinely onto [low, high] per dimension (rad/s for the Jetbot's wheels).
+class ActionScaler {
+ public:
+  /// `low`/`high` per action dimension from EnvSpec; ConfigError unless low < high, finite.
+  ActionScaler(const std::vector<float>& low, const std::vector<float>& high,
+               const std::string& squash);
+
+  /// [B, A] normalised actions -> [B, A] env actions.
+  torch::Tensor toEnv(const torch::Tensor& actions) const;
+  /// The same, flattened row-major into `out` (B x A floats, WheelTargets order).
+  void toEnv(const torch::Tensor& actions, std::vector<float>& out) const;
+
+ private:
+  torch::Tensor center_, half_range_;
+  bool tanh_;
+};
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,85 @@
+#pragma once
+
+#include <ros/callback_queue.h>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <ros/service_client.h>
+#include <ros/subscriber.h>
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "jetbot_rl/EnvSpec.h"
+#include "jetbot_rl/EnvStep.h"
+#include "jetbot_rl/WheelTargets.h"
+#include "jetbot_rl/ppo/vec_env.h"
+
+namespace jetbot_rl {
+namespace ppo {
+
+/**
+ * A jetbot_env node as a VecEnv, through its public interface only: waits for the latched
+ * `<env>/spec`, calls `<env>/reset`, publishes `<env>/wheel_targets` (tcpNoDelay) and waits for
+ * the matching `<env>/env_step`.
+ *
+ * Lockstep: step() publishes targets with `step` = the current EnvStep.step and blocks until the
+ * EnvStep with step + 1 arrives. Realtime: step() publishes the targets and blocks until any
+ * newer EnvStep arrives (the node steps on its own clock). Every wait blocks on a private
+ * callback queue (no polling sleeps), up to `timeout`, and ends early with Interrupted when
+ * `*stop` becomes true.
+ */
+class RosVecEnv : public VecEnv {
+ public:
+  /// Connects to the env node `env_ns` (e.g. /jetbot_env) and waits for its spec; throws Error
+  /// after `timeout` [s] or Interrupted.
+  RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
+            const std::atomic<bool>* stop);
+
+  const EnvInfo& info() const override { return info_; }
+  /// Calls ~reset (all envs, `seed` >= 0 reseeds) and waits until its published state arrives
+  /// on ~env_step (proving the subscription is connected); retries the call once a second.
+  const EnvBatch& reset(std::int64_t seed) override;
+  /// One control step with `actions` [rad/s], num_envs x action_dim.
+  const EnvBatch& step(const std::vector<float>& actions) override;
+
+  /// Called for every EnvStep received after the last reset (realtime mode may deliver several
+  /// per step() call; they all pass here, in order).
+  void setObserver(std::function<void(const EnvStep&)> observer) {
+    observer_ = std::move(observer);
+  }
+  const EnvSpec& spec() const { return spec_; }
+
+ private:
+  void onSpec(const EnvSpec::ConstPtr& msg);
+  void onEnvStep(const EnvStep::ConstPtr& msg);
+  void onTargetsSubscriber(const ros::SingleSubscriberPublisher&);
+  /// Processes callbacks until `done()` or the deadline: Error(`what`) after `timeout`.
+  void waitFor(const std::function<bool()>& done, double timeout, const std::string& what);
+  void toBatch(const EnvStep& msg);
+
+  std::string env_ns_;
+  bool lockstep_;
+  double timeout_;
+  const std::atomic<bool>* stop_;
+  ros::CallbackQueue queue_;
+  ros::NodeHandle nh_;
+  ros::Subscriber spec_sub_, step_sub_;
+  ros::Publisher targets_pub_;
+  ros::ServiceClient reset_client_;
+
+  bool has_spec_ = false;
+  EnvSpec spec_;
+  EnvInfo info_;
+  EnvBatch batch_;
+  WheelTargets targets_;
+  std::uint64_t step_ = 0;      ///< EnvStep.step of batch_.
+  bool accepting_ = false;      ///< After a reset: EnvSteps newer than step_ are taken.
+  bool connected_ = false;      ///< An EnvStep has been received: the subscription works.
+  std::uint64_t observed_ = 0;  ///< Newest step passed to the observer.
+  EnvStep::ConstPtr newest_;    ///< Newest EnvStep with step > step_.
+  std::function<void(const EnvStep&)> observer_;
+};
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,46 @@
+#include "jetbot_rl/ppo/action_scaler.h"
+
+#include <torch/torch.h>
+
+#include <cmath>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace ppo {
+
+ActionScaler::ActionScaler(const std::vector<float>& low, const std::vector<float>& high,
+                           const std::string& squash)
+    : tanh_(squash == "tanh") {
+  if (low.empty() || low.size() != high.size()) {
+    throw ConfigError("action limits: action_low has " + std::to_string(low.size()) +
+                      " values and action_high " + std::to_string(high.size()));
+  }
+  for (std::size_t i = 0; i < low.size(); ++i) {
+    if (!std::isfinite(low[i]) || !std::isfinite(high[i]) || !(low[i] < high[i])) {
+      throw ConfigError("action limits of dimension " + std::to_string(i) + ": [" +
+                        std::to_string(low[i]) + ", " + std::to_string(high[i]) +
+                        "] must be finite with low < high");
+    }
+  }
+  if (squash != "clip" && squash != "tanh") {
+    throw ConfigError("invalid action_squash = '" + squash + "': must be clip or tanh");
+  }
+  const torch::Tensor lo = torch::tensor(low, torch::kFloat);
+  const torch::Tensor hi = torch::tensor(high, torch::kFloat);
+  center_ = 0.5 * (lo + hi);
+  half_range_ = 0.5 * (hi - lo);
+}
+
+torch::Tensor ActionScaler::toEnv(const torch::Tensor& actions) const {
+  const torch::Tensor squashed = tanh_ ? torch::tanh(actions) : torch::clamp(actions, -1.0, 1.0);
+  return center_ + half_range_ * squashed;
+}
+
+void ActionScaler::toEnv(const torch::Tensor& actions, std::vector<float>& out) const {
+  const torch::Tensor env = toEnv(actions).contiguous();
+  out.assign(env.data_ptr<float>(), env.data_ptr<float>() + env.numel());
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl

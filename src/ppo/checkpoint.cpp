@@ -1,0 +1,143 @@
+#include "jetbot_rl/ppo/checkpoint.h"
+
+#include <torch/serialize.h>
+#include <torch/torch.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+constexpr std::int64_t kFormatVersion = 1;
+
+void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
+  a.write("format_version", c10::IValue(kFormatVersion));
+  a.write("iteration", c10::IValue(m.iteration));
+  a.write("env_steps", c10::IValue(m.env_steps));
+  a.write("elapsed_s", c10::IValue(m.elapsed_s));
+  a.write("best_reward", c10::IValue(m.best_reward));
+  a.write("learning_rate", c10::IValue(m.learning_rate));
+  a.write("obs_dim", c10::IValue(static_cast<std::int64_t>(m.obs_dim)));
+  a.write("action_dim", c10::IValue(static_cast<std::int64_t>(m.action_dim)));
+  a.write("config", c10::IValue(toYaml(m.config)));
+}
+
+CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
+  c10::IValue v;
+  a.read("format_version", v);
+  if (v.toInt() != kFormatVersion) {
+    throw Error("unsupported checkpoint format version " + std::to_string(v.toInt()));
+  }
+  CheckpointMeta m;
+  a.read("iteration", v);
+  m.iteration = v.toInt();
+  a.read("env_steps", v);
+  m.env_steps = v.toInt();
+  a.read("elapsed_s", v);
+  m.elapsed_s = v.toDouble();
+  a.read("best_reward", v);
+  m.best_reward = v.toDouble();
+  a.read("learning_rate", v);
+  m.learning_rate = v.toDouble();
+  a.read("obs_dim", v);
+  m.obs_dim = static_cast<int>(v.toInt());
+  a.read("action_dim", v);
+  m.action_dim = static_cast<int>(v.toInt());
+  a.read("config", v);
+  m.config = fromYaml(v.toStringRef());
+  return m;
+}
+
+torch::serialize::InputArchive openArchive(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw Error("checkpoint " + path + " does not exist or is not a file");
+  }
+  torch::serialize::InputArchive archive;
+  try {
+    archive.load_from(path);
+  } catch (const c10::Error& e) {
+    throw Error("cannot read checkpoint " + path + ": " + e.what_without_backtrace());
+  }
+  return archive;
+}
+
+void checkSizes(const std::string& path, const CheckpointMeta& m, int obs_dim, int action_dim) {
+  if (m.obs_dim != obs_dim || m.action_dim != action_dim) {
+    throw Error("checkpoint " + path + " is for obs_dim " + std::to_string(m.obs_dim) +
+                ", action_dim " + std::to_string(m.action_dim) + "; the model has " +
+                std::to_string(obs_dim) + ", " + std::to_string(action_dim));
+  }
+}
+
+}  // namespace
+
+void saveCheckpoint(const std::string& path, Ppo& ppo, const CheckpointMeta& meta) {
+  torch::serialize::OutputArchive archive, model, optimizer, normalizer;
+  ppo.model()->save(model);
+  ppo.optimizer().save(optimizer);
+  ppo.normalizer()->save(normalizer);
+  archive.write("model", model);
+  archive.write("optimizer", optimizer);
+  archive.write("normalizer", normalizer);
+  writeMeta(archive, meta);
+  const std::string tmp = path + ".tmp";
+  try {
+    archive.save_to(tmp);
+  } catch (const c10::Error& e) {
+    throw Error("cannot write checkpoint " + tmp + ": " + e.what_without_backtrace());
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw Error("cannot rename " + tmp + " to " + path + ": " + ec.message());
+}
+
+CheckpointMeta readCheckpointMeta(const std::string& path) {
+  torch::serialize::InputArchive archive = openArchive(path);
+  try {
+    return readMeta(archive);
+  } catch (const c10::Error& e) {
+    throw Error("checkpoint " + path + " lacks metadata: " + e.what_without_backtrace());
+  }
+}
+
+CheckpointMeta loadCheckpoint(const std::string& path, Ppo& ppo) {
+  torch::serialize::InputArchive archive = openArchive(path);
+  try {
+    const CheckpointMeta meta = readMeta(archive);
+    checkSizes(path, meta, ppo.model()->obsDim(), ppo.model()->actionDim());
+    torch::serialize::InputArchive model, optimizer, normalizer;
+    archive.read("model", model);
+    archive.read("optimizer", optimizer);
+    archive.read("normalizer", normalizer);
+    ppo.model()->load(model);
+    ppo.optimizer().load(optimizer);
+    ppo.normalizer()->load(normalizer);
+    ppo.setLearningRate(meta.learning_rate);
+    return meta;
+  } catch (const c10::Error& e) {
+    throw Error("cannot load checkpoint " + path + ": " + e.what_without_backtrace());
+  }
+}
+
+CheckpointMeta loadPolicy(const std::string& path, ActorCritic& model, ObsNormalizer& normalizer) {
+  torch::serialize::InputArchive archive = openArchive(path);
+  try {
+    const CheckpointMeta meta = readMeta(archive);
+    checkSizes(path, meta, model->obsDim(), model->actionDim());
+    torch::serialize::InputArchive model_archive, normalizer_archive;
+    archive.read("model", model_archive);
+    archive.read("normalizer", normalizer_archive);
+    model->load(model_archive);
+    normalizer->load(normalizer_archive);
+    return meta;
+  } catch (const c10::Error& e) {
+    throw Error("cannot load checkpoint " + path + ": " + e.what_without_backtrace());
+  }
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,34 @@
+#include "jetbot_rl/ppo/episode_tracker.h"
+
+#include <limits>
+#include <numeric>
+
+namespace jetbot_rl {
+namespace ppo {
+
+EpisodeTracker::EpisodeTracker(int num_envs, std::size_t window)
+    : current_(static_cast<std::size_t>(num_envs), 0.0), window_(window) {}
+
+const std::vector<double>& EpisodeTracker::add(const EnvBatch& batch) {
+  for (std::size_t i = 0; i < current_.size() && i < batch.rewards.size(); ++i) {
+    current_[i] += batch.rewards[i];
+  }
+  ended_.clear();
+  for (std::uint32_t id : batch.reset_env_ids) {
+    if (id >= current_.size()) continue;
+    ended_.push_back(current_[id]);
+    recent_.push_back(current_[id]);
+    if (recent_.size() > window_) recent_.pop_front();
+    current_[id] = 0.0;
+    ++episodes_;
+  }
+  return ended_;
+}
+
+double EpisodeTracker::meanReturn() const {
+  if (recent_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  return std::accumulate(recent_.begin(), recent_.end(), 0.0) / recent_.size();
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,91 @@
+#include "jetbot_rl/ppo/iteration_stats.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+std::string number(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.9g", v);
+  return buf;
+}
+
+std::string duration(double s) {
+  char buf[32];
+  if (!std::isfinite(s)) return "?";
+  if (s < 60.0) {
+    std::snprintf(buf, sizeof(buf), "%.1f s", s);
+  } else {
+    const long total = std::lround(s);
+    std::snprintf(buf, sizeof(buf), "%ld:%02ld min", total / 60, total % 60);
+  }
+  return buf;
+}
+
+}  // namespace
+
+const std::vector<std::string>& statsColumns() {
+  static const std::vector<std::string> columns{
+      "iteration",           "env_steps",       "mean_reward_per_step",
+      "mean_episode_return", "env_steps_per_s", "elapsed_s",
+      "collection_s",        "update_s",        "value_loss",
+      "surrogate_loss",      "entropy",         "approx_kl",
+      "learning_rate",       "action_std",      "episodes"};
+  return columns;
+}
+
+std::vector<double> statsValues(const IterationStats& s) {
+  return {static_cast<double>(s.iteration),
+          static_cast<double>(s.env_steps),
+          s.mean_reward_per_step,
+          s.mean_episode_return,
+          s.env_steps_per_s,
+          s.elapsed_s,
+          s.collection_s,
+          s.update_s,
+          s.update.value_loss,
+          s.update.surrogate_loss,
+          s.update.entropy,
+          s.update.approx_kl,
+          s.update.learning_rate,
+          s.action_std,
+          static_cast<double>(s.episodes)};
+}
+
+std::string csvHeader() {
+  std::string h;
+  for (const std::string& c : statsColumns()) h += (h.empty() ? "" : ",") + c;
+  return h;
+}
+
+std::string csvRow(const IterationStats& s) {
+  std::string row;
+  bool first = true;
+  for (double v : statsValues(s)) {
+    row += (first ? "" : ",") + number(v);
+    first = false;
+  }
+  return row;
+}
+
+std::string progressLine(const IterationStats& s) {
+  char buf[512];
+  std::snprintf(buf, sizeof(buf),
+                "iteration %lld/%lld | env steps %lld | reward/step %.4f | episode return %s | "
+                "%.0f env steps/s | elapsed %s | left %s",
+                static_cast<long long>(s.iteration), static_cast<long long>(s.iterations),
+                static_cast<long long>(s.env_steps), s.mean_reward_per_step,
+                std::isnan(s.mean_episode_return)
+                    ? "-"
+                    : number(std::round(s.mean_episode_return * 100) / 100).c_str(),
+                s.env_steps_per_s, duration(s.elapsed_s).c_str(), duration(s.time_left_s).c_str());
+  return buf;
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,177 @@
+// Checkpoint round trips: same outputs after reload; normaliser, optimiser and metadata restored.
+#include <gtest/gtest.h>
+#include <torch/torch.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/checkpoint.h"
+#include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ppo.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+constexpr int kObs = 3, kAct = 2, kSteps = 8, kEnvs = 4;
+
+std::string tempPath(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "jetbot_rl_test_checkpoint";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+PpoConfig testConfig() {
+  PpoConfig c;
+  c.actor_hidden_dims = {16, 8};
+  c.critic_hidden_dims = {12};
+  c.activation = "tanh";
+  c.num_mini_batches = 2;
+  c.num_learning_epochs = 2;
+  c.learning_rate = 3e-3;
+  c.seed = 7;
+  return c;
+}
+
+/// A rollout with random data, returns computed.
+RolloutStorage randomRollout(Ppo& ppo) {
+  RolloutStorage storage(kSteps, kEnvs, kObs, kAct);
+  for (int t = 0; t < kSteps; ++t) {
+    const torch::Tensor raw = 3.0 * torch::randn({kEnvs, kObs}) + 1.0;
+    ppo.normalizer()->update(raw);
+    const torch::Tensor obs = ppo.normalizer()->normalize(raw);
+    const ActionSample s = ppo.model()->act(obs);
+    storage.add(t, obs, s.actions, s.log_probs, s.values, s.mean, s.std, torch::rand({kEnvs}),
+                torch::zeros({kEnvs}), torch::zeros({kEnvs}), torch::zeros({kEnvs}));
+  }
+  storage.computeReturns(torch::zeros({kEnvs}), 0.99, 0.95);
+  return storage;
+}
+
+std::vector<torch::Tensor> parameters(Ppo& ppo) {
+  std::vector<torch::Tensor> out;
+  for (const auto& p : ppo.model()->parameters()) out.push_back(p.detach().clone());
+  return out;
+}
+
+bool sameTensors(const std::vector<torch::Tensor>& a, const std::vector<torch::Tensor>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!torch::equal(a[i], b[i])) return false;
+  }
+  return true;
+}
+
+class CheckpointTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    torch::manual_seed(1);
+    trained = std::make_unique<Ppo>(kObs, kAct, testConfig());
+    for (int i = 0; i < 3; ++i) trained->update(randomRollout(*trained));
+    meta.iteration = 42;
+    meta.env_steps = 123456;
+    meta.elapsed_s = 12.5;
+    meta.best_reward = 0.55;
+    meta.learning_rate = trained->learningRate();
+    meta.obs_dim = kObs;
+    meta.action_dim = kAct;
+    meta.config = testConfig();
+    path = tempPath("round_trip.pt");
+    saveCheckpoint(path, *trained, meta);
+  }
+
+  std::unique_ptr<Ppo> trained;
+  CheckpointMeta meta;
+  std::string path;
+};
+
+TEST_F(CheckpointTest, MetadataRoundTrip) {
+  const CheckpointMeta m = readCheckpointMeta(path);
+  EXPECT_EQ(m.iteration, 42);
+  EXPECT_EQ(m.env_steps, 123456);
+  EXPECT_DOUBLE_EQ(m.elapsed_s, 12.5);
+  EXPECT_DOUBLE_EQ(m.best_reward, 0.55);
+  EXPECT_DOUBLE_EQ(m.learning_rate, trained->learningRate());
+  EXPECT_EQ(m.obs_dim, kObs);
+  EXPECT_EQ(m.action_dim, kAct);
+  EXPECT_EQ(toYaml(m.config), toYaml(testConfig()));
+}
+
+TEST_F(CheckpointTest, SameOutputsAndNormaliserAfterReload) {
+  torch::manual_seed(99);  // different initial weights: the load must overwrite them
+  Ppo loaded(kObs, kAct, testConfig());
+  const torch::Tensor obs = torch::randn({10, kObs});
+  ASSERT_FALSE(torch::equal(loaded.model()->actionMean(obs), trained->model()->actionMean(obs)));
+
+  loadCheckpoint(path, loaded);
+  EXPECT_TRUE(torch::equal(loaded.model()->actionMean(obs), trained->model()->actionMean(obs)));
+  EXPECT_TRUE(torch::equal(loaded.model()->value(obs), trained->model()->value(obs)));
+  EXPECT_TRUE(torch::equal(loaded.model()->actionStd(), trained->model()->actionStd()));
+  EXPECT_TRUE(torch::equal(loaded.normalizer()->mean(), trained->normalizer()->mean()));
+  EXPECT_TRUE(torch::equal(loaded.normalizer()->var(), trained->normalizer()->var()));
+  EXPECT_EQ(loaded.normalizer()->count(), trained->normalizer()->count());
+  EXPECT_EQ(loaded.normalizer()->count(), 3.0 * kSteps * kEnvs);
+  EXPECT_TRUE(
+      torch::equal(loaded.normalizer()->normalize(obs), trained->normalizer()->normalize(obs)));
+  EXPECT_DOUBLE_EQ(loaded.learningRate(), trained->learningRate());
+}
+
+TEST_F(CheckpointTest, OptimiserStateRestored) {
+  // The same update on the original and on the reloaded learner gives identical parameters only
+  // if Adam's moments and step counts were restored; a fresh Adam gives different ones.
+  Ppo loaded(kObs, kAct, testConfig());
+  loadCheckpoint(path, loaded);
+  Ppo fresh_optimiser(kObs, kAct, testConfig());
+  loadPolicy(path, fresh_optimiser.model(), fresh_optimiser.normalizer());
+  fresh_optimiser.setLearningRate(trained->learningRate());
+
+  torch::manual_seed(5);
+  const RolloutStorage rollout = randomRollout(*trained);
+  auto updateWithSeed = [&rollout](Ppo& ppo) {
+    torch::manual_seed(11);  // same minibatch permutations
+    ppo.update(rollout);
+    return parameters(ppo);
+  };
+  const auto expected = updateWithSeed(*trained);
+  EXPECT_TRUE(sameTensors(updateWithSeed(loaded), expected));
+  EXPECT_FALSE(sameTensors(updateWithSeed(fresh_optimiser), expected));
+}
+
+TEST_F(CheckpointTest, PolicyActsWithTheScaledClippedMean) {
+  Policy policy(path);
+  EXPECT_EQ(policy.obsDim(), kObs);
+  EXPECT_EQ(policy.actionDim(), kAct);
+  policy.setActionLimits({-20.0f, -10.0f}, {20.0f, 30.0f});
+  const std::vector<float> obs{0.1f, -2.0f, 5.0f, 1.0f, 0.0f, -1.0f};
+  std::vector<float> out;
+  policy.act(obs, 2, out);
+  ASSERT_EQ(out.size(), 4u);
+  const torch::Tensor mean = trained->model()->actionMean(
+      trained->normalizer()->normalize(torch::tensor(obs).reshape({2, kObs})));
+  for (int e = 0; e < 2; ++e) {
+    EXPECT_NEAR(out[e * 2], 20.0 * std::clamp(mean[e][0].item<double>(), -1.0, 1.0), 1e-4);
+    EXPECT_NEAR(out[e * 2 + 1], 10.0 + 20.0 * std::clamp(mean[e][1].item<double>(), -1.0, 1.0),
+                1e-4);
+  }
+  EXPECT_THROW(policy.setActionLimits({-1.0f}, {1.0f}), ConfigError);
+  EXPECT_THROW(policy.act({1.0f}, 2, out), InputError);
+}
+
+TEST_F(CheckpointTest, ErrorsNameTheFile) {
+  try {
+    readCheckpointMeta(tempPath("missing.pt"));
+    FAIL() << "no error for a missing file";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.pt"), std::string::npos) << e.what();
+  }
+  Ppo other(kObs + 1, kAct, testConfig());
+  EXPECT_THROW(loadCheckpoint(path, other), Error);
+  const std::string garbage = tempPath("garbage.pt");
+  std::ofstream(garbage) << "not a checkpoint";
+  EXPECT_THROW(readCheckpointMeta(garbage), Error);
+}
+
+}  // namespace
+}  // namespace ppo
+}  // namespace jetbot_rl
