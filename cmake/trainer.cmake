@@ -41,3 +41,29 @@ if(CATKIN_ENABLE_TESTING)
   )
   target_link_libraries(test_ppo jetbot_rl_ppo)
 endif()
+
+# ---- ROS client of jetbot_env and the two nodes ----
+add_library(jetbot_rl_ppo_ros
+  src/ppo/ros/policy_node.cpp
+  src/ppo/ros/ros_vec_env.cpp
+  src/ppo/ros/stop_signal.cpp
+  src/ppo/ros/trainer_node.cpp
+  src/ppo/ros/trainer_params.cpp
+)
+target_include_directories(jetbot_rl_ppo_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo ${catkin_LIBRARIES})
+add_dependencies(jetbot_rl_ppo_ros ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)
+target_link_libraries(jetbot_ppo_trainer jetbot_rl_ppo_ros)
+add_executable(jetbot_policy_node src/nodes/jetbot_policy_node.cpp)
+target_link_libraries(jetbot_policy_node jetbot_rl_ppo_ros)
+
+install(TARGETS jetbot_rl_ppo_ros
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
+install(TARGETS jetbot_ppo_trainer jetbot_policy_node
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+catkin_install_python(PROGRAMS scripts/plot_learning_curve.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -25,6 +25,12 @@ const std::vector<double>& EpisodeTracker::add(const EnvBatch& batch) {
   return ended_;
 }
 
+void EpisodeTracker::discard(const std::vector<std::uint32_t>& ids) {
+  for (std::uint32_t id : ids) {
+    if (id < current_.size()) current_[id] = 0.0;
+  }
+}
+
 double EpisodeTracker::meanReturn() const {
   if (recent_.empty()) return std::numeric_limits<double>::quiet_NaN();
   return std::accumulate(recent_.begin(), recent_.end(), 0.0) / recent_.size();

@@ -34,7 +34,7 @@ torch::Tensor ObsNormalizerImpl::normalize(const torch::Tensor& obs) const {
   if (!enabled_) return obs;
   torch::NoGradGuard no_grad;
   const torch::Tensor mean = mean_.to(obs.scalar_type());
-  const torch::Tensor std = torch::sqrt(var_ + epsilon_).to(obs.scalar_type());
+  const torch::Tensor std = (torch::sqrt(var_) + epsilon_).to(obs.scalar_type());
   return torch::clamp((obs - mean) / std, -clip_, clip_);
 }
 

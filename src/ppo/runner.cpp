@@ -135,7 +135,7 @@ double OnPolicyRunner::collect() {
     const torch::Tensor rewards =
         torch::from_blob(const_cast<float*>(batch_->rewards.data()), {n}, torch::kFloat).clone();
     const torch::Tensor terminated = flags(batch_->terminated);
-    const torch::Tensor truncated = flags(batch_->truncated);
+    torch::Tensor truncated = flags(batch_->truncated);
     torch::Tensor truncated_values = torch::zeros({n});
     // Time-outs bootstrap with V(final observation), never as terminal states.
     std::vector<int64_t> rows, envs;
@@ -161,10 +161,30 @@ double OnPolicyRunner::collect() {
       const torch::Tensor v = ppo.model()->value(ppo.normalizer()->normalize(finals));
       truncated_values.index_copy_(0, torch::tensor(envs, torch::kLong), v);
     }
-    storage_->add(t, obs_n, s.actions, s.log_probs, s.values, s.mean, s.std, rewards, terminated,
-                  truncated, truncated_values);
     tracker_->add(*batch_);
     reward_sum += rewards.sum().item<double>();
+
+    // Staggering: cut the first episode of the envs due now, as a time-out bootstrapped with
+    // V(observation before the reset); the cut episode's return is not counted.
+    ++steps_since_reset_;
+    std::vector<std::uint32_t> cut;
+    for (std::size_t i = 0; i < cut_at_.size(); ++i) {
+      if (cut_at_[i] == steps_since_reset_ && !batch_->truncated[i] && !batch_->terminated[i]) {
+        cut.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    if (!cut.empty()) {
+      torch::NoGradGuard no_grad;
+      const torch::Tensor ids = torch::tensor(std::vector<int64_t>(cut.begin(), cut.end()));
+      const torch::Tensor before = floats(batch_->observations, n, obs_dim).index_select(0, ids);
+      const torch::Tensor v = ppo.model()->value(ppo.normalizer()->normalize(before));
+      truncated_values.index_copy_(0, ids, v);
+      truncated.index_fill_(0, ids, 1.0);
+      tracker_->discard(cut);
+      batch_ = &env_.resetEnvs(cut);
+    }
+    storage_->add(t, obs_n, s.actions, s.log_probs, s.values, s.mean, s.std, rewards, terminated,
+                  truncated, truncated_values);
   }
   torch::NoGradGuard no_grad;
   const torch::Tensor last_obs = floats(batch_->observations, n, obs_dim);
@@ -218,6 +238,12 @@ TrainingSummary OnPolicyRunner::learn() {
   }
   try {
     batch_ = &env_.reset(resumed ? config_.seed + iteration_ : config_.seed);
+    steps_since_reset_ = 0;
+    cut_at_.clear();
+    if (config_.stagger_episodes) {
+      const std::int64_t length = std::max(1, info.max_episode_length - 1);
+      for (int i = 0; i < info.num_envs; ++i) cut_at_.push_back(i * length / info.num_envs);
+    }
     while (iteration_ < options_.iterations) {
       const auto t0 = Clock::now();
       const double reward_sum = collect();

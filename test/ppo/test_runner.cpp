@@ -66,6 +66,17 @@ class ToyEnv : public VecEnv {
     }
     return b_;
   }
+  const EnvBatch& resetEnvs(const std::vector<std::uint32_t>& ids) override {
+    for (std::uint32_t i : ids) {
+      EXPECT_LT(i, b_.rewards.size());
+      b_.observations[3 * i] = b_.observations[3 * i + 1] = b_.observations[3 * i + 2] = 0.0f;
+      episode_steps_[i] = 0;
+      cuts.emplace_back(b_.step, i);
+    }
+    return b_;
+  }
+
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cuts;  ///< (step, env) of resetEnvs
 
  private:
   EnvInfo info_;
@@ -199,6 +210,26 @@ TEST(Runner, InterruptSavesTheLastCompletedIterationAndResumeContinues) {
   const auto rows = readCsv(dir + "/progress.csv");
   ASSERT_EQ(rows.size(), 6u);
   for (int i = 1; i <= 5; ++i) EXPECT_EQ(rows[i][0], std::to_string(i));
+}
+
+TEST(Runner, StaggersTheFirstEpisodes) {
+  // 8 envs, time-out after 20 steps: env i's first episode is cut after i x 20 / 8 steps.
+  ToyEnv env(8);
+  train(env, runDir("stagger"), 3);
+  const std::vector<std::pair<std::uint64_t, std::uint32_t>> expected{
+      {2, 1}, {5, 2}, {7, 3}, {10, 4}, {12, 5}, {15, 6}, {17, 7}};
+  EXPECT_EQ(env.cuts, expected);
+
+  ToyEnv plain(8);
+  RunnerOptions o;
+  o.iterations = 2;
+  o.run_dir = runDir("no_stagger");
+  PpoConfig c = toyConfig();
+  c.stagger_episodes = false;
+  OnPolicyRunner runner(plain, c, o);
+  runner.setLogger([](const std::string&) {});
+  runner.learn();
+  EXPECT_TRUE(plain.cuts.empty());
 }
 
 TEST(Runner, RejectsMoreMinibatchesThanSamples) {

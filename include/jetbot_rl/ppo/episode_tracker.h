@@ -18,6 +18,8 @@ class EpisodeTracker {
   /// Adds one step's rewards; returns the returns of the episodes that ended in it (in
   /// reset_env_ids order).
   const std::vector<double>& add(const EnvBatch& batch);
+  /// Drops the running returns of `ids` (episodes cut by the learner are not counted).
+  void discard(const std::vector<std::uint32_t>& ids);
   /// Mean return of the last `window` completed episodes; NaN before the first one ends.
   double meanReturn() const;
   /// Episodes completed so far.

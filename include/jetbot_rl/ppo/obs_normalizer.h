@@ -10,11 +10,13 @@ namespace ppo {
 class ObsNormalizerImpl : public torch::nn::Module {
  public:
   /// `enabled` false: normalize() returns its input and update() does nothing.
-  ObsNormalizerImpl(int obs_dim, bool enabled, double epsilon = 1e-8, double clip = 10.0);
+  ObsNormalizerImpl(int obs_dim, bool enabled, double epsilon = 1e-2, double clip = 10.0);
 
   /// Folds a batch [B, obs_dim] into the statistics.
   void update(const torch::Tensor& obs);
-  /// (obs - mean) / sqrt(var + epsilon), clipped to +-clip.
+  /// (obs - mean) / (std + epsilon), clipped to +-clip. As rsl_rl, epsilon (0.01, in obs units)
+  /// bounds the gain of near-constant components (e.g. vertical velocity), whose noise would
+  /// otherwise be amplified into large inputs.
   torch::Tensor normalize(const torch::Tensor& obs) const;
 
   torch::Tensor mean() const { return mean_; }

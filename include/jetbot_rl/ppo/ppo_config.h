@@ -14,6 +14,10 @@ struct PpoConfig {
 
   // --- rollout ---
   int num_steps_per_env = 16;  ///< Control steps per env per iteration (rollout length T).
+  /// Cut env i's first episode after i x (max_episode_length - 1) / num_envs steps (a time-out,
+  /// bootstrapped), so that episodes end at staggered steps, as rsl_rl's random initial
+  /// episode lengths: every rollout then holds episode starts and ends.
+  bool stagger_episodes = true;
 
   // --- model ---
   std::vector<int> actor_hidden_dims{32, 32};   ///< Hidden layer widths of the policy MLP.
@@ -59,6 +63,7 @@ template <typename Config, typename Visitor>
 void visitFields(Config& c, Visitor&& visitor) {
   visitor("seed", c.seed);
   visitor("num_steps_per_env", c.num_steps_per_env);
+  visitor("stagger_episodes", c.stagger_episodes);
   visitor("actor_hidden_dims", c.actor_hidden_dims);
   visitor("critic_hidden_dims", c.critic_hidden_dims);
   visitor("activation", c.activation);

@@ -91,7 +91,10 @@ class OnPolicyRunner {
   std::int64_t iteration_ = 0, env_steps_ = 0;
   double elapsed_before_ = 0.0;  ///< Wall time of earlier sessions (resume).
   double best_reward_ = -1e300;
-  const EnvBatch* batch_ = nullptr;  ///< The env's current state.
+  const EnvBatch* batch_ = nullptr;   ///< The env's current state.
+  std::vector<std::int64_t> cut_at_;  ///< Per env: step (since the reset) to cut its first
+                                      ///< episode (stagger_episodes); 0: none.
+  std::int64_t steps_since_reset_ = 0;
   std::vector<float> actions_;
 };
 

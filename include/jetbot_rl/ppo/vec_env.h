@@ -45,6 +45,9 @@ class VecEnv {
   virtual const EnvBatch& reset(std::int64_t seed) = 0;
   /// Applies num_envs x action_dim actions [env units] for one control step.
   virtual const EnvBatch& step(const std::vector<float>& actions) = 0;
+  /// Resets the envs `ids` without stepping (their random streams continue); returns the state,
+  /// in which only their observations changed (rewards etc. are those of the last step).
+  virtual const EnvBatch& resetEnvs(const std::vector<std::uint32_t>& ids) = 0;
 };
 
 }  // namespace ppo

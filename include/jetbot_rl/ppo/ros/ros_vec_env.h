@@ -42,6 +42,8 @@ class RosVecEnv : public VecEnv {
   const EnvBatch& reset(std::int64_t seed) override;
   /// One control step with `actions` [rad/s], num_envs x action_dim.
   const EnvBatch& step(const std::vector<float>& actions) override;
+  /// Calls ~reset for `ids` (seed -1: the streams continue); the step does not change.
+  const EnvBatch& resetEnvs(const std::vector<std::uint32_t>& ids) override;
 
   /// Called for every EnvStep received after the last reset (realtime mode may deliver several
   /// per step() call; they all pass here, in order).

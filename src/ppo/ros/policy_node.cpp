@@ -1,0 +1,145 @@
+#include "jetbot_rl/ppo/ros/policy_node.h"
+
+#include <ros/console.h>
+#include <ros/node_handle.h>
+#include <std_msgs/Float32.h>
+#include <torch/utils.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <numeric>
+#include <sstream>
+
+#include "jetbot_rl/ppo/episode_tracker.h"
+#include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ros/ros_vec_env.h"
+#include "jetbot_rl/ppo/ros/stop_signal.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+/// Private parameters of jetbot_policy_node.
+struct PolicyParams {
+  std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
+  std::string env = "/jetbot_env";  ///< Namespace of the jetbot_env node.
+  std::string mode = "realtime";    ///< The env's mode: lockstep or realtime.
+  int steps = 0;                    ///< Control steps to drive; 0: until Ctrl-C.
+  int reset_seed = -1;              ///< Seed of the initial reset; < 0 keeps the env's stream.
+  double step_timeout = 10.0;       ///< [s, wall]
+};
+
+template <typename T>
+void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value, const char* type) {
+  if (!pnh.hasParam(name) || pnh.getParam(name, value)) return;
+  XmlRpc::XmlRpcValue raw;
+  pnh.getParam(name, raw);
+  std::ostringstream s;
+  s << "invalid " << name << " = " << raw << ": must be " << type;
+  throw ConfigError(s.str());
+}
+
+PolicyParams loadParams(const ros::NodeHandle& pnh) {
+  PolicyParams p;
+  readParam(pnh, "checkpoint", p.checkpoint, "a string");
+  readParam(pnh, "env", p.env, "a string");
+  readParam(pnh, "mode", p.mode, "a string");
+  readParam(pnh, "steps", p.steps, "an integer");
+  readParam(pnh, "reset_seed", p.reset_seed, "an integer");
+  readParam(pnh, "step_timeout", p.step_timeout, "a number");
+  if (p.checkpoint.empty()) {
+    throw ConfigError("invalid checkpoint = '': name a checkpoint file or a run directory");
+  }
+  if (std::filesystem::is_directory(p.checkpoint)) {
+    p.checkpoint = (std::filesystem::path(p.checkpoint) / "checkpoints/best.pt").string();
+  }
+  if (p.mode != "lockstep" && p.mode != "realtime") {
+    throw ConfigError("invalid mode = '" + p.mode + "': must be lockstep or realtime");
+  }
+  if (p.steps < 0) throw ConfigError("invalid steps = " + std::to_string(p.steps) + ": >= 0");
+  if (!std::isfinite(p.step_timeout) || p.step_timeout <= 0.0) {
+    throw ConfigError("invalid step_timeout = " + std::to_string(p.step_timeout) +
+                      ": must be a positive number of seconds");
+  }
+  return p;
+}
+
+}  // namespace
+
+int runPolicyNode() {
+  const std::atomic<bool>& stop = installStopSignalHandlers();
+  ros::NodeHandle pnh("~");
+  torch::set_num_threads(1);
+  PolicyParams params;
+  std::unique_ptr<Policy> policy;
+  try {
+    params = loadParams(pnh);
+    policy = std::make_unique<Policy>(params.checkpoint);
+  } catch (const Error& e) {
+    ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
+    ros::shutdown();
+    return 1;
+  }
+  ROS_INFO(
+      "parameters of %s:\ncheckpoint: %s\nenv: %s\nmode: %s\nsteps: %d\nreset_seed: %d\n"
+      "step_timeout: %g s",
+      pnh.getNamespace().c_str(), params.checkpoint.c_str(), params.env.c_str(),
+      params.mode.c_str(), params.steps, params.reset_seed, params.step_timeout);
+  ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
+           static_cast<long long>(policy->meta().iteration),
+           static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
+
+  ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
+  int code = 0;
+  try {
+    RosVecEnv env(params.env, params.mode == "lockstep", params.step_timeout, &stop);
+    const EnvInfo& info = env.info();
+    if (info.obs_dim != policy->obsDim()) {
+      throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +
+                        " does not fit the policy's " + std::to_string(policy->obsDim()));
+    }
+    policy->setActionLimits(info.action_low, info.action_high);
+
+    EpisodeTracker tracker(info.num_envs);
+    EnvBatch rewards_only;
+    std::int64_t episodes = 0;
+    env.setObserver([&](const EnvStep& msg) {
+      rewards_only.rewards = msg.rewards;
+      rewards_only.reset_env_ids = msg.reset_env_ids;
+      const std::vector<double>& ended = tracker.add(rewards_only);
+      for (double r : ended) {
+        std_msgs::Float32 out;
+        out.data = static_cast<float>(r);
+        return_pub.publish(out);
+      }
+      if (!ended.empty()) {
+        episodes += static_cast<std::int64_t>(ended.size());
+        ROS_INFO("step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far)",
+                 static_cast<unsigned long long>(msg.step), ended.size(),
+                 std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
+                 static_cast<long long>(episodes));
+      }
+    });
+
+    const EnvBatch* batch = &env.reset(params.reset_seed);
+    ROS_INFO("driving %d env(s) of %s with the mean action (%s mode)", info.num_envs,
+             params.env.c_str(), params.mode.c_str());
+    std::vector<float> actions;
+    for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
+      policy->act(batch->observations, info.num_envs, actions);
+      batch = &env.step(actions);
+    }
+    ROS_INFO("drove %d steps; %lld episodes ended", params.steps, static_cast<long long>(episodes));
+  } catch (const Interrupted&) {
+    ROS_INFO("stopped");
+  } catch (const Error& e) {
+    ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
+    code = 1;
+  }
+  ros::shutdown();
+  return code;
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl
