@@ -23,11 +23,11 @@ namespace {
 /// Private parameters of jetbot_policy_node.
 struct PolicyParams {
   std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
-  std::string env = "/jetbot_env";  ///< Namespace of the jetbot_env node.
-  std::string mode = "realtime";    ///< The env's mode: lockstep or realtime.
-  int steps = 0;                    ///< Control steps to drive; 0: until Ctrl-C.
-  int reset_seed = -1;              ///< Seed of the initial reset; < 0 keeps the env's stream.
-  double step_timeout = 10.0;       ///< [s, wall]
+  std::string env = "jetbot_env";  ///< The jetbot_env node (relative: in the node's namespace).
+  std::string mode = "realtime";   ///< The env's mode: lockstep or realtime.
+  int steps = 0;                   ///< Control steps to drive; 0: until Ctrl-C.
+  int reset_seed = -1;             ///< Seed of the initial reset; < 0 keeps the env's stream.
+  double step_timeout = 10.0;      ///< [s, wall]
 };
 
 template <typename T>
@@ -102,6 +102,7 @@ int runPolicyNode() {
     policy->setActionLimits(info.action_low, info.action_high);
 
     EpisodeTracker tracker(info.num_envs);
+    std::vector<float> actions;  // the targets last published
     EnvBatch rewards_only;
     std::int64_t episodes = 0;
     env.setObserver([&](const EnvStep& msg) {
@@ -115,17 +116,19 @@ int runPolicyNode() {
       }
       if (!ended.empty()) {
         episodes += static_cast<std::int64_t>(ended.size());
-        ROS_INFO("step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far)",
-                 static_cast<unsigned long long>(msg.step), ended.size(),
-                 std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
-                 static_cast<long long>(episodes));
+        ROS_INFO(
+            "step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far); wheel "
+            "targets of env 0: [%.2f, %.2f] rad/s",
+            static_cast<unsigned long long>(msg.step), ended.size(),
+            std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
+            static_cast<long long>(episodes), actions.size() > 1 ? actions[0] : 0.0f,
+            actions.size() > 1 ? actions[1] : 0.0f);
       }
     });
 
     const EnvBatch* batch = &env.reset(params.reset_seed);
     ROS_INFO("driving %d env(s) of %s with the mean action (%s mode)", info.num_envs,
              params.env.c_str(), params.mode.c_str());
-    std::vector<float> actions;
     for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
       policy->act(batch->observations, info.num_envs, actions);
       batch = &env.step(actions);

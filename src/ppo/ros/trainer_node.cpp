@@ -64,7 +64,9 @@ int runTrainerNode() {
   ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeTrainerParams(params));
   torch::set_num_threads(params.torch_threads);
 
-  ros::Publisher stats_pub = pnh.advertise<std_msgs::Float32MultiArray>("training_stats", 10);
+  // Latched: a late subscriber (a test, rqt_plot started later) still gets the newest row.
+  ros::Publisher stats_pub =
+      pnh.advertise<std_msgs::Float32MultiArray>("training_stats", 10, /*latch=*/true);
   int code = 0;
   try {
     RosVecEnv env(params.env, /*lockstep=*/true, params.step_timeout, &stop);

@@ -11,16 +11,16 @@ namespace ppo {
 
 /// Private parameters of jetbot_ppo_trainer: the PPO hyper-parameters and the run's settings.
 struct TrainerParams {
-  PpoConfig ppo;                    ///< Hyper-parameters (config/ppo.yaml).
-  int iterations = 100;             ///< The run ends after this many iterations (resume included).
-  std::string run_dir;              ///< Run directory; empty: ~/.ros/jetbot_rl/<time>_seed<seed>.
-  std::string resume;               ///< Checkpoint (or run directory) to continue; empty: new run.
-  std::string env = "/jetbot_env";  ///< Namespace of the jetbot_env node.
-  int save_interval = 10;           ///< Save checkpoints/latest.pt every this many iterations.
-  double step_timeout = 10.0;       ///< Give up when the env does not answer within this [s, wall].
-  int torch_threads = 1;        ///< libtorch intra-op threads (1: deterministic, leaves a core).
-  double target_reward = 0.54;  ///< Reported: first iteration with mean reward/step >= this
-                                ///< [m/s] (90 % of 20 rad/s x 0.03 m).
+  PpoConfig ppo;                   ///< Hyper-parameters (config/ppo.yaml).
+  int iterations = 100;            ///< The run ends after this many iterations (resume included).
+  std::string run_dir;             ///< Run directory; empty: ~/.ros/jetbot_rl/<time>_seed<seed>.
+  std::string resume;              ///< Checkpoint (or run directory) to continue; empty: new run.
+  std::string env = "jetbot_env";  ///< The jetbot_env node (relative: in the node's namespace).
+  int save_interval = 10;          ///< Save checkpoints/latest.pt every this many iterations.
+  double step_timeout = 10.0;      ///< Give up when the env does not answer within this [s, wall].
+  int torch_threads = 1;           ///< libtorch intra-op threads (1: deterministic, leaves a core).
+  double target_reward = 0.54;     ///< Reported: first iteration with mean reward/step >= this
+                                   ///< [m/s] (90 % of 20 rad/s x 0.03 m).
 };
 
 /// Reads the private parameters from `pnh` (defaults for absent ones), resolves run_dir and
