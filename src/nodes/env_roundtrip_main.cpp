@@ -90,7 +90,8 @@ int main(int argc, char** argv) {
   }
   print("topic", num_envs, steps, figures(start, steps));
 
-  // --- service (persistent connection) ---
+  // --- service (persistent connection); the node still publishes each EnvStep, to no one ---
+  sub.shutdown();
   ros::ServiceClient client = nh.serviceClient<jetbot_rl::Step>(node + "/step", true);
   jetbot_rl::Step srv;
   srv.request.actions = targets;

@@ -7,6 +7,8 @@ import unittest
 import rospy
 import rostest
 
+from diagnostic_msgs.msg import DiagnosticArray
+
 from env_client import NODE, TIMEOUT, wait_for
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Step
@@ -47,6 +49,19 @@ class TestRealtimeBrake(unittest.TestCase):
         # ... and once they are older than action_timeout the robot brakes to a stop
         wait_for(lambda: steps[-1].rewards[0] < 0.01, timeout=TIMEOUT,
                  what='the robot to brake after action_timeout')
+
+        # an invalid message is rejected (counted in diagnostics) and stepping goes on
+        status = []
+        diag = rospy.Subscriber('/diagnostics', DiagnosticArray, lambda m: status.extend(
+            {kv.key: kv.value for kv in s.values} for s in m.status if s.name.startswith('jetbot')))
+        pub.publish(WheelTargets(velocities=[1.0, 2.0, 3.0]))
+        pub.publish(WheelTargets(velocities=[float('nan'), 2.0]))
+        wait_for(lambda: any(int(d['rejected messages']) >= 1 for d in status),
+                 what='a rejection counted in diagnostics')
+        before = len(steps)
+        wait_for(lambda: len(steps) > before + 10, what='steps after a rejection')
+        self.assertLess(steps[-1].rewards[0], 0.01, 'an invalid message moved the robot')
+        diag.unregister()
 
         # ~step is for lockstep mode only
         rospy.wait_for_service(NODE + '/step', TIMEOUT)
