@@ -91,9 +91,16 @@ def plot(rows, target, out, title):
 
 
 def _interp(x, xs, ys):
-    """Piecewise-linear map for the secondary axis (scalars or arrays)."""
+    """Piecewise-linear map for the secondary axis (scalars or arrays), extended linearly
+    beyond the data with the overall slope (matplotlib asks for the whole axis range)."""
     import numpy as np
-    return np.interp(x, xs, ys)
+    xs = np.concatenate(([0.0], np.asarray(xs, dtype=float)))
+    ys = np.concatenate(([0.0], np.asarray(ys, dtype=float)))
+    slope = (ys[-1] - ys[0]) / (xs[-1] - xs[0]) if xs[-1] > xs[0] else 1.0
+    x = np.asarray(x, dtype=float)
+    inside = np.interp(x, xs, ys)
+    return np.where(x > xs[-1], ys[-1] + (x - xs[-1]) * slope,
+                    np.where(x < xs[0], ys[0] + (x - xs[0]) * slope, inside))
 
 
 def main(argv=None):

@@ -82,7 +82,7 @@ void RosVecEnv::waitFor(const std::function<bool()>& done, double timeout,
                         const std::string& what) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   while (!done()) {
-    if (stop_ && stop_->load()) throw Interrupted("stopped while waiting for " + what);
+    if (stop_ && stop_->load()) throw Interrupted("stopped by a signal while waiting for " + what);
     if (!ros::ok()) throw Interrupted("ROS shut down while waiting for " + what);
     const double left =
         std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
