@@ -235,6 +235,11 @@ TrainingSummary OnPolicyRunner::learn() {
   if (resumed) {
     log_("resumed from " + options_.resume + " at iteration " + std::to_string(iteration_) + ", " +
          std::to_string(env_steps_) + " env steps");
+    if (iteration_ >= options_.iterations) {
+      log_("nothing to train: the checkpoint has " + std::to_string(iteration_) +
+           " iterations and iterations is " + std::to_string(options_.iterations) +
+           "; raise iterations to continue");
+    }
   }
   try {
     batch_ = &env_.reset(resumed ? config_.seed + iteration_ : config_.seed);
