@@ -14,6 +14,8 @@ namespace {
 
 // The lockstep learner has one message in flight; realtime players drop old states only.
 constexpr std::uint32_t kQueueSize = 8;
+// Lockstep: resend targets that got no answer within this [s, wall] (see step()).
+constexpr double kResendAfter = 0.5;
 
 std::string seconds(double s) {
   char buf[32];
@@ -78,18 +80,24 @@ void RosVecEnv::onTargetsSubscriber(const ros::SingleSubscriberPublisher&) {
   // Only wakes waitFor(): the predicate reads getNumSubscribers().
 }
 
-void RosVecEnv::waitFor(const std::function<bool()>& done, double timeout,
-                        const std::string& what) {
+bool RosVecEnv::waitUntil(const std::function<bool()>& done, double timeout,
+                          const std::string& what) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   while (!done()) {
     if (stop_ && stop_->load()) throw Interrupted("stopped by a signal while waiting for " + what);
     if (!ros::ok()) throw Interrupted("ROS shut down while waiting for " + what);
     const double left =
         std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-    if (left <= 0.0) throw Error("no " + what + " within " + seconds(timeout));
+    if (left <= 0.0) return false;
     // Blocks until a callback is queued (or 0.1 s, to notice `stop`): no polling sleep.
     queue_.callAvailable(ros::WallDuration(std::min(left, 0.1)));
   }
+  return true;
+}
+
+void RosVecEnv::waitFor(const std::function<bool()>& done, double timeout,
+                        const std::string& what) {
+  if (!waitUntil(done, timeout, what)) throw Error("no " + what + " within " + seconds(timeout));
 }
 
 const EnvBatch& RosVecEnv::reset(std::int64_t seed) {
@@ -134,9 +142,27 @@ const EnvBatch& RosVecEnv::step(const std::vector<float>& actions) {
   targets_pub_.publish(targets_);
   const std::uint64_t expected = step_ + 1;
   if (lockstep_) {
-    waitFor([this] { return newest_ != nullptr; }, timeout_,
-            "EnvStep " + std::to_string(expected) + " on " + step_sub_.getTopic() +
-                " (a rejected WheelTargets? see /diagnostics)");
+    // The targets can be lost only while the env's subscription to a new publisher is being
+    // connected (our subscriber count may come from another node, e.g. rostopic echo): resend
+    // them when no answer came within kResendAfter. A duplicate that arrives after the env
+    // stepped is rejected by it as stale, so no step is ever applied twice.
+    const std::string what = "EnvStep " + std::to_string(expected) + " on " + step_sub_.getTopic() +
+                             " (a rejected WheelTargets? see /diagnostics)";
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
+    for (;;) {
+      const double left =
+          std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+      if (waitUntil([this] { return newest_ != nullptr; }, std::min(left, kResendAfter), what)) {
+        break;
+      }
+      if (left <= kResendAfter) throw Error("no " + what + " within " + seconds(timeout_));
+      ROS_WARN_THROTTLE(5.0,
+                        "no EnvStep %llu after %.1f s: sending the targets for step %llu again",
+                        static_cast<unsigned long long>(expected), kResendAfter,
+                        static_cast<unsigned long long>(step_));
+      targets_pub_.publish(targets_);
+    }
     if (newest_->step != expected) {
       throw Error("expected EnvStep " + std::to_string(expected) + ", got " +
                   std::to_string(newest_->step) + ": is another node stepping " + env_ns_ + "?");

@@ -24,7 +24,9 @@ namespace ppo {
  * the matching `<env>/env_step`.
  *
  * Lockstep: step() publishes targets with `step` = the current EnvStep.step and blocks until the
- * EnvStep with step + 1 arrives. Realtime: step() publishes the targets and blocks until any
+ * EnvStep with step + 1 arrives (resending the targets every 0.5 s without an answer: a message
+ * sent while the env's subscription is still connecting is lost; a late duplicate is rejected by
+ * the env as stale). Realtime: step() publishes the targets and blocks until any
  * newer EnvStep arrives (the node steps on its own clock). Every wait blocks on a private
  * callback queue (no polling sleeps), up to `timeout`, and ends early with Interrupted when
  * `*stop` becomes true.
@@ -56,6 +58,9 @@ class RosVecEnv : public VecEnv {
   void onSpec(const EnvSpec::ConstPtr& msg);
   void onEnvStep(const EnvStep::ConstPtr& msg);
   void onTargetsSubscriber(const ros::SingleSubscriberPublisher&);
+  /// Processes callbacks until `done()` (true) or `timeout` [s] (false); Interrupted when
+  /// stopped.
+  bool waitUntil(const std::function<bool()>& done, double timeout, const std::string& what);
   /// Processes callbacks until `done()` or the deadline: Error(`what`) after `timeout`.
   void waitFor(const std::function<bool()>& done, double timeout, const std::string& what);
   void toBatch(const EnvStep& msg);
