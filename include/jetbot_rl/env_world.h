@@ -74,6 +74,7 @@ class EnvWorld {
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
   std::vector<btMultiBodyJointMotor*> motors_;  // per dof, owned by constraints_
   std::vector<float> targets_;
+  bool stepped_ = false;
 };
 
 }  // namespace jetbot_rl

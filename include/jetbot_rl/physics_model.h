@@ -50,7 +50,7 @@ class PhysicsModel {
   /// Collision margin of boxes, kept inside their URDF size [m].
   static constexpr btScalar kCollisionMargin = 0.001;
   /// Cylinder edge rounding as a fraction of min(radius, half length), kept inside the URDF size.
-  static constexpr btScalar kTreadRounding = 0.98;
+  static constexpr btScalar kTreadRounding = 1.0;
   /// Contact breaking threshold of round shapes (spheres, cylinders) [m].
   static constexpr btScalar kRollingContactBreakingThreshold = 1e-4;
 

@@ -60,6 +60,14 @@ TEST(Kinematics, TurningInPlaceMatchesDifferentialDrive) {
   EXPECT_NEAR(avg.body_velocity.x(), 0.0, 0.1 * w * kWheelRadius);
 }
 
+TEST(Kinematics, AParkedRobotStandsStill) {
+  BatchedEnv env(jetbot(), smallConfig(1));
+  drive(env, 15.0f, 10.0f, 60, 1);
+  const Averages parked = drive(env, 0.0f, 0.0f, 120, 60);
+  EXPECT_LT(parked.body_velocity.norm(), 1e-4);  // no creep
+  EXPECT_LT(std::abs(parked.yaw_rate), 1e-3);
+}
+
 TEST(Kinematics, TargetsBeyondTheLimitAreClamped) {
   BatchedEnv env(jetbot(), smallConfig(1));
   ASSERT_FLOAT_EQ(env.actionHigh()[0], 20.0f);
