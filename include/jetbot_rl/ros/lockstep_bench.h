@@ -1,0 +1,25 @@
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+
+namespace jetbot_rl {
+
+/// What jetbot_rl_ros_bench measures, and against which env node.
+struct LockstepBenchOptions {
+  std::string env_ns = "/jetbot_env";  ///< Namespace of the env node's topics and services.
+  int envs = 1024;                     ///< The env node's num_envs (checked against ~spec).
+  int steps = 1000;                    ///< Timed round trips.
+  bool compare_core = true;            ///< Also step the core in-process with the node's params.
+};
+
+/**
+ * The end-to-end lockstep benchmark: answers each EnvStep at once with random WheelTargets for
+ * the same step, records every round trip (publish -> matching EnvStep) and prints percentiles,
+ * then (optionally) the core's figure for the same parameters, and as its last line
+ * `env_steps_per_s=<number>`. Returns the process exit code.
+ */
+int runLockstepBench(ros::NodeHandle& nh, const LockstepBenchOptions& options);
+
+}  // namespace jetbot_rl

@@ -1,0 +1,23 @@
+// jetbot_rl_ros_bench --envs N --steps S: lockstep round trips against a running jetbot_env.
+#include <ros/ros.h>
+
+#include <cstdio>
+
+#include "jetbot_rl/bench_args.h"
+#include "jetbot_rl/ros/lockstep_bench.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "jetbot_rl_ros_bench", ros::init_options::AnonymousName);
+  jetbot_rl::BenchArgs args;
+  std::string error;
+  if (!jetbot_rl::parseBenchArgs(argc, argv, args, error)) {
+    std::fprintf(stderr, "jetbot_rl_ros_bench: %s\nusage: jetbot_rl_ros_bench --envs N --steps S\n",
+                 error.c_str());
+    return 2;
+  }
+  ros::NodeHandle nh;
+  jetbot_rl::LockstepBenchOptions options;
+  options.envs = args.envs;
+  options.steps = args.steps;
+  return jetbot_rl::runLockstepBench(nh, options);
+}
