@@ -29,7 +29,10 @@ class CommandTask : public Task {
   std::vector<std::string> observationNames() const override {
     return {"forward_dot_command", "forward_cross_command_z", "lin_vel_b_x"};
   }
-  void resize(int num_envs) override { commands_.assign(num_envs, Eigen::Vector2d::UnitX()); }
+  void resize(int num_envs) override {
+    commands_.assign(num_envs, Eigen::Vector2d::UnitX());
+    held_.assign(num_envs, 0);
+  }
   void resetEnv(int env, Rng& rng) override;
   void observe(int env, const RootState& state, float* obs) const override;
   float reward(int env, const RootState& state) const override;
@@ -38,8 +41,10 @@ class CommandTask : public Task {
   /// Unit command of env `env` in the world (= env) frame's x-y plane.
   const Eigen::Vector2d& command(int env) const { return commands_.at(env); }
   /// Sets env `env`'s command (normalised); throws InputError for a bad env id or a zero or
-  /// non-finite vector. Kept until the env's next reset.
-  void setCommand(int env, const Eigen::Vector2d& command);
+  /// non-finite vector. Kept until the env's next reset, or across resets when `hold`.
+  void setCommand(int env, const Eigen::Vector2d& command, bool hold = false);
+  /// True when env `env`'s command is held across resets.
+  bool held(int env) const { return held_.at(env) != 0; }
 
  private:
   struct Heading {
@@ -50,6 +55,7 @@ class CommandTask : public Task {
 
   Variant variant_;
   std::vector<Eigen::Vector2d> commands_;
+  std::vector<unsigned char> held_;  // per env; not vector<bool>: envs are written concurrently
 };
 
 }  // namespace jetbot_rl

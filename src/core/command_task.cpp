@@ -27,11 +27,12 @@ std::string CommandTask::variantName(Variant variant) {
 }
 
 void CommandTask::resetEnv(int env, Rng& rng) {
+  // Drawn even when held, so that holding does not shift the env's random stream.
   const double angle = 2.0 * M_PI * rng.uniform();
-  commands_[env] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  if (!held_[env]) commands_[env] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
 }
 
-void CommandTask::setCommand(int env, const Eigen::Vector2d& command) {
+void CommandTask::setCommand(int env, const Eigen::Vector2d& command, bool hold) {
   if (env < 0 || env >= static_cast<int>(commands_.size())) {
     std::ostringstream s;
     s << "command: env " << env << " is out of range [0, " << commands_.size() << ")";
@@ -44,6 +45,7 @@ void CommandTask::setCommand(int env, const Eigen::Vector2d& command) {
     throw InputError(s.str());
   }
   commands_[env] = command.normalized();
+  held_[env] = hold;
 }
 
 CommandTask::Heading CommandTask::heading(int env, const RootState& state) const {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "jetbot_rl/command_task.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/msg_conversion.h"
 #include "jetbot_rl/task_factory.h"
@@ -18,7 +19,8 @@ namespace {
 constexpr std::uint32_t kQueueSize = 16;
 
 std::unique_ptr<BatchedEnv> makeEnv(const NodeParams& params, RobotModelConstPtr robot) {
-  return std::make_unique<BatchedEnv>(std::move(robot), params.env, makeTask(params.task));
+  return std::make_unique<BatchedEnv>(std::move(robot), params.env,
+                                      makeTask(params.task, params.reward));
 }
 
 }  // namespace
@@ -31,6 +33,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       pnh_(pnh),
       clock_(nh_, env_->controlDt(), params.publish_clock),
       tf_(params.tf_envs, params.tf_rate),
+      markers_(pnh_, *env_, params.tf_envs, params.markers),
       diagnostics_(nh_, pnh_.getNamespace().substr(1) + ": environment", modeName(params.mode),
                    env_->numEnvs()) {
   const std::size_t action_count = static_cast<std::size_t>(env_->numEnvs()) * env_->actionDim();
@@ -47,6 +50,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
                                 ros::TransportHints().tcpNoDelay());
   step_srv_ = pnh_.advertiseService("step", &EnvNode::onStep, this);
   reset_srv_ = pnh_.advertiseService("reset", &EnvNode::onReset, this);
+  set_command_srv_ = pnh_.advertiseService("set_command", &EnvNode::onSetCommand, this);
   if (params_.mode == EnvMode::kRealtime) {
     const double period = env_->controlDt() / params_.real_time_factor;
     realtime_timer_ =
@@ -111,6 +115,26 @@ bool EnvNode::onReset(Reset::Request& req, Reset::Response& res) {
   return true;
 }
 
+bool EnvNode::onSetCommand(SetCommand::Request& req, SetCommand::Response& res) {
+  auto* task = dynamic_cast<CommandTask*>(&env_->task());
+  if (!task) {
+    res.success = false;
+    res.message = "task '" + env_->task().name() + "' has no command: launch with task:=command";
+    return true;
+  }
+  try {
+    task->setCommand(static_cast<int>(req.env_id), Eigen::Vector2d(req.x, req.y), req.hold);
+  } catch (const InputError& e) {
+    res.success = false;
+    res.message = e.what();
+    return true;
+  }
+  res.success = true;
+  res.message = "command of env " + std::to_string(req.env_id) + " set" +
+                (req.hold ? ", held across resets" : "") + "; observed from the next step";
+  return true;
+}
+
 void EnvNode::onRealtimeTimer(const ros::WallTimerEvent&) {
   const auto now = std::chrono::steady_clock::now();
   const auto timeout = std::chrono::duration<double>(params_.action_timeout);
@@ -171,7 +195,7 @@ void EnvNode::publishState(bool force_tf) {
   clock_.publish(step_);
   fillEnvStep(env_->state(), env_->numEnvs(), env_->obsDim(), step_, stamp, env_step_msg_);
   env_step_pub_.publish(env_step_msg_);
-  tf_.update(*env_, stamp, force_tf);
+  if (tf_.update(*env_, stamp, force_tf)) markers_.publish(*env_, stamp);
 }
 
 void EnvNode::reject(const std::string& reason) {

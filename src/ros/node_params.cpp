@@ -57,6 +57,7 @@ NodeParams loadNodeParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "solver_iterations", e.solver_iterations);
 
   readParam(pnh, "task", p.task);
+  readParam(pnh, "reward", p.reward);
   std::string mode = modeName(p.mode);
   readParam(pnh, "mode", mode);
   if (mode == "lockstep") {
@@ -71,13 +72,14 @@ NodeParams loadNodeParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "publish_clock", p.publish_clock);
   readParam(pnh, "tf_envs", p.tf_envs);
   readParam(pnh, "tf_rate", p.tf_rate);
+  readParam(pnh, "markers", p.markers);
   validateNodeParams(p);
   return p;
 }
 
 void validateNodeParams(const NodeParams& p) {
   p.env.validate();
-  makeTask(p.task);
+  makeTask(p.task, p.reward);
   if (!std::isfinite(p.real_time_factor) || p.real_time_factor <= 0.0 ||
       p.real_time_factor > 1000.0) {
     fail("real_time_factor", p.real_time_factor, "must be in (0, 1000]");
@@ -105,9 +107,10 @@ std::string describeNodeParams(const NodeParams& p) {
     << e.resolvedThreads() << ")\ndrive_gain: " << e.drive_gain
     << " N m s/rad\neffort_limit: " << e.effort_limit
     << " N m\nsolver_iterations: " << e.solver_iterations << "\ntask: " << p.task
-    << "\nmode: " << modeName(p.mode) << "\nreal_time_factor: " << p.real_time_factor
-    << "\naction_timeout: " << p.action_timeout << " s\npublish_clock: " << std::boolalpha
-    << p.publish_clock << "\ntf_envs: " << p.tf_envs << "\ntf_rate: " << p.tf_rate << " Hz";
+    << "\nreward: " << p.reward << "\nmode: " << modeName(p.mode)
+    << "\nreal_time_factor: " << p.real_time_factor << "\naction_timeout: " << p.action_timeout
+    << " s\npublish_clock: " << std::boolalpha << p.publish_clock << "\ntf_envs: " << p.tf_envs
+    << "\ntf_rate: " << p.tf_rate << " Hz\nmarkers: " << p.markers;
   return s.str();
 }
 

@@ -13,15 +13,15 @@ std::string EnvTfPublisher::frameName(int env, const std::string& link) {
   return "env_" + std::to_string(env) + "/" + link;
 }
 
-void EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool force) {
-  if (!broadcaster_) return;
+bool EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool force) {
+  if (!broadcaster_) return false;
   if (published_ && stamp == last_) {
     // tf2 listeners drop a second batch with the same stamp (TF_REPEATED_DATA): a forced batch
     // at an unchanged time (a reset) goes out with the next step instead.
     pending_ = pending_ || force;
-    return;
+    return false;
   }
-  if (!force && !pending_ && published_ && stamp - last_ < period_) return;
+  if (!force && !pending_ && published_ && stamp - last_ < period_) return false;
   pending_ = false;
   const int envs = std::min(tf_envs_, env.numEnvs());
   std::size_t k = 0;
@@ -49,6 +49,7 @@ void EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool 
   broadcaster_->sendTransform(transforms_);
   last_ = stamp;
   published_ = true;
+  return true;
 }
 
 }  // namespace jetbot_rl

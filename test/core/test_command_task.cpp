@@ -153,3 +153,26 @@ TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
 
 }  // namespace
 }  // namespace jetbot_rl
+
+namespace jetbot_rl {
+namespace {
+
+TEST(CommandTask, AHeldCommandSurvivesResetsWithoutShiftingTheRandomStream) {
+  EnvConfig c = test::smallConfig(2);
+  BatchedEnv held(test::jetbot(), c, std::make_unique<CommandTask>());
+  BatchedEnv free(test::jetbot(), c, std::make_unique<CommandTask>());
+  auto& task = static_cast<CommandTask&>(held.task());
+  task.setCommand(0, Eigen::Vector2d(0, -3), /*hold=*/true);
+  held.reset();
+  free.reset();
+  EXPECT_EQ(task.command(0), Eigen::Vector2d(0, -1));
+  EXPECT_TRUE(task.held(0));
+  EXPECT_EQ(task.command(1), static_cast<CommandTask&>(free.task()).command(1));
+  task.setCommand(0, Eigen::Vector2d(1, 0), /*hold=*/false);  // released: the next reset draws
+  held.reset();
+  free.reset();
+  EXPECT_EQ(task.command(0), static_cast<CommandTask&>(free.task()).command(0));
+}
+
+}  // namespace
+}  // namespace jetbot_rl

@@ -8,7 +8,7 @@ import rostest
 
 from env_client import NODE, TIMEOUT, wait_for
 from jetbot_rl.msg import EnvSpec, EnvStep, WheelTargets
-from jetbot_rl.srv import Reset, Step
+from jetbot_rl.srv import Reset, SetCommand, Step
 
 
 class TestInterface(unittest.TestCase):
@@ -26,6 +26,8 @@ class TestInterface(unittest.TestCase):
                     NODE in pubs.get('/tf', []) and
                     NODE in pubs.get('/diagnostics', []) and
                     NODE in subs.get(NODE + '/wheel_targets', []) and
+                    NODE in pubs.get(NODE + '/markers', []) and
+                    NODE in srvs.get(NODE + '/set_command', []) and
                     NODE in srvs.get(NODE + '/step', []) and
                     NODE in srvs.get(NODE + '/reset', []))
         wait_for(advertised, what='every topic and service of ' + NODE)
@@ -34,6 +36,7 @@ class TestInterface(unittest.TestCase):
         self.assertEqual(types[NODE + '/spec'], 'jetbot_rl/EnvSpec')
         self.assertEqual(types[NODE + '/wheel_targets'], 'jetbot_rl/WheelTargets')
         self.assertEqual(types['/clock'], 'rosgraph_msgs/Clock')
+        self.assertEqual(types[NODE + '/markers'], 'visualization_msgs/MarkerArray')
         self.assertEqual(types['/diagnostics'], 'diagnostic_msgs/DiagnosticArray')
         rospy.wait_for_service(NODE + '/step', TIMEOUT)
         rospy.wait_for_service(NODE + '/reset', TIMEOUT)
@@ -54,6 +57,12 @@ class TestInterface(unittest.TestCase):
         self.assertEqual(spec.task, 'velocity')
         self.assertEqual(spec.observation_names, ['lin_vel_b_x', 'lin_vel_b_y', 'lin_vel_b_z'])
         self.assertEqual(spec.action_names, ['left_wheel_joint', 'right_wheel_joint'])
+
+    def test_velocity_task_has_no_command(self):
+        rospy.wait_for_service(NODE + '/set_command', TIMEOUT)
+        res = rospy.ServiceProxy(NODE + '/set_command', SetCommand)(env_id=0, x=1.0, y=0.0)
+        self.assertFalse(res.success)
+        self.assertIn('task:=command', res.message)
 
     def test_reset_reports_state(self):
         res = rospy.ServiceProxy(NODE + '/reset', Reset)(env_ids=[], seed=-1)

@@ -54,6 +54,9 @@ class TestRefuseStart(unittest.TestCase):
     def test_task_unknown(self):
         self.refuses(['_task:=dance'], 'task', 'dance')
 
+    def test_reward_unknown(self):
+        self.refuses(['_task:=command', '_reward:=max'], 'reward', 'max')
+
     def test_physics_dt_too_large(self):
         self.refuses(['_physics_dt:=0.5'], 'physics_dt = 0.5')
 

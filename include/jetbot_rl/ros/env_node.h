@@ -14,10 +14,12 @@
 
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/Reset.h"
+#include "jetbot_rl/SetCommand.h"
 #include "jetbot_rl/Step.h"
 #include "jetbot_rl/WheelTargets.h"
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/ros/env_diagnostics.h"
+#include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/sim_clock.h"
 #include "jetbot_rl/ros/tf_publisher.h"
@@ -46,6 +48,7 @@ class EnvNode {
   void onWheelTargets(const WheelTargets::ConstPtr& msg);
   bool onStep(Step::Request& req, Step::Response& res);
   bool onReset(Reset::Request& req, Reset::Response& res);
+  bool onSetCommand(SetCommand::Request& req, SetCommand::Response& res);
   void onRealtimeTimer(const ros::WallTimerEvent& event);
   void onDiagnosticsTimer(const ros::WallTimerEvent& event);
 
@@ -65,10 +68,11 @@ class EnvNode {
   ros::NodeHandle nh_, pnh_;
   ros::Publisher env_step_pub_, spec_pub_;
   ros::Subscriber targets_sub_;
-  ros::ServiceServer step_srv_, reset_srv_;
+  ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
   ros::WallTimer realtime_timer_, diagnostics_timer_;
   SimClock clock_;
   EnvTfPublisher tf_;
+  EnvMarkerPublisher markers_;
   EnvDiagnostics diagnostics_;
 
   // Realtime mode: the latest valid targets, and a newer message not yet validated by a step.

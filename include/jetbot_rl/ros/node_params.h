@@ -18,13 +18,15 @@ enum class EnvMode {
 /// Every private parameter of jetbot_env_node; defaults match config/jetbot_env.yaml.
 struct NodeParams {
   EnvConfig env;                  ///< num_envs, env_spacing, physics_dt, ..., solver_iterations.
-  std::string task = "velocity";  ///< Task name (`velocity`).
+  std::string task = "velocity";  ///< Task name (`velocity` or `command`).
+  std::string reward = "exp";     ///< Command task's reward variant (`exp`, `sum`, `product`).
   EnvMode mode = EnvMode::kLockstep;
   double real_time_factor = 1.0;  ///< Realtime mode: simulated seconds per wall second.
   double action_timeout = 0.5;    ///< Realtime mode: targets older than this brake [s, wall].
   bool publish_clock = true;      ///< Publish simulation time on /clock.
   int tf_envs = 4;                ///< Envs that get tf frames (clamped to num_envs).
-  double tf_rate = 30.0;          ///< Largest tf publishing rate [Hz of simulation time].
+  double tf_rate = 30.0;          ///< Largest tf (and marker) rate [Hz of simulation time].
+  bool markers = true;            ///< Publish ~markers for the envs with tf.
 };
 
 /// Name of a mode as given to the `mode` parameter.

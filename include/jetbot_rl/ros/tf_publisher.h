@@ -21,7 +21,8 @@ class EnvTfPublisher {
   /// `force` (start-up, resets). `stamp` is the simulation time of the current state [s]; a
   /// forced batch at the stamp of the previous batch is sent with the next step instead, since
   /// tf2 listeners ignore repeated stamps.
-  void update(const BatchedEnv& env, const ros::Time& stamp, bool force);
+  /// Returns true when it published a batch.
+  bool update(const BatchedEnv& env, const ros::Time& stamp, bool force);
   /// Frame name of `link` of env `env`: "env_<env>/<link>".
   static std::string frameName(int env, const std::string& link);
 
