@@ -99,7 +99,7 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
     body.scale.x = size.x();
     body.scale.y = size.y();
     body.scale.z = size.z();
-    body.color.a = 0.8f;
+    body.color.a = 0.5f;  // lets a RobotModel display show through
     array_.markers.push_back(body);
     auto forward = marker("forward", e, visualization_msgs::Marker::ARROW, envColour(e, 0.0));
     forward.scale.x = kArrowLength;
