@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One-command set-up for a fresh Debian 12 machine (idempotent):
-#   bash scripts/setup.sh main   install Debian packages, build, run the main job
+#   bash scripts/setup.sh main   install Debian packages, build, train a Jetbot (100 envs) and plot it
 #   bash scripts/setup.sh test   install Debian packages, build, run every test (non-zero on failure)
 # The catkin workspace lives outside the source tree: $JETBOT_RL_WS, default ~/jetbot_rl_ws.
 set -euo pipefail
@@ -54,5 +54,9 @@ build
 if [ "$mode" = test ]; then
   run_tests
 else
-  rosrun jetbot_rl jetbot_rl_demo --envs 100 --steps 600
+  # The main job: PPO learns to drive with 100 envs; the run directory gets progress.csv,
+  # checkpoints and learning_curve.png. roslaunch starts a ROS master when none runs.
+  run_dir="$HOME/.ros/jetbot_rl/main_$(date +%Y%m%d_%H%M%S)"
+  roslaunch jetbot_rl train.launch run_dir:="$run_dir"
+  rosrun jetbot_rl plot_learning_curve.py "$run_dir"
 fi
