@@ -1,7 +1,10 @@
 #pragma once
 
 #include <cstdlib>
+#include <memory>
 #include <string>
+
+#include "jetbot_rl/batched_env.h"
 
 namespace jetbot_rl {
 
@@ -45,6 +48,15 @@ inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& 
     *target = static_cast<int>(number);
   }
   return true;
+}
+
+/// The batch the programs step: `args.envs` Jetbots from `args.urdf` on `args.threads` threads,
+/// every other setting the seed's default.
+inline std::unique_ptr<BatchedEnv> makeBenchEnv(const BenchArgs& args) {
+  EnvConfig config;
+  config.num_envs = args.envs;
+  config.num_threads = args.threads;
+  return std::make_unique<BatchedEnv>(RobotModel::fromUrdfFile(args.urdf), config);
 }
 
 }  // namespace jetbot_rl

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -28,5 +29,13 @@ class InputError : public Error {
  public:
   using Error::Error;
 };
+
+/// Throws ConfigError "invalid <field> = <value>: <rule>".
+template <typename T>
+[[noreturn]] void throwInvalid(const std::string& field, const T& value, const std::string& rule) {
+  std::ostringstream s;
+  s << "invalid " << field << " = " << value << ": " << rule;
+  throw ConfigError(s.str());
+}
 
 }  // namespace jetbot_rl

@@ -8,51 +8,43 @@
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {
-namespace {
-
-template <typename T>
-[[noreturn]] void fail(const std::string& field, const T& value, const std::string& rule) {
-  std::ostringstream s;
-  s << "invalid " << field << " = " << value << ": " << rule;
-  throw ConfigError(s.str());
-}
-
-}  // namespace
 
 void EnvConfig::validate() const {
-  if (num_envs < 1 || num_envs > 1000000) fail("num_envs", num_envs, "must be in [1, 1000000]");
+  if (num_envs < 1 || num_envs > 1000000)
+    throwInvalid("num_envs", num_envs, "must be in [1, 1000000]");
   if (!std::isfinite(env_spacing) || env_spacing <= 0.0 || env_spacing > 1000.0) {
-    fail("env_spacing", env_spacing, "must be in (0, 1000] m");
+    throwInvalid("env_spacing", env_spacing, "must be in (0, 1000] m");
   }
   if (!std::isfinite(physics_dt) || physics_dt <= 0.0 || physics_dt > 0.1) {
-    fail("physics_dt", physics_dt, "must be in (0, 0.1] s");
+    throwInvalid("physics_dt", physics_dt, "must be in (0, 0.1] s");
   }
-  if (decimation < 1 || decimation > 1000) fail("decimation", decimation, "must be in [1, 1000]");
+  if (decimation < 1 || decimation > 1000)
+    throwInvalid("decimation", decimation, "must be in [1, 1000]");
   if (!std::isfinite(episode_length_s) || episode_length_s <= 0.0) {
-    fail("episode_length_s", episode_length_s, "must be positive");
+    throwInvalid("episode_length_s", episode_length_s, "must be positive");
   }
   const double steps = episode_length_s / controlDt();
   if (steps < 2.0 || steps > 1e9) {
-    fail("episode_length_s", episode_length_s,
-         "must last between 2 and 1e9 control steps of physics_dt * decimation");
+    throwInvalid("episode_length_s", episode_length_s,
+                 "must last between 2 and 1e9 control steps of physics_dt * decimation");
   }
-  if (dof_names.empty()) fail("dof_names", "[]", "must name at least one joint");
+  if (dof_names.empty()) throwInvalid("dof_names", "[]", "must name at least one joint");
   std::set<std::string> unique;
   for (const auto& name : dof_names) {
-    if (name.empty()) fail("dof_names", "''", "joint names must not be empty");
-    if (!unique.insert(name).second) fail("dof_names", name, "is listed twice");
+    if (name.empty()) throwInvalid("dof_names", "''", "joint names must not be empty");
+    if (!unique.insert(name).second) throwInvalid("dof_names", name, "is listed twice");
   }
   if (num_threads < 0 || num_threads > 1024) {
-    fail("num_threads", num_threads, "must be in [0, 1024] (0: all cores)");
+    throwInvalid("num_threads", num_threads, "must be in [0, 1024] (0: all cores)");
   }
   if (!std::isfinite(drive_gain) || drive_gain <= 0.0) {
-    fail("drive_gain", drive_gain, "must be positive");
+    throwInvalid("drive_gain", drive_gain, "must be positive");
   }
   if (!std::isfinite(effort_limit) || effort_limit < 0.0) {
-    fail("effort_limit", effort_limit, "must be >= 0 (0: the URDF effort limit)");
+    throwInvalid("effort_limit", effort_limit, "must be >= 0 (0: the URDF effort limit)");
   }
   if (solver_iterations < 1 || solver_iterations > 1000) {
-    fail("solver_iterations", solver_iterations, "must be in [1, 1000]");
+    throwInvalid("solver_iterations", solver_iterations, "must be in [1, 1000]");
   }
 }
 

@@ -8,6 +8,23 @@
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/bench_args.h"
 
+namespace {
+
+/// Resident set size of this process [KiB], from /proc (0 where unavailable).
+long residentKib() {
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  if (!status) return 0;
+  char line[256];
+  long kib = 0;
+  while (std::fgets(line, sizeof line, status)) {
+    if (std::sscanf(line, "VmRSS: %ld kB", &kib) == 1) break;
+  }
+  std::fclose(status);
+  return kib;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
   BenchArgs args;
@@ -20,10 +37,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    EnvConfig config;
-    config.num_envs = args.envs;
-    config.num_threads = args.threads;
-    BatchedEnv env(RobotModel::fromUrdfFile(args.urdf), config);
+    const auto batch = makeBenchEnv(args);
+    BatchedEnv& env = *batch;
     std::mt19937 gen(1);
     std::uniform_real_distribution<float> target(-20.0f, 20.0f);
     std::vector<float> actions(static_cast<size_t>(env.numEnvs()) * env.actionDim());
@@ -41,6 +56,7 @@ int main(int argc, char** argv) {
     const double env_steps = static_cast<double>(args.steps) * env.numEnvs();
     std::printf("envs=%d threads=%d steps=%d wall_s=%.3f us_per_control_step=%.1f\n", env.numEnvs(),
                 env.numThreads(), args.steps, seconds, 1e6 * seconds / args.steps);
+    std::printf("rss_kib=%ld\n", residentKib());
     std::printf("env_steps_per_s=%.0f\n", env_steps / seconds);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "jetbot_rl_bench: %s\n", e.what());

@@ -17,10 +17,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    EnvConfig config;
-    config.num_envs = args.envs;
-    config.num_threads = args.threads;
-    BatchedEnv env(RobotModel::fromUrdfFile(args.urdf), config);
+    const auto batch = makeBenchEnv(args);
+    BatchedEnv& env = *batch;
     std::printf("jetbot_rl demo: %d envs, control dt %.4f s, episodes of %d steps, %d threads\n",
                 env.numEnvs(), env.controlDt(), env.maxEpisodeLength() - 1, env.numThreads());
     // Env i drives with both wheels at a fraction of the limit, so speeds differ across the batch.

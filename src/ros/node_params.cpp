@@ -4,37 +4,10 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
-namespace {
-
-const char* typeName(bool) { return "a bool"; }
-const char* typeName(int) { return "an integer"; }
-const char* typeName(double) { return "a number"; }
-const char* typeName(const std::string&) { return "a string"; }
-const char* typeName(const std::vector<std::string>&) { return "a list of strings"; }
-
-/// Reads ~name into `value` when it is set; throws ConfigError when it has the wrong type.
-template <typename T>
-void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
-  if (!pnh.hasParam(name)) return;
-  if (pnh.getParam(name, value)) return;
-  XmlRpc::XmlRpcValue raw;
-  pnh.getParam(name, raw);
-  std::ostringstream s;
-  s << "invalid " << name << " = " << raw << ": must be " << typeName(value);
-  throw ConfigError(s.str());
-}
-
-template <typename T>
-[[noreturn]] void fail(const std::string& name, const T& value, const std::string& rule) {
-  std::ostringstream s;
-  s << "invalid " << name << " = " << value << ": " << rule;
-  throw ConfigError(s.str());
-}
-
-}  // namespace
 
 std::string modeName(EnvMode mode) { return mode == EnvMode::kRealtime ? "realtime" : "lockstep"; }
 
@@ -49,7 +22,7 @@ NodeParams loadNodeParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "dof_names", e.dof_names);
   int seed = static_cast<int>(e.seed);
   readParam(pnh, "seed", seed);
-  if (seed < 0) fail("seed", seed, "must be >= 0");
+  if (seed < 0) throwInvalid("seed", seed, "must be >= 0");
   e.seed = static_cast<std::uint64_t>(seed);
   readParam(pnh, "num_threads", e.num_threads);
   readParam(pnh, "drive_gain", e.drive_gain);
@@ -65,7 +38,7 @@ NodeParams loadNodeParams(const ros::NodeHandle& pnh) {
   } else if (mode == "realtime") {
     p.mode = EnvMode::kRealtime;
   } else {
-    fail("mode", "'" + mode + "'", "must be 'lockstep' or 'realtime'");
+    throwInvalid("mode", "'" + mode + "'", "must be 'lockstep' or 'realtime'");
   }
   readParam(pnh, "real_time_factor", p.real_time_factor);
   readParam(pnh, "action_timeout", p.action_timeout);
@@ -82,14 +55,14 @@ void validateNodeParams(const NodeParams& p) {
   makeTask(p.task, p.reward);
   if (!std::isfinite(p.real_time_factor) || p.real_time_factor <= 0.0 ||
       p.real_time_factor > 1000.0) {
-    fail("real_time_factor", p.real_time_factor, "must be in (0, 1000]");
+    throwInvalid("real_time_factor", p.real_time_factor, "must be in (0, 1000]");
   }
   if (!std::isfinite(p.action_timeout) || p.action_timeout <= 0.0) {
-    fail("action_timeout", p.action_timeout, "must be a positive number of seconds");
+    throwInvalid("action_timeout", p.action_timeout, "must be a positive number of seconds");
   }
-  if (p.tf_envs < 0) fail("tf_envs", p.tf_envs, "must be >= 0 (0: no tf)");
+  if (p.tf_envs < 0) throwInvalid("tf_envs", p.tf_envs, "must be >= 0 (0: no tf)");
   if (!std::isfinite(p.tf_rate) || p.tf_rate <= 0.0) {
-    fail("tf_rate", p.tf_rate, "must be a positive rate in Hz of simulation time");
+    throwInvalid("tf_rate", p.tf_rate, "must be a positive rate in Hz of simulation time");
   }
 }
 

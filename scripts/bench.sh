@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Runs the core benchmark (jetbot_rl_bench) and the end-to-end lockstep benchmark
+# (jetbot_rl_ros_bench against a jetbot_env node) for N = 1, 100, 1024, 10000 and 1 and 2 threads,
+# and the memory per env at N = 10,000; prints a table. Needs a built workspace:
+#   source ~/jetbot_rl_ws/devel/setup.bash && rosrun jetbot_rl bench.sh [N ...]
+# The env node runs as for training (no /clock, no tf). Uses its own ROS master on port 11399.
+set -euo pipefail
+
+sizes=("$@")
+[ ${#sizes[@]} -gt 0 ] || sizes=(1 100 1024 10000)
+export ROS_MASTER_URI=http://localhost:11399
+bench_dir=$(mktemp -d)
+roscore -p 11399 > "$bench_dir/roscore.log" 2>&1 &
+roscore_pid=$!
+launch_pid=""
+cleanup() {
+  [ -z "$launch_pid" ] || kill -INT "$launch_pid" 2> /dev/null || true
+  kill -INT "$roscore_pid" 2> /dev/null || true
+  wait 2> /dev/null || true
+  rm -rf "$bench_dir"
+}
+trap cleanup EXIT
+until rostopic list > /dev/null 2>&1; do sleep 0.2; done  # the master answers
+
+steps_for() {  # enough steps for about a second of work at each size
+  case "$1" in 1) echo 20000 ;; 100) echo 3000 ;; 1024) echo 400 ;; *) echo 40 ;; esac
+}
+field() { grep -o "$1=[0-9.]*" | tail -n 1 | cut -d= -f2; }
+
+rows=()
+for n in "${sizes[@]}"; do
+  steps=$(steps_for "$n")
+  for t in 1 2; do
+    core=$(rosrun jetbot_rl jetbot_rl_bench --envs "$n" --steps "$steps" --threads "$t" | field env_steps_per_s)
+    roslaunch jetbot_rl jetbot_env.launch num_envs:="$n" num_threads:="$t" publish_clock:=false \
+      tf_envs:=0 output:=log > "$bench_dir/env.log" 2>&1 &
+    launch_pid=$!
+    out=$(rosrun jetbot_rl jetbot_rl_ros_bench --envs "$n" --steps "$steps")
+    kill -INT "$launch_pid"
+    wait "$launch_pid" 2> /dev/null || true
+    launch_pid=""
+    e2e=$(echo "$out" | field env_steps_per_s)
+    same_run_core=$(echo "$out" | field core_env_steps_per_s)
+    p50=$(echo "$out" | grep '^topic' | field p50)
+    p50_srv=$(echo "$out" | grep '^service' | field p50)
+    rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
+      "$core" "$e2e" "$same_run_core" "$(awk "BEGIN { print $e2e / $same_run_core }")" "$p50" "$p50_srv")")
+    echo "${rows[-1]}"
+  done
+done
+
+rss_kib() { rosrun jetbot_rl jetbot_rl_bench --envs "$1" --steps 20 --threads 2 | field rss_kib; }
+small=$(rss_kib 1000)
+large=$(rss_kib 10000)
+
+echo
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "| N | threads | core env steps/s | end-to-end env steps/s | core, same run | e2e/core | topic round trip p50 [us] | ~step p50 [us] |"
+echo "|---|---|---|---|---|---|---|---|"
+printf '%s\n' "${rows[@]}"
+echo
+echo "memory: $(awk "BEGIN { printf \"%.1f\", ($large - $small) / 9000 }") KiB per env (resident set growth from 1,000 to 10,000 envs)"
