@@ -2,9 +2,13 @@
 """Turns a training run's progress.csv into a learning-curve PNG and prints the final figures.
 
     rosrun jetbot_rl plot_learning_curve.py RUN_DIR_OR_CSV [-o OUT.png] [--target 0.54]
+        [--obs-target NAME=VALUE ...]
 
 Writes RUN_DIR/learning_curve.png by default (the CSV's directory). Uses matplotlib's Agg
-backend, so no display is needed.
+backend, so no display is needed. When the CSV has obs_mean_<name> columns (the mean of each
+observation component over the late steps of episodes), a third panel shows them; observation
+targets (--obs-target, and for the command task by default forward_dot_command=0.9 and
+lin_vel_b_x=0.3) are drawn there, and the figures say when all of them were first reached.
 """
 import argparse
 import csv
@@ -32,6 +36,74 @@ def read_progress(path):
     if not rows:
         raise ValueError('%s has no rows yet' % path)
     return rows
+
+
+OBS_PREFIX = 'obs_mean_'
+# Command task (the CSV has obs_mean_forward_dot_command): the robot faces the command
+# (mean cos of the angle > 0.9) and drives along it at more than half the 0.6 m/s maximum.
+COMMAND_OBS_TARGETS = [('forward_dot_command', 0.9), ('lin_vel_b_x', 0.3)]
+
+
+def obs_names(rows):
+    """The observation names of the obs_mean_<name> columns, in the CSV's order."""
+    return [k[len(OBS_PREFIX):] for k in rows[0] if k.startswith(OBS_PREFIX)]
+
+
+def default_obs_targets(rows):
+    names = obs_names(rows)
+    if 'forward_dot_command' in names:
+        return [(n, v) for n, v in COMMAND_OBS_TARGETS if n in names]
+    return []
+
+
+def meets(row, obs_targets):
+    values = [row.get(OBS_PREFIX + n, float('nan')) for n, _ in obs_targets]
+    return all(not math.isnan(v) and v > t for v, (_, t) in zip(values, obs_targets))
+
+
+def target_from_config(run_dir):
+    """target_reward from the run's config.yaml (the trainer's parameter), or None."""
+    try:
+        with open(os.path.join(run_dir, 'config.yaml')) as f:
+            for line in f:
+                if line.startswith('target_reward:'):
+                    return float(line.split(':', 1)[1].split('#')[0])
+    except (OSError, ValueError):
+        pass
+    return None
+
+
+def obs_figures(rows, obs_targets):
+    """Figures of the obs_mean_* columns: final values and when the targets were reached."""
+    out = []
+    for name in obs_names(rows):
+        tail = [r[OBS_PREFIX + name] for r in rows[-10:]
+                if not math.isnan(r.get(OBS_PREFIX + name, float('nan')))]
+        out.append(('obs_mean_%s_last_10_iterations' % name,
+                    '%.4f' % (sum(tail) / len(tail)) if tail else 'nan'))
+    if not obs_targets:
+        return out
+    out.append(('obs_targets', ', '.join('%s > %g' % t for t in obs_targets)))
+    reached = next((r for r in rows if meets(r, obs_targets)), None)
+    if reached:
+        out += [('obs_targets_reached_at_iteration', '%d' % reached['iteration']),
+                ('obs_targets_reached_at_env_steps', '%d' % reached['env_steps']),
+                ('obs_targets_reached_at_elapsed_s', '%.1f' % reached['elapsed_s'])]
+    else:
+        out.append(('obs_targets_reached_at_iteration', 'never'))
+    # From which iteration on every later row meets them (robust to a lucky single row).
+    held = None
+    for r in reversed(rows):
+        if not meets(r, obs_targets):
+            break
+        held = r
+    if held:
+        out += [('obs_targets_held_from_iteration', '%d' % held['iteration']),
+                ('obs_targets_held_from_env_steps', '%d' % held['env_steps']),
+                ('obs_targets_held_from_elapsed_s', '%.1f' % held['elapsed_s'])]
+    else:
+        out.append(('obs_targets_held_from_iteration', 'never'))
+    return out
 
 
 def figures(rows, target):
@@ -63,11 +135,15 @@ def figures(rows, target):
     return out
 
 
-def plot(rows, target, out, title):
+def plot(rows, target, out, title, obs_targets=()):
     steps = [r['env_steps'] for r in rows]
     reward = [r['mean_reward_per_step'] for r in rows]
     episode = [r['mean_episode_return'] for r in rows]
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    names = obs_names(rows)
+    if names:
+        fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
+    else:
+        fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     ax1.plot(steps, reward, color='tab:blue', label='mean reward per step')
     ax1.axhline(target, color='tab:red', linestyle='--', linewidth=1,
                 label='target %.3f m/s' % target)
@@ -80,6 +156,24 @@ def plot(rows, target, out, title):
     ax2.set_xlabel('env steps')
     ax2.grid(True, alpha=0.3)
     ax2.legend(loc='lower right')
+    if names:
+        ax2.set_xlabel('')
+        targets = dict(obs_targets)
+        for k, name in enumerate(names):
+            color = 'C%d' % k
+            ax3.plot(steps, [r.get(OBS_PREFIX + name, float('nan')) for r in rows], color=color,
+                     label=name)
+            if name in targets:
+                ax3.axhline(targets[name], color=color, linestyle='--', linewidth=1,
+                            label='target %s > %g' % (name, targets[name]))
+        reached = next((r for r in rows if obs_targets and meets(r, obs_targets)), None)
+        if reached:
+            ax3.axvline(reached['env_steps'], color='gray', linestyle=':', linewidth=1,
+                        label='targets reached (%d env steps)' % reached['env_steps'])
+        ax3.set_ylabel('mean observation, late episode steps')
+        ax3.set_xlabel('env steps')
+        ax3.grid(True, alpha=0.3)
+        ax3.legend(loc='lower right', fontsize='small')
     # Wall time on a secondary axis, read from the same rows.
     top = ax1.secondary_xaxis(
         'top', functions=(lambda x: _interp(x, steps, [r['elapsed_s'] for r in rows]),
@@ -107,8 +201,13 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('run', help='run directory or its progress.csv')
     parser.add_argument('-o', '--output', help='PNG to write (default: RUN_DIR/learning_curve.png)')
-    parser.add_argument('--target', type=float, default=0.54,
-                        help='target mean reward per step [m/s] (default 0.54 = 90%% of 0.6)')
+    parser.add_argument('--target', type=float, default=None,
+                        help='target mean reward per step (default: the run\'s config.yaml '
+                        'target_reward, else 0.54 m/s = 90%% of 0.6)')
+    parser.add_argument('--obs-target', action='append', default=None, metavar='NAME=VALUE',
+                        help='target for the column obs_mean_NAME (reached when all are '
+                        'exceeded); repeatable; default for the command task: '
+                        'forward_dot_command=0.9 and lin_vel_b_x=0.3')
     parser.add_argument('--title', default=None, help='plot title')
     args = parser.parse_args(argv)
 
@@ -118,12 +217,32 @@ def main(argv=None):
     except (OSError, ValueError) as e:
         print('plot_learning_curve: %s' % e, file=sys.stderr)
         return 1
-    out = args.output or os.path.join(os.path.dirname(os.path.abspath(csv_path)),
-                                      'learning_curve.png')
-    title = args.title or 'PPO on jetbot_env: %s' % os.path.dirname(os.path.abspath(csv_path))
-    plot(rows, args.target, out, title)
+    run_dir = os.path.dirname(os.path.abspath(csv_path))
+    target = args.target
+    if target is None:
+        target = target_from_config(run_dir)
+    if target is None:
+        target = 0.54
+    if args.obs_target is None:
+        obs_targets = default_obs_targets(rows)
+    else:
+        obs_targets = []
+        for spec in args.obs_target:
+            name, sep, value = spec.partition('=')
+            try:
+                obs_targets.append((name, float(value)))
+            except ValueError:
+                sep = ''
+            if not sep or OBS_PREFIX + name not in rows[0]:
+                print('plot_learning_curve: bad --obs-target %s: want NAME=VALUE with a column '
+                      '%sNAME in the CSV (%s)' % (spec, OBS_PREFIX, ', '.join(obs_names(rows))),
+                      file=sys.stderr)
+                return 1
+    out = args.output or os.path.join(run_dir, 'learning_curve.png')
+    title = args.title or 'PPO on jetbot_env: %s' % run_dir
+    plot(rows, target, out, title, obs_targets)
     print('learning curve: %s' % out)
-    for name, value in figures(rows, args.target):
+    for name, value in figures(rows, target) + obs_figures(rows, obs_targets):
         print('%s: %s' % (name, value))
     return 0
 

@@ -29,37 +29,41 @@ std::string duration(double s) {
 
 }  // namespace
 
-const std::vector<std::string>& statsColumns() {
-  static const std::vector<std::string> columns{
-      "iteration",           "env_steps",       "mean_reward_per_step",
-      "mean_episode_return", "env_steps_per_s", "elapsed_s",
-      "collection_s",        "update_s",        "value_loss",
-      "surrogate_loss",      "entropy",         "approx_kl",
-      "learning_rate",       "action_std",      "episodes"};
+std::vector<std::string> statsColumns(const std::vector<std::string>& obs_names) {
+  std::vector<std::string> columns{"iteration",           "env_steps",       "mean_reward_per_step",
+                                   "mean_episode_return", "env_steps_per_s", "elapsed_s",
+                                   "collection_s",        "update_s",        "value_loss",
+                                   "surrogate_loss",      "entropy",         "approx_kl",
+                                   "learning_rate",       "action_std",      "episodes",
+                                   "obs_samples"};
+  for (const std::string& name : obs_names) columns.push_back("obs_mean_" + name);
   return columns;
 }
 
 std::vector<double> statsValues(const IterationStats& s) {
-  return {static_cast<double>(s.iteration),
-          static_cast<double>(s.env_steps),
-          s.mean_reward_per_step,
-          s.mean_episode_return,
-          s.env_steps_per_s,
-          s.elapsed_s,
-          s.collection_s,
-          s.update_s,
-          s.update.value_loss,
-          s.update.surrogate_loss,
-          s.update.entropy,
-          s.update.approx_kl,
-          s.update.learning_rate,
-          s.action_std,
-          static_cast<double>(s.episodes)};
+  std::vector<double> values{static_cast<double>(s.iteration),
+                             static_cast<double>(s.env_steps),
+                             s.mean_reward_per_step,
+                             s.mean_episode_return,
+                             s.env_steps_per_s,
+                             s.elapsed_s,
+                             s.collection_s,
+                             s.update_s,
+                             s.update.value_loss,
+                             s.update.surrogate_loss,
+                             s.update.entropy,
+                             s.update.approx_kl,
+                             s.update.learning_rate,
+                             s.action_std,
+                             static_cast<double>(s.episodes),
+                             static_cast<double>(s.obs_samples)};
+  values.insert(values.end(), s.obs_means.begin(), s.obs_means.end());
+  return values;
 }
 
-std::string csvHeader() {
+std::string csvHeader(const std::vector<std::string>& obs_names) {
   std::string h;
-  for (const std::string& c : statsColumns()) h += (h.empty() ? "" : ",") + c;
+  for (const std::string& c : statsColumns(obs_names)) h += (h.empty() ? "" : ",") + c;
   return h;
 }
 

@@ -9,7 +9,9 @@
 namespace jetbot_rl {
 namespace ppo {
 
-ProgressCsv::ProgressCsv(const std::string& path, std::int64_t keep_until) : path_(path) {
+ProgressCsv::ProgressCsv(const std::string& path, std::int64_t keep_until,
+                         const std::vector<std::string>& obs_names)
+    : path_(path) {
   std::vector<std::string> kept;
   if (keep_until >= 0 && std::filesystem::exists(path)) {
     std::ifstream in(path);
@@ -23,7 +25,7 @@ ProgressCsv::ProgressCsv(const std::string& path, std::int64_t keep_until) : pat
   }
   out_.open(path, std::ios::out | std::ios::trunc);
   if (!out_) throw Error("cannot write " + path);
-  out_ << csvHeader() << "\n";
+  out_ << csvHeader(obs_names) << "\n";
   for (const std::string& line : kept) out_ << line << "\n";
   out_.flush();
 }

@@ -85,6 +85,20 @@ OnPolicyRunner::OnPolicyRunner(VecEnv& env, const PpoConfig& config, const Runne
                       ": must be >= 1");
   }
   if (options_.run_dir.empty()) throw ConfigError("invalid run_dir = '': must be a directory");
+  if (options_.obs_stats_from_step < -1 ||
+      options_.obs_stats_from_step >= std::max(1, info.max_episode_length)) {
+    throw ConfigError(
+        "invalid obs_stats_from_step = " + std::to_string(options_.obs_stats_from_step) +
+        ": must be -1 (second half of an episode) or in [0, max_episode_length = " +
+        std::to_string(info.max_episode_length) + ")");
+  }
+  obs_from_step_ = options_.obs_stats_from_step >= 0 ? options_.obs_stats_from_step
+                                                     : info.max_episode_length / 2;
+  if (static_cast<int>(info.observation_names.size()) == info.obs_dim) {
+    obs_names_ = info.observation_names;
+  } else {
+    for (int k = 0; k < info.obs_dim; ++k) obs_names_.push_back("obs" + std::to_string(k));
+  }
 
   CheckpointMeta meta;
   if (!options_.resume.empty()) {
@@ -123,7 +137,15 @@ double OnPolicyRunner::collect() {
   const int n = info.num_envs, obs_dim = info.obs_dim;
   Ppo& ppo = *ppo_;
   double reward_sum = 0.0;
+  obs_sum_.assign(obs_dim, 0.0);
+  obs_count_ = 0;
   for (int t = 0; t < config_.num_steps_per_env; ++t) {
+    // The observations the policy acts on, late in their episodes (raw, not normalised).
+    for (int i = 0; i < n; ++i) {
+      if (episode_step_[i] < obs_from_step_) continue;
+      for (int k = 0; k < obs_dim; ++k) obs_sum_[k] += batch_->observations[i * obs_dim + k];
+      ++obs_count_;
+    }
     const torch::Tensor obs = floats(batch_->observations, n, obs_dim);
     ppo.normalizer()->update(obs);
     const torch::Tensor obs_n = ppo.normalizer()->normalize(obs);
@@ -163,6 +185,8 @@ double OnPolicyRunner::collect() {
     }
     tracker_->add(*batch_);
     reward_sum += rewards.sum().item<double>();
+    for (int i = 0; i < n; ++i) ++episode_step_[i];
+    for (std::uint32_t id : batch_->reset_env_ids) episode_step_[id] = 0;
 
     // Staggering: cut the first episode of the envs due now, as a time-out bootstrapped with
     // V(observation before the reset); the cut episode's return is not counted.
@@ -181,6 +205,7 @@ double OnPolicyRunner::collect() {
       truncated_values.index_copy_(0, ids, v);
       truncated.index_fill_(0, ids, 1.0);
       tracker_->discard(cut);
+      for (std::uint32_t id : cut) episode_step_[id] = 0;
       batch_ = &env_.resetEnvs(cut);
     }
     storage_->add(t, obs_n, s.actions, s.log_probs, s.values, s.mean, s.std, rewards, terminated,
@@ -219,7 +244,7 @@ TrainingSummary OnPolicyRunner::learn() {
     config_file << "# PPO hyper-parameters\n" << toYaml(config_) << options_.extra_config;
   }
   const bool resumed = !options_.resume.empty();
-  ProgressCsv csv((run_dir / "progress.csv").string(), resumed ? iteration_ : -1);
+  ProgressCsv csv((run_dir / "progress.csv").string(), resumed ? iteration_ : -1, obs_names_);
 
   TrainingSummary summary;
   summary.run_dir = run_dir.string();
@@ -244,6 +269,7 @@ TrainingSummary OnPolicyRunner::learn() {
   try {
     batch_ = &env_.reset(resumed ? config_.seed + iteration_ : config_.seed);
     steps_since_reset_ = 0;
+    episode_step_.assign(info.num_envs, 0);
     cut_at_.clear();
     if (config_.stagger_episodes) {
       const std::int64_t length = std::max(1, info.max_episode_length - 1);
@@ -273,6 +299,12 @@ TrainingSummary OnPolicyRunner::learn() {
       s.update = update;
       s.action_std = ppo_->model()->actionStd().mean().item<double>();
       s.episodes = tracker_->episodes();
+      s.obs_names = obs_names_;
+      s.obs_samples = obs_count_;
+      for (double sum : obs_sum_) {
+        s.obs_means.push_back(obs_count_ > 0 ? sum / static_cast<double>(obs_count_)
+                                             : std::nan(""));
+      }
 
       csv.append(s);
       log_(progressLine(s));

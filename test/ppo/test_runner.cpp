@@ -31,6 +31,9 @@ class ToyEnv : public VecEnv {
     info_.task = "toy";
   }
   const EnvInfo& info() const override { return info_; }
+  void setObservationNames(const std::vector<std::string>& names) {
+    info_.observation_names = names;
+  }
   const EnvBatch& reset(std::int64_t) override {
     const auto n = static_cast<std::size_t>(info_.num_envs);
     b_ = EnvBatch();
@@ -230,6 +233,53 @@ TEST(Runner, StaggersTheFirstEpisodes) {
   runner.setLogger([](const std::string&) {});
   runner.learn();
   EXPECT_TRUE(plain.cuts.empty());
+}
+
+TEST(Runner, WritesObservationMeansOfLateEpisodeSteps) {
+  // 4 envs, episodes of 20 steps (observations at episode steps 0..19), no staggering: samples
+  // at episode step >= 10 per env: rollout 1 (global steps 0..15) episode steps 10..15 = 6;
+  // rollout 2 (16..31) 16..19 and 10..11 = 6; rollout 3 (32..47) 12..19 = 8.
+  ToyEnv env(4);
+  env.setObservationNames({"v", "w", "zero"});
+  RunnerOptions o;
+  o.iterations = 3;
+  o.run_dir = runDir("obs_means");
+  PpoConfig c = toyConfig();
+  c.stagger_episodes = false;
+  OnPolicyRunner runner(env, c, o);  // obs_stats_from_step -1: 21 / 2 = 10
+  runner.setLogger([](const std::string&) {});
+  std::vector<IterationStats> stats;
+  runner.setIterationCallback([&stats](const IterationStats& s) { stats.push_back(s); });
+  runner.learn();
+  const auto rows = readCsv(o.run_dir + "/progress.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  const std::vector<std::string> tail(rows[0].end() - 4, rows[0].end());
+  EXPECT_EQ(tail,
+            (std::vector<std::string>{"obs_samples", "obs_mean_v", "obs_mean_w", "obs_mean_zero"}));
+  ASSERT_EQ(stats.size(), 3u);
+  const std::int64_t expected[] = {4 * 6, 4 * 6, 4 * 8};
+  for (std::size_t k = 0; k < stats.size(); ++k) {
+    const IterationStats& s = stats[k];
+    EXPECT_EQ(s.obs_samples, expected[k]);
+    ASSERT_EQ(s.obs_means.size(), 3u);
+    EXPECT_TRUE(std::isfinite(s.obs_means[0]));
+    EXPECT_NE(s.obs_means[0], 0.0);
+    EXPECT_EQ(s.obs_means[2], 0.0);
+  }
+  EXPECT_EQ(rows[1][rows[0].size() - 4], "24");
+
+  // Unnamed observations get obs<k> columns; a start step beyond the episode is rejected.
+  ToyEnv unnamed(2);
+  o.iterations = 1;
+  o.run_dir = runDir("obs_unnamed");
+  o.obs_stats_from_step = 0;
+  OnPolicyRunner plain(unnamed, c, o);
+  plain.setLogger([](const std::string&) {});
+  plain.setIterationCallback([](const IterationStats& s) { EXPECT_EQ(s.obs_samples, 2 * 16); });
+  plain.learn();
+  EXPECT_EQ(readCsv(o.run_dir + "/progress.csv")[0].back(), "obs_mean_obs2");
+  o.obs_stats_from_step = 21;
+  EXPECT_THROW(OnPolicyRunner(unnamed, c, o), ConfigError);
 }
 
 TEST(Runner, RejectsMoreMinibatchesThanSamples) {

@@ -24,15 +24,22 @@ struct IterationStats {
   UpdateStats update;                 ///< Losses, entropy, KL, learning rate.
   double action_std = 0.0;            ///< Mean policy std [normalised action units].
   std::int64_t episodes = 0;          ///< Episodes completed so far.
+  /// Names of the observation components (EnvInfo::observation_names): obs_mean_<name> columns.
+  std::vector<std::string> obs_names;
+  /// Per observation component: mean over the rollout's late samples (see RunnerOptions::
+  /// obs_stats_from_step) [the component's unit]; NaN when the rollout had none.
+  std::vector<double> obs_means;
+  std::int64_t obs_samples = 0;  ///< Late samples (env steps) behind obs_means.
 };
 
 /// Names of the CSV columns / ~training_stats entries, in order; starts with the required
-/// iteration,env_steps,mean_reward_per_step,mean_episode_return,env_steps_per_s,elapsed_s.
-const std::vector<std::string>& statsColumns();
-/// The values of statsColumns(), in order.
+/// iteration,env_steps,mean_reward_per_step,mean_episode_return,env_steps_per_s,elapsed_s,
+/// ends with obs_samples and one obs_mean_<name> per entry of `obs_names`.
+std::vector<std::string> statsColumns(const std::vector<std::string>& obs_names = {});
+/// The values of statsColumns(s.obs_names), in order.
 std::vector<double> statsValues(const IterationStats& s);
-/// statsColumns() joined by commas.
-std::string csvHeader();
+/// statsColumns(obs_names) joined by commas.
+std::string csvHeader(const std::vector<std::string>& obs_names = {});
 /// One CSV row (no newline); NaN as "nan".
 std::string csvRow(const IterationStats& s);
 /// The line printed per iteration: iteration, env steps, mean reward per step, mean episode

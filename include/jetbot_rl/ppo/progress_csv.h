@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "jetbot_rl/ppo/iteration_stats.h"
 
@@ -13,8 +14,10 @@ namespace ppo {
 class ProgressCsv {
  public:
   /// Creates `path` with the header; when `keep_until` >= 0 and the file exists (a resumed run),
-  /// keeps its rows up to iteration `keep_until` and appends after them. Throws Error.
-  ProgressCsv(const std::string& path, std::int64_t keep_until = -1);
+  /// keeps its rows up to iteration `keep_until` and appends after them. `obs_names` name the
+  /// obs_mean_* columns. Throws Error.
+  ProgressCsv(const std::string& path, std::int64_t keep_until = -1,
+              const std::vector<std::string>& obs_names = {});
 
   /// Appends and flushes one row.
   void append(const IterationStats& stats);

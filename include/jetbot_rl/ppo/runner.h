@@ -23,6 +23,10 @@ struct RunnerOptions {
   int save_interval = 10;         ///< Save checkpoints/latest.pt every this many iterations.
   double target_reward = 0.54;    ///< Reported: first iteration with mean reward/step >= this.
   std::string extra_config;       ///< YAML appended to config.yaml (trainer params, env spec).
+  /// obs_mean_* columns: mean of each observation component over the rollout's samples taken at
+  /// this step of their episode or later (0: the reset's observation) [control steps]; -1: the
+  /// second half of an episode, max_episode_length / 2.
+  int obs_stats_from_step = -1;
 };
 
 /// The final figures of a run.
@@ -73,7 +77,8 @@ class OnPolicyRunner {
   std::int64_t iteration() const { return iteration_; }
 
  private:
-  /// One rollout into storage_; returns the sum of rewards.
+  /// One rollout into storage_; returns the sum of rewards. Sums the late observations into
+  /// obs_sum_ and obs_count_.
   double collect();
   /// Saves the state after the last completed update; `elapsed_s` = training time so far.
   void save(const std::string& path, double elapsed_s);
@@ -96,6 +101,11 @@ class OnPolicyRunner {
                                       ///< episode (stagger_episodes); 0: none.
   std::int64_t steps_since_reset_ = 0;
   std::vector<float> actions_;
+  std::vector<std::string> obs_names_;      ///< EnvInfo::observation_names, or obs0, obs1, ...
+  int obs_from_step_ = 0;                   ///< Resolved RunnerOptions::obs_stats_from_step.
+  std::vector<std::int64_t> episode_step_;  ///< Per env: steps since its episode began.
+  std::vector<double> obs_sum_;  ///< Per component: sum over this rollout's late samples.
+  std::int64_t obs_count_ = 0;   ///< Late samples (env steps) in this rollout.
 };
 
 }  // namespace ppo

@@ -18,6 +18,7 @@ struct EnvInfo {
   double control_dt = 0.0;                     ///< [s]
   int max_episode_length = 0;                  ///< Control steps.
   std::string task;
+  std::vector<std::string> observation_names;  ///< Per observation component; may be empty.
 };
 
 /// The batch after a step or a reset (the content of EnvStep).

@@ -63,6 +63,7 @@ void RosVecEnv::onSpec(const EnvSpec::ConstPtr& msg) {
   info_.control_dt = msg->control_dt;
   info_.max_episode_length = static_cast<int>(msg->max_episode_length);
   info_.task = msg->task;
+  info_.observation_names = msg->observation_names;
   has_spec_ = true;
 }
 

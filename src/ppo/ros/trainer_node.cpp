@@ -39,7 +39,7 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
   std_msgs::Float32MultiArray msg;
   const std::vector<double> values = statsValues(s);
   std_msgs::MultiArrayDimension dim;
-  dim.label = csvHeader();  // the names of data[i], comma-separated
+  dim.label = csvHeader(s.obs_names);  // the names of data[i], comma-separated
   dim.size = static_cast<std::uint32_t>(values.size());
   dim.stride = dim.size;
   msg.layout.dim.push_back(dim);
@@ -81,6 +81,7 @@ int runTrainerNode() {
     options.resume = params.resume;
     options.save_interval = params.save_interval;
     options.target_reward = params.target_reward;
+    options.obs_stats_from_step = params.obs_stats_from_step;
     options.extra_config =
         "# trainer\n" + describeTrainerParams(params, false) + describeSpec(spec);
     OnPolicyRunner runner(env, params.ppo, options);

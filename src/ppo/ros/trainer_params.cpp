@@ -73,6 +73,7 @@ TrainerParams loadTrainerParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "step_timeout", p.step_timeout);
   readParam(pnh, "torch_threads", p.torch_threads);
   readParam(pnh, "target_reward", p.target_reward);
+  readParam(pnh, "obs_stats_from_step", p.obs_stats_from_step);
 
   validate(p.ppo);
   if (p.iterations < 1) fail("iterations", p.iterations, "must be >= 1");
@@ -85,6 +86,10 @@ TrainerParams loadTrainerParams(const ros::NodeHandle& pnh) {
     fail("torch_threads", p.torch_threads, "must be in [1, 256]");
   }
   if (!std::isfinite(p.target_reward)) fail("target_reward", p.target_reward, "must be finite");
+  if (p.obs_stats_from_step < -1) {
+    fail("obs_stats_from_step", p.obs_stats_from_step,
+         "must be -1 (second half of an episode) or an episode step >= 0");
+  }
 
   if (!p.resume.empty()) {
     // A run directory stands for its latest checkpoint.
@@ -114,7 +119,8 @@ std::string describeTrainerParams(const TrainerParams& p, bool with_ppo) {
   s << "iterations: " << p.iterations << "\nrun_dir: " << p.run_dir << "\nresume: '" << p.resume
     << "'\nenv: " << p.env << "\nsave_interval: " << p.save_interval
     << "\nstep_timeout: " << p.step_timeout << "  # s\ntorch_threads: " << p.torch_threads
-    << "\ntarget_reward: " << p.target_reward << "  # m/s\n";
+    << "\ntarget_reward: " << p.target_reward
+    << "  # m/s\nobs_stats_from_step: " << p.obs_stats_from_step << "  # control steps\n";
   if (with_ppo) s << toYaml(p.ppo);
   return s.str();
 }

@@ -21,6 +21,8 @@ struct TrainerParams {
   int torch_threads = 1;           ///< libtorch intra-op threads (1: deterministic, leaves a core).
   double target_reward = 0.54;     ///< Reported: first iteration with mean reward/step >= this
                                    ///< [m/s] (90 % of 20 rad/s x 0.03 m).
+  int obs_stats_from_step = -1;    ///< obs_mean_* columns over samples at this episode step or
+                                   ///< later [control steps]; -1: max_episode_length / 2.
 };
 
 /// Reads the private parameters from `pnh` (defaults for absent ones), resolves run_dir and
