@@ -30,6 +30,9 @@ build() {
   echo "== building in $ws"
   mkdir -p "$ws/src"
   ln -sfn "$repo" "$ws/src/jetbot_rl"
+  # catkin caches the tests' environment when it configures; the generated Python messages'
+  # folder must exist by then, or rostests of a fresh workspace cannot import jetbot_rl.msg.
+  mkdir -p "$ws/devel/lib/python3/dist-packages"
   cd "$ws"
   # ROS's Python tools need Debian's interpreter, not a pyenv python3 on the PATH.
   catkin_make -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
