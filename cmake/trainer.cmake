@@ -68,11 +68,12 @@ install(TARGETS jetbot_ppo_trainer jetbot_policy_node
 catkin_install_python(PROGRAMS scripts/plot_learning_curve.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
-# ---- rostests: training, determinism, Ctrl-C and resume, start-up refusals ----
+# ---- rostests: training (velocity and command tasks), determinism, Ctrl-C and resume, start-up refusals ----
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   set(_ppo_nodes jetbot_ppo_trainer jetbot_policy_node jetbot_env_node)
   add_rostest(test/ppo/train.test DEPENDENCIES ${_ppo_nodes})
+  add_rostest(test/ppo/train_command.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/determinism.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/interrupt_resume.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/refuse_start_ppo.test DEPENDENCIES ${_ppo_nodes})
