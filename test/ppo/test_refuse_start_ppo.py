@@ -42,6 +42,10 @@ class TestRefuseStartPpo(unittest.TestCase):
     def test_num_mini_batches_zero(self):
         self.refuses('jetbot_ppo_trainer', {'num_mini_batches': 0}, 'num_mini_batches = 0')
 
+    def test_obs_stats_from_step_below_minus_one(self):
+        self.refuses('jetbot_ppo_trainer', {'obs_stats_from_step': -2},
+                     'obs_stats_from_step = -2')
+
     def test_resume_missing(self):
         self.refuses('jetbot_ppo_trainer', {'resume': '/nonexistent/latest.pt'}, 'resume',
                      '/nonexistent/latest.pt')
