@@ -11,13 +11,6 @@ namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-template <typename T>
-[[noreturn]] void fail(const std::string& name, const T& value, const std::string& rule) {
-  std::ostringstream s;
-  s << "invalid " << name << " = " << value << ": " << rule;
-  throw ConfigError(s.str());
-}
-
 std::string listText(const std::vector<int>& v) {
   std::ostringstream s;
   s << "[";
@@ -27,17 +20,18 @@ std::string listText(const std::vector<int>& v) {
 }
 
 void checkPositive(const std::string& name, double value) {
-  if (!std::isfinite(value) || value <= 0.0) fail(name, value, "must be a positive number");
+  if (!std::isfinite(value) || value <= 0.0) throwInvalid(name, value, "must be a positive number");
 }
 
 void checkUnit(const std::string& name, double value) {
-  if (!std::isfinite(value) || value < 0.0 || value > 1.0) fail(name, value, "must be in [0, 1]");
+  if (!std::isfinite(value) || value < 0.0 || value > 1.0)
+    throwInvalid(name, value, "must be in [0, 1]");
 }
 
 void checkDims(const std::string& name, const std::vector<int>& dims) {
-  if (dims.empty()) fail(name, "[]", "needs at least one hidden layer");
+  if (dims.empty()) throwInvalid(name, "[]", "needs at least one hidden layer");
   for (int d : dims) {
-    if (d < 1 || d > 4096) fail(name, listText(dims), "every width must be in [1, 4096]");
+    if (d < 1 || d > 4096) throwInvalid(name, listText(dims), "every width must be in [1, 4096]");
   }
 }
 
@@ -99,41 +93,41 @@ void readValue(const std::string& name, const std::string& text, std::vector<int
 }  // namespace
 
 void validate(const PpoConfig& c) {
-  if (c.seed < 0) fail("seed", c.seed, "must be >= 0");
+  if (c.seed < 0) throwInvalid("seed", c.seed, "must be >= 0");
   if (c.num_steps_per_env < 1 || c.num_steps_per_env > 100000) {
-    fail("num_steps_per_env", c.num_steps_per_env, "must be in [1, 100000]");
+    throwInvalid("num_steps_per_env", c.num_steps_per_env, "must be in [1, 100000]");
   }
   checkDims("actor_hidden_dims", c.actor_hidden_dims);
   checkDims("critic_hidden_dims", c.critic_hidden_dims);
   if (c.activation != "elu" && c.activation != "tanh" && c.activation != "relu") {
-    fail("activation", "'" + c.activation + "'", "must be elu, tanh or relu");
+    throwInvalid("activation", "'" + c.activation + "'", "must be elu, tanh or relu");
   }
   checkPositive("init_noise_std", c.init_noise_std);
   if (c.action_squash != "clip" && c.action_squash != "tanh") {
-    fail("action_squash", "'" + c.action_squash + "'", "must be clip or tanh");
+    throwInvalid("action_squash", "'" + c.action_squash + "'", "must be clip or tanh");
   }
   if (c.num_learning_epochs < 1 || c.num_learning_epochs > 1000) {
-    fail("num_learning_epochs", c.num_learning_epochs, "must be in [1, 1000]");
+    throwInvalid("num_learning_epochs", c.num_learning_epochs, "must be in [1, 1000]");
   }
-  if (c.num_mini_batches < 1) fail("num_mini_batches", c.num_mini_batches, "must be >= 1");
+  if (c.num_mini_batches < 1) throwInvalid("num_mini_batches", c.num_mini_batches, "must be >= 1");
   checkPositive("learning_rate", c.learning_rate);
   if (c.schedule != "adaptive" && c.schedule != "fixed") {
-    fail("schedule", "'" + c.schedule + "'", "must be adaptive or fixed");
+    throwInvalid("schedule", "'" + c.schedule + "'", "must be adaptive or fixed");
   }
   checkPositive("desired_kl", c.desired_kl);
   checkPositive("min_learning_rate", c.min_learning_rate);
   checkPositive("max_learning_rate", c.max_learning_rate);
   if (c.min_learning_rate > c.max_learning_rate) {
-    fail("min_learning_rate", c.min_learning_rate, "must be <= max_learning_rate");
+    throwInvalid("min_learning_rate", c.min_learning_rate, "must be <= max_learning_rate");
   }
   checkUnit("gamma", c.gamma);
   checkUnit("lam", c.lam);
   checkPositive("clip_param", c.clip_param);
   if (!std::isfinite(c.value_loss_coef) || c.value_loss_coef < 0.0) {
-    fail("value_loss_coef", c.value_loss_coef, "must be >= 0");
+    throwInvalid("value_loss_coef", c.value_loss_coef, "must be >= 0");
   }
   if (!std::isfinite(c.entropy_coef) || c.entropy_coef < 0.0) {
-    fail("entropy_coef", c.entropy_coef, "must be >= 0");
+    throwInvalid("entropy_coef", c.entropy_coef, "must be >= 0");
   }
   checkPositive("max_grad_norm", c.max_grad_norm);
 }

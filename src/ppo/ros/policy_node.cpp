@@ -15,6 +15,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/ros_vec_env.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
+#include "jetbot_rl/ros/param_reader.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -30,24 +31,14 @@ struct PolicyParams {
   double step_timeout = 10.0;      ///< [s, wall]
 };
 
-template <typename T>
-void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value, const char* type) {
-  if (!pnh.hasParam(name) || pnh.getParam(name, value)) return;
-  XmlRpc::XmlRpcValue raw;
-  pnh.getParam(name, raw);
-  std::ostringstream s;
-  s << "invalid " << name << " = " << raw << ": must be " << type;
-  throw ConfigError(s.str());
-}
-
 PolicyParams loadParams(const ros::NodeHandle& pnh) {
   PolicyParams p;
-  readParam(pnh, "checkpoint", p.checkpoint, "a string");
-  readParam(pnh, "env", p.env, "a string");
-  readParam(pnh, "mode", p.mode, "a string");
-  readParam(pnh, "steps", p.steps, "an integer");
-  readParam(pnh, "reset_seed", p.reset_seed, "an integer");
-  readParam(pnh, "step_timeout", p.step_timeout, "a number");
+  readParam(pnh, "checkpoint", p.checkpoint);
+  readParam(pnh, "env", p.env);
+  readParam(pnh, "mode", p.mode);
+  readParam(pnh, "steps", p.steps);
+  readParam(pnh, "reset_seed", p.reset_seed);
+  readParam(pnh, "step_timeout", p.step_timeout);
   if (p.checkpoint.empty()) {
     throw ConfigError("invalid checkpoint = '': name a checkpoint file or a run directory");
   }

@@ -7,35 +7,11 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/param_reader.h"
 
 namespace jetbot_rl {
 namespace ppo {
 namespace {
-
-const char* typeName(bool) { return "a bool"; }
-const char* typeName(int) { return "an integer"; }
-const char* typeName(double) { return "a number"; }
-const char* typeName(const std::string&) { return "a string"; }
-const char* typeName(const std::vector<int>&) { return "a list of integers"; }
-
-/// Reads ~name into `value` when it is set; throws ConfigError when it has the wrong type.
-template <typename T>
-void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
-  if (!pnh.hasParam(name)) return;
-  if (pnh.getParam(name, value)) return;
-  XmlRpc::XmlRpcValue raw;
-  pnh.getParam(name, raw);
-  std::ostringstream s;
-  s << "invalid " << name << " = " << raw << ": must be " << typeName(value);
-  throw ConfigError(s.str());
-}
-
-template <typename T>
-[[noreturn]] void fail(const std::string& name, const T& value, const std::string& rule) {
-  std::ostringstream s;
-  s << "invalid " << name << " = " << value << ": " << rule;
-  throw ConfigError(s.str());
-}
 
 std::string timestamp() {
   const std::time_t now = std::time(nullptr);
@@ -76,26 +52,27 @@ TrainerParams loadTrainerParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "obs_stats_from_step", p.obs_stats_from_step);
 
   validate(p.ppo);
-  if (p.iterations < 1) fail("iterations", p.iterations, "must be >= 1");
-  if (p.env.empty()) fail("env", "''", "must name the jetbot_env node, e.g. /jetbot_env");
-  if (p.save_interval < 1) fail("save_interval", p.save_interval, "must be >= 1");
+  if (p.iterations < 1) throwInvalid("iterations", p.iterations, "must be >= 1");
+  if (p.env.empty()) throwInvalid("env", "''", "must name the jetbot_env node, e.g. /jetbot_env");
+  if (p.save_interval < 1) throwInvalid("save_interval", p.save_interval, "must be >= 1");
   if (!std::isfinite(p.step_timeout) || p.step_timeout <= 0.0) {
-    fail("step_timeout", p.step_timeout, "must be a positive number of seconds");
+    throwInvalid("step_timeout", p.step_timeout, "must be a positive number of seconds");
   }
   if (p.torch_threads < 1 || p.torch_threads > 256) {
-    fail("torch_threads", p.torch_threads, "must be in [1, 256]");
+    throwInvalid("torch_threads", p.torch_threads, "must be in [1, 256]");
   }
-  if (!std::isfinite(p.target_reward)) fail("target_reward", p.target_reward, "must be finite");
+  if (!std::isfinite(p.target_reward))
+    throwInvalid("target_reward", p.target_reward, "must be finite");
   if (p.obs_stats_from_step < -1) {
-    fail("obs_stats_from_step", p.obs_stats_from_step,
-         "must be -1 (second half of an episode) or an episode step >= 0");
+    throwInvalid("obs_stats_from_step", p.obs_stats_from_step,
+                 "must be -1 (second half of an episode) or an episode step >= 0");
   }
 
   if (!p.resume.empty()) {
     // A run directory stands for its latest checkpoint.
     if (fs::is_directory(p.resume)) p.resume = (fs::path(p.resume) / "checkpoints/latest.pt");
     if (!fs::is_regular_file(p.resume)) {
-      fail("resume", "'" + p.resume + "'", "is not a checkpoint file or run directory");
+      throwInvalid("resume", "'" + p.resume + "'", "is not a checkpoint file or run directory");
     }
     // By default the resumed run continues in its own directory (parent of checkpoints/).
     if (p.run_dir.empty()) {
@@ -109,7 +86,7 @@ TrainerParams loadTrainerParams(const ros::NodeHandle& pnh) {
   std::error_code ec;
   fs::create_directories(p.run_dir, ec);
   if (ec || !fs::is_directory(p.run_dir)) {
-    fail("run_dir", "'" + p.run_dir + "'", "cannot be created: " + ec.message());
+    throwInvalid("run_dir", "'" + p.run_dir + "'", "cannot be created: " + ec.message());
   }
   return p;
 }
