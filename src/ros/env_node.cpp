@@ -46,11 +46,15 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   spec_pub_.publish(makeEnvSpec(*env_));
   publishState(/*force_tf=*/true);  // initial /clock, EnvStep and tf batch
 
-  targets_sub_ = pnh_.subscribe("wheel_targets", kQueueSize, &EnvNode::onWheelTargets, this,
-                                ros::TransportHints().tcpNoDelay());
-  step_srv_ = pnh_.advertiseService("step", &EnvNode::onStep, this);
-  reset_srv_ = pnh_.advertiseService("reset", &EnvNode::onReset, this);
-  set_command_srv_ = pnh_.advertiseService("set_command", &EnvNode::onSetCommand, this);
+  // Callbacks may arrive from here on; they wait until the node is complete.
+  std::lock_guard<std::mutex> lock(inline_queue_.mutex());
+  ros::NodeHandle inline_pnh(pnh_);
+  inline_pnh.setCallbackQueue(&inline_queue_);
+  targets_sub_ = inline_pnh.subscribe("wheel_targets", kQueueSize, &EnvNode::onWheelTargets, this,
+                                      ros::TransportHints().tcpNoDelay());
+  step_srv_ = inline_pnh.advertiseService("step", &EnvNode::onStep, this);
+  reset_srv_ = inline_pnh.advertiseService("reset", &EnvNode::onReset, this);
+  set_command_srv_ = inline_pnh.advertiseService("set_command", &EnvNode::onSetCommand, this);
   if (params_.mode == EnvMode::kRealtime) {
     const double period = env_->controlDt() / params_.real_time_factor;
     realtime_timer_ =
@@ -136,6 +140,7 @@ bool EnvNode::onSetCommand(SetCommand::Request& req, SetCommand::Response& res) 
 }
 
 void EnvNode::onRealtimeTimer(const ros::WallTimerEvent&) {
+  std::lock_guard<std::mutex> lock(inline_queue_.mutex());
   const auto now = std::chrono::steady_clock::now();
   const auto timeout = std::chrono::duration<double>(params_.action_timeout);
   if (has_pending_) {
@@ -160,7 +165,10 @@ void EnvNode::onRealtimeTimer(const ros::WallTimerEvent&) {
   }
 }
 
-void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) { diagnostics_.publish(); }
+void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
+  std::lock_guard<std::mutex> lock(inline_queue_.mutex());
+  diagnostics_.publish();
+}
 
 bool EnvNode::tryLockstep(const WheelTargets& targets, std::string& reason) {
   if (targets.step != step_) {
@@ -243,7 +251,7 @@ int runEnvNode() {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
   }
-  ros::spin();  // one thread, one callback queue: steps, resets and timers never overlap
+  ros::spin();  // timers; topics and services run in roscpp's network thread (inline_queue_)
   return 0;
 }
 

@@ -1,13 +1,14 @@
 #include "jetbot_rl/ros/lockstep_bench.h"
 
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <ros/topic.h>
 #include <ros/transport_hints.h>
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
@@ -16,6 +17,7 @@
 #include "jetbot_rl/WheelTargets.h"
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/inline_callback_queue.h"
 #include "jetbot_rl/ros/node_params.h"
 
 namespace jetbot_rl {
@@ -44,8 +46,11 @@ class RoundTripper {
     round_trips_us_.reserve(total_);
     targets_.step = first_step;
     pub_ = nh.advertise<WheelTargets>(o.env_ns + "/wheel_targets", 1);
-    sub_ = nh.subscribe(o.env_ns + "/env_step", 1, &RoundTripper::onEnvStep, this,
-                        ros::TransportHints().tcpNoDelay());
+    // Answered in roscpp's network thread, as a fast learner would: no spinner hand-off.
+    ros::NodeHandle inline_nh(nh);
+    inline_nh.setCallbackQueue(&queue_);
+    sub_ = inline_nh.subscribe(o.env_ns + "/env_step", 1, &RoundTripper::onEnvStep, this,
+                               ros::TransportHints().tcpNoDelay());
   }
 
   /// Waits for both connections (set-up only, polled), then runs every round trip.
@@ -55,11 +60,19 @@ class RoundTripper {
       if (Clock::now() > deadline || !ros::ok()) return false;
       ros::WallDuration(0.01).sleep();
     }
+    std::unique_lock<std::mutex> lock(queue_.mutex());
     send();
+    auto last_progress = Clock::now();
+    std::size_t seen = done_;
     while (ros::ok() && done_ < total_) {
-      const std::size_t before = done_;
-      ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(kTimeout));
-      if (done_ == before) return false;  // the env node stopped answering
+      // Woken by each answer; the time-out only lets Ctrl-C and a silent env node end the run.
+      progress_.wait_for(lock, std::chrono::milliseconds(100));
+      if (done_ != seen) {
+        seen = done_;
+        last_progress = Clock::now();
+      } else if (Clock::now() - last_progress > std::chrono::duration<double>(kTimeout)) {
+        return false;  // the env node stopped answering
+      }
     }
     return done_ == total_;
   }
@@ -88,12 +101,15 @@ class RoundTripper {
     end_ = now;
     targets_.step = msg->step;
     if (done_ < total_) send();
+    progress_.notify_one();
   }
 
   const std::size_t total_, warmup_;
   std::vector<std::vector<float>> actions_;
   std::vector<double> round_trips_us_;
   WheelTargets targets_;
+  InlineCallbackQueue queue_;  // onEnvStep runs under its mutex
+  std::condition_variable progress_;
   ros::Publisher pub_;
   ros::Subscriber sub_;
   Clock::time_point sent_, start_, end_;

@@ -19,6 +19,7 @@
 #include "jetbot_rl/WheelTargets.h"
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/ros/env_diagnostics.h"
+#include "jetbot_rl/ros/inline_callback_queue.h"
 #include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/sim_clock.h"
@@ -29,10 +30,11 @@ namespace jetbot_rl {
 /**
  * The jetbot_env node: a BatchedEnv on topics and services.
  *
- * All callbacks run on one single-threaded callback queue, so steps, resets and timers never
- * overlap: in lockstep mode each accepted WheelTargets (or ~step call) whose step equals the
- * current step advances exactly one control step; in realtime mode a wall timer steps with the
- * latest targets.
+ * Topic and service callbacks run at once in roscpp's network thread (InlineCallbackQueue: a
+ * lockstep round trip wakes no spinner), timers on the spinner; all hold the queue's mutex, so
+ * steps, resets and timers never overlap. In lockstep mode each accepted WheelTargets (or ~step
+ * call) whose step equals the current step advances exactly one control step; in realtime mode a
+ * wall timer steps with the latest targets.
  */
 class EnvNode {
  public:
@@ -66,6 +68,7 @@ class EnvNode {
   EnvStep env_step_msg_;
 
   ros::NodeHandle nh_, pnh_;
+  InlineCallbackQueue inline_queue_;  // topics and services; timers hold its mutex
   ros::Publisher env_step_pub_, spec_pub_;
   ros::Subscriber targets_sub_;
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;

@@ -1,0 +1,86 @@
+// InlineCallbackQueue without a master: callbacks run at once, one at a time, nested ones after.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <boost/make_shared.hpp>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "jetbot_rl/ros/inline_callback_queue.h"
+
+namespace jetbot_rl {
+namespace {
+
+class FunctionCallback : public ros::CallbackInterface {
+ public:
+  explicit FunctionCallback(std::function<void()> f) : f_(std::move(f)) {}
+  CallResult call() override {
+    f_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> f_;
+};
+
+ros::CallbackInterfacePtr callback(std::function<void()> f) {
+  return boost::make_shared<FunctionCallback>(std::move(f));
+}
+
+TEST(InlineCallbackQueue, RunsACallbackAtOnceInTheCallingThreadUnderItsMutex) {
+  InlineCallbackQueue queue;
+  std::thread::id ran_in;
+  bool locked_while_running = false;
+  queue.addCallback(callback([&] {
+    ran_in = std::this_thread::get_id();
+    std::thread other([&] {
+      std::unique_lock<std::mutex> attempt(queue.mutex(), std::try_to_lock);
+      locked_while_running = !attempt.owns_lock();
+    });
+    other.join();
+  }));
+  EXPECT_EQ(ran_in, std::this_thread::get_id());
+  EXPECT_TRUE(locked_while_running);
+  std::unique_lock<std::mutex> after(queue.mutex(), std::try_to_lock);
+  EXPECT_TRUE(after.owns_lock());  // released on return
+}
+
+TEST(InlineCallbackQueue, ACallbackAddedByACallbackRunsAfterItReturns) {
+  InlineCallbackQueue queue;
+  std::vector<std::string> order;
+  queue.addCallback(callback([&] {
+    order.push_back("outer begins");
+    queue.addCallback(callback([&] { order.push_back("inner"); }));
+    order.push_back("outer ends");
+  }));
+  EXPECT_EQ(order, (std::vector<std::string>{"outer begins", "outer ends", "inner"}));
+}
+
+TEST(InlineCallbackQueue, CallbacksFromSeveralThreadsNeverOverlap) {
+  InlineCallbackQueue queue;
+  std::atomic<int> running{0}, most{0}, calls{0};
+  auto work = [&] {
+    const int now = ++running;
+    int seen = most.load();
+    while (now > seen && !most.compare_exchange_weak(seen, now)) {
+    }
+    std::this_thread::yield();  // give another thread the chance to overlap
+    ++calls;
+    --running;
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&] {
+      for (int i = 0; i < 2000; ++i) queue.addCallback(callback(work));
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(calls.load(), 8000);
+  EXPECT_EQ(most.load(), 1);
+}
+
+}  // namespace
+}  // namespace jetbot_rl
