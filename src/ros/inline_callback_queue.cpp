@@ -16,7 +16,11 @@ void InlineCallbackQueue::addCallback(const ros::CallbackInterfacePtr& callback,
     return;
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  running_queue = this;
+  // Cleared however the loop ends: a callback's exception must not leave this thread "inside".
+  struct Running {
+    explicit Running(const InlineCallbackQueue* queue) { running_queue = queue; }
+    ~Running() { running_queue = nullptr; }
+  } running(this);
   nested_.push_back(callback);
   while (!nested_.empty()) {
     const ros::CallbackInterfacePtr next = nested_.front();
@@ -26,7 +30,6 @@ void InlineCallbackQueue::addCallback(const ros::CallbackInterfacePtr& callback,
       ROS_ERROR("inline callback queue: a callback asked to be called again; it was dropped");
     }
   }
-  running_queue = nullptr;
 }
 
 }  // namespace jetbot_rl

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <boost/make_shared.hpp>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -57,6 +58,15 @@ TEST(InlineCallbackQueue, ACallbackAddedByACallbackRunsAfterItReturns) {
     order.push_back("outer ends");
   }));
   EXPECT_EQ(order, (std::vector<std::string>{"outer begins", "outer ends", "inner"}));
+}
+
+TEST(InlineCallbackQueue, AThrowingCallbackLeavesTheQueueUsable) {
+  InlineCallbackQueue queue;
+  EXPECT_THROW(queue.addCallback(callback([] { throw std::runtime_error("boom"); })),
+               std::runtime_error);
+  bool ran = false;
+  queue.addCallback(callback([&] { ran = true; }));
+  EXPECT_TRUE(ran);
 }
 
 TEST(InlineCallbackQueue, CallbacksFromSeveralThreadsNeverOverlap) {
