@@ -178,27 +178,32 @@ std::string EnvWorld::divergence() const {
     const btTransform pose = comPose(static_cast<int>(b));
     const btVector3& p = pose.getOrigin();
     const double joint_velocity = b == 0 ? 0.0 : robot_->getJointVel(static_cast<int>(b) - 1);
-    std::ostringstream why;
-    why << "link '" << models[b].link_name << "' ";
+    // Called every step: a message is formatted only for a body that fails a check.
+    const auto why = [&](const auto&... parts) {
+      std::ostringstream s;
+      s << "link '" << models[b].link_name << "' ";
+      (s << ... << parts);
+      return s.str();
+    };
     if (!std::isfinite(p.length2()) || !std::isfinite(pose.getBasis()[0].length2()) ||
         !std::isfinite(v.length2()) || !std::isfinite(w.length2()) ||
         !std::isfinite(joint_velocity)) {
-      why << "has a non-finite state";
-    } else if (p.length() > kMaxPosition) {
-      why << "is " << p.length() << " m from its env origin (limit " << kMaxPosition << " m)";
-    } else if (p.z() < kMinHeight) {
-      why << "fell through the ground (z = " << p.z() << " m)";
-    } else if (b == 0 && v.length() > kMaxLinearVelocity) {
-      why << "moves at " << v.length() << " m/s (limit " << kMaxLinearVelocity << " m/s)";
-    } else if (b == 0 && w.length() > kMaxAngularVelocity) {
-      why << "spins at " << w.length() << " rad/s (limit " << kMaxAngularVelocity << " rad/s)";
-    } else if (std::abs(joint_velocity) > kMaxAngularVelocity) {
-      why << "joint spins at " << joint_velocity << " rad/s (limit " << kMaxAngularVelocity
-          << " rad/s)";
-    } else {
-      continue;
+      return why("has a non-finite state");
     }
-    return why.str();
+    if (p.length() > kMaxPosition) {
+      return why("is ", p.length(), " m from its env origin (limit ", kMaxPosition, " m)");
+    }
+    if (p.z() < kMinHeight) return why("fell through the ground (z = ", p.z(), " m)");
+    if (b == 0 && v.length() > kMaxLinearVelocity) {
+      return why("moves at ", v.length(), " m/s (limit ", kMaxLinearVelocity, " m/s)");
+    }
+    if (b == 0 && w.length() > kMaxAngularVelocity) {
+      return why("spins at ", w.length(), " rad/s (limit ", kMaxAngularVelocity, " rad/s)");
+    }
+    if (std::abs(joint_velocity) > kMaxAngularVelocity) {
+      return why("joint spins at ", joint_velocity, " rad/s (limit ", kMaxAngularVelocity,
+                 " rad/s)");
+    }
   }
   return {};
 }

@@ -1,6 +1,5 @@
 """Helpers of the PPO rostests: progress.csv, the latched ~training_stats topic, node runs."""
 import csv
-import os
 import subprocess
 import threading
 
@@ -72,12 +71,3 @@ def start_node(node_type, name, params):
     return subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             universal_newlines=True)
 
-
-def fresh_dir(path):
-    if os.path.isdir(path):
-        for root, dirs, files in os.walk(path, topdown=False):
-            for f in files:
-                os.remove(os.path.join(root, f))
-            for d in dirs:
-                os.rmdir(os.path.join(root, d))
-    return path

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Two trainings with the same seed (run side by side by determinism.test) write identical
 progress.csv files, timing columns aside."""
+import os
 import unittest
 
 import rospy
@@ -16,8 +17,8 @@ class TestDeterminism(unittest.TestCase):
         b = StatsWatcher('/b/jetbot_ppo_trainer/training_stats')
         a.wait_iteration(iterations)
         b.wait_iteration(iterations)
-        rows_a = learning_columns('/tmp/jetbot_rl_test/determinism_a/progress.csv')
-        rows_b = learning_columns('/tmp/jetbot_rl_test/determinism_b/progress.csv')
+        rows_a = learning_columns(os.path.join(rospy.get_param('~run_dir_a'), 'progress.csv'))
+        rows_b = learning_columns(os.path.join(rospy.get_param('~run_dir_b'), 'progress.csv'))
         self.assertEqual(len(rows_a), iterations + 1)
         self.assertIn('mean_reward_per_step', rows_a[0])
         self.assertNotIn('elapsed_s', rows_a[0])

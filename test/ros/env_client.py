@@ -12,13 +12,51 @@ NODE = '/jetbot_env'
 TIMEOUT = 30.0  # s: generous, for a loaded 2-core machine
 
 
-def wait_for(condition, timeout=TIMEOUT, what='condition'):
-    """Polls `condition` (cheaply, 5 ms) until it is true; fails with `what` after `timeout` s."""
+# Every callback of a test process notifies this after recording what it received, so that
+# wait_for() wakes on the event instead of sleeping between checks.
+_events = threading.Condition()
+CONNECTION_RECHECK = 0.05  # s: rospy reports no event when a subscriber of ours connects
+
+
+def notify():
+    """Wakes every wait_for(): call after recording anything a condition may look at."""
+    with _events:
+        _events.notify_all()
+
+
+rospy.on_shutdown(notify)
+
+
+def wait_for(condition, timeout=TIMEOUT, what='condition', recheck=None):
+    """Waits until `condition()` holds, woken by notify(); fails naming `what` after `timeout` s.
+    `recheck` [s] also re-evaluates it periodically: only for state no callback reports (our
+    subscribers' connections, the master's registrations)."""
     deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline or rospy.is_shutdown():
-            raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
-        time.sleep(0.005)
+    with _events:
+        while not condition():
+            remaining = deadline - time.monotonic()
+            if remaining <= 0 or rospy.is_shutdown():
+                raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
+            _events.wait(remaining if recheck is None else min(remaining, recheck))
+
+
+class EventList(list):
+    """A list whose append and extend wake wait_for(): the record a test's own callback keeps."""
+
+    def append(self, item):
+        super(EventList, self).append(item)
+        notify()
+
+    def extend(self, items):
+        super(EventList, self).extend(items)
+        notify()
+
+
+class ConnectionListener(rospy.SubscribeListener):
+    """Wakes wait_for() when a subscriber connects to a publisher of ours."""
+
+    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+        notify()
 
 
 class EnvClient(object):
@@ -34,22 +72,25 @@ class EnvClient(object):
         self.reset_srv = rospy.ServiceProxy(NODE + '/reset', Reset)
         self.spec = rospy.wait_for_message(NODE + '/spec', EnvSpec, TIMEOUT)
         self.pub = rospy.Publisher(NODE + '/wheel_targets', WheelTargets, queue_size=100,
-                                   tcp_nodelay=True)
+                                   tcp_nodelay=True, subscriber_listener=ConnectionListener())
         self.sub = rospy.Subscriber(NODE + '/env_step', EnvStep, self._on_step, tcp_nodelay=True,
                                     queue_size=1000)
         self.diag_sub = rospy.Subscriber('/diagnostics', DiagnosticArray, self._on_diag)
         wait_for(lambda: self.pub.get_num_connections() > 0, what='the node to subscribe')
-        wait_for(lambda: self.sub.get_num_connections() > 0, what='env_step to connect')
+        wait_for(lambda: self.sub.get_num_connections() > 0, what='env_step to connect',
+                 recheck=CONNECTION_RECHECK)
 
     def _on_step(self, msg):
         with self.lock:
             self.steps.append(msg)
+        notify()
 
     def _on_diag(self, msg):
         for status in msg.status:
             if status.name.startswith('jetbot_env'):
                 with self.lock:
                     self.diagnostics.append({kv.key: kv.value for kv in status.values})
+        notify()
 
     def received(self):
         with self.lock:

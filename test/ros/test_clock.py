@@ -1,29 +1,25 @@
 #!/usr/bin/python3
 """/clock is simulation time: step x control step, advancing by exactly one control step per
 step (to the nanosecond), unchanged by resets, and equal to the EnvStep stamps."""
-import threading
 import unittest
 
 import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from env_client import EnvClient, wait_for
+from env_client import CONNECTION_RECHECK, EnvClient, EventList, wait_for
 
 STEPS = 40
 
 
 class TestClock(unittest.TestCase):
     def test_clock_follows_steps(self):
-        clocks = []
-        lock = threading.Lock()
-
-        def on_clock(msg):
-            with lock:
-                clocks.append(msg.clock.to_nsec())
-        sub = rospy.Subscriber('/clock', Clock, on_clock, tcp_nodelay=True)
+        clocks = EventList()
+        sub = rospy.Subscriber('/clock', Clock, lambda msg: clocks.append(msg.clock.to_nsec()),
+                               tcp_nodelay=True)
         env = EnvClient()
-        wait_for(lambda: sub.get_num_connections() > 0, what='/clock to connect')
+        wait_for(lambda: sub.get_num_connections() > 0, what='/clock to connect',
+                 recheck=CONNECTION_RECHECK)
         dt_ns = env.spec.control_dt * 1e9
 
         def expected(step):

@@ -6,9 +6,9 @@ import rosgraph
 import rospy
 import rostest
 
-from env_client import NODE, TIMEOUT, wait_for
-from jetbot_rl.msg import EnvSpec, EnvStep, WheelTargets
-from jetbot_rl.srv import Reset, SetCommand, Step
+from env_client import CONNECTION_RECHECK, NODE, TIMEOUT, wait_for
+from jetbot_rl.msg import EnvSpec
+from jetbot_rl.srv import Reset, SetCommand
 
 
 class TestInterface(unittest.TestCase):
@@ -30,7 +30,8 @@ class TestInterface(unittest.TestCase):
                     NODE in srvs.get(NODE + '/set_command', []) and
                     NODE in srvs.get(NODE + '/step', []) and
                     NODE in srvs.get(NODE + '/reset', []))
-        wait_for(advertised, what='every topic and service of ' + NODE)
+        wait_for(advertised, what='every topic and service of ' + NODE,
+                 recheck=CONNECTION_RECHECK)  # the master reports no events
         types = dict(master.getTopicTypes())
         self.assertEqual(types[NODE + '/env_step'], 'jetbot_rl/EnvStep')
         self.assertEqual(types[NODE + '/spec'], 'jetbot_rl/EnvSpec')

@@ -9,17 +9,17 @@ import rostest
 
 from diagnostic_msgs.msg import DiagnosticArray
 
-from env_client import NODE, TIMEOUT, wait_for
+from env_client import NODE, TIMEOUT, ConnectionListener, EventList, wait_for
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Step
 
 
 class TestRealtimeBrake(unittest.TestCase):
     def test_drive_then_brake(self):
-        steps = []
+        steps = EventList()
         sub = rospy.Subscriber(NODE + '/env_step', EnvStep, steps.append, tcp_nodelay=True)
         pub = rospy.Publisher(NODE + '/wheel_targets', WheelTargets, queue_size=10,
-                              tcp_nodelay=True)
+                              tcp_nodelay=True, subscriber_listener=ConnectionListener())
         wait_for(lambda: pub.get_num_connections() > 0, what='the node to subscribe')
         wait_for(lambda: len(steps) >= 10, what='realtime steps without any targets')
         # at rest (the core's contact model lets a parked Jetbot creep at ~1 mm/s)
@@ -51,7 +51,7 @@ class TestRealtimeBrake(unittest.TestCase):
                  what='the robot to brake after action_timeout')
 
         # an invalid message is rejected (counted in diagnostics) and stepping goes on
-        status = []
+        status = EventList()
         diag = rospy.Subscriber('/diagnostics', DiagnosticArray, lambda m: status.extend(
             {kv.key: kv.value for kv in s.values} for s in m.status if s.name.startswith('jetbot')))
         pub.publish(WheelTargets(velocities=[1.0, 2.0, 3.0]))
