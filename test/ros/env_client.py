@@ -15,7 +15,7 @@ TIMEOUT = 30.0  # s: generous, for a loaded 2-core machine
 # Every callback of a test process notifies this after recording what it received, so that
 # wait_for() wakes on the event instead of sleeping between checks.
 _events = threading.Condition()
-CONNECTION_RECHECK = 0.05  # s: rospy reports no event when a subscriber of ours connects
+UNREPORTED_RECHECK = 0.05  # s: for what nothing reports (our subscribers connecting, the master)
 
 
 def notify():
@@ -78,7 +78,7 @@ class EnvClient(object):
         self.diag_sub = rospy.Subscriber('/diagnostics', DiagnosticArray, self._on_diag)
         wait_for(lambda: self.pub.get_num_connections() > 0, what='the node to subscribe')
         wait_for(lambda: self.sub.get_num_connections() > 0, what='env_step to connect',
-                 recheck=CONNECTION_RECHECK)
+                 recheck=UNREPORTED_RECHECK)
 
     def _on_step(self, msg):
         with self.lock:

@@ -7,7 +7,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from env_client import CONNECTION_RECHECK, EnvClient, EventList, wait_for
+from env_client import UNREPORTED_RECHECK, EnvClient, EventList, wait_for
 
 STEPS = 40
 
@@ -19,7 +19,7 @@ class TestClock(unittest.TestCase):
                                tcp_nodelay=True)
         env = EnvClient()
         wait_for(lambda: sub.get_num_connections() > 0, what='/clock to connect',
-                 recheck=CONNECTION_RECHECK)
+                 recheck=UNREPORTED_RECHECK)
         dt_ns = env.spec.control_dt * 1e9
 
         def expected(step):

@@ -6,7 +6,7 @@ import rosgraph
 import rospy
 import rostest
 
-from env_client import CONNECTION_RECHECK, NODE, TIMEOUT, wait_for
+from env_client import UNREPORTED_RECHECK, NODE, TIMEOUT, wait_for
 from jetbot_rl.msg import EnvSpec
 from jetbot_rl.srv import Reset, SetCommand
 
@@ -31,7 +31,7 @@ class TestInterface(unittest.TestCase):
                     NODE in srvs.get(NODE + '/step', []) and
                     NODE in srvs.get(NODE + '/reset', []))
         wait_for(advertised, what='every topic and service of ' + NODE,
-                 recheck=CONNECTION_RECHECK)  # the master reports no events
+                 recheck=UNREPORTED_RECHECK)
         types = dict(master.getTopicTypes())
         self.assertEqual(types[NODE + '/env_step'], 'jetbot_rl/EnvStep')
         self.assertEqual(types[NODE + '/spec'], 'jetbot_rl/EnvSpec')
