@@ -5,17 +5,23 @@
 add_library(jetbot_rl_core
   src/core/batched_env.cpp
   src/core/command_task.cpp
+  src/core/config_fields.cpp
   src/core/env_config.cpp
   src/core/env_world.cpp
   src/core/lean_dispatcher.cpp
+  src/core/local_vec_env.cpp
   src/core/physics_model.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp
 )
-target_include_directories(jetbot_rl_core PUBLIC include ${BULLET_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIRS}
+target_include_directories(jetbot_rl_core PUBLIC include)
+# Bullet's headers are not -Wextra clean: system headers.
+target_include_directories(jetbot_rl_core SYSTEM PUBLIC ${BULLET_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIRS}
   ${URDFDOM_INCLUDE_DIRS})
+# src/core holds the private headers (Bullet-bearing internals); include/ is the installed API.
+target_include_directories(jetbot_rl_core PRIVATE src/core)
 target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
 target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
 
@@ -49,5 +55,6 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_thread_pool.cpp
   )
   target_link_libraries(test_core jetbot_rl_core)
+  target_include_directories(test_core PRIVATE src/core)
   target_compile_definitions(test_core PRIVATE JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
 endif()

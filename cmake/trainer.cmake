@@ -1,9 +1,7 @@
 # The PPO trainer and policy player (libtorch); included at the end of CMakeLists.txt.
 #   jetbot_rl_ppo      ROS-free PPO core: model, normaliser, storage, GAE, update, checkpoints,
 #                      training loop over the VecEnv interface
-#   jetbot_rl_ppo_ros  the lockstep ROS client of jetbot_env and the two nodes' logic
-find_package(Torch REQUIRED)
-
+#   jetbot_rl_ppo_ros  the two nodes' logic (the env's ROS client RosVecEnv is in jetbot_rl_ros)
 # ---- ROS-free PPO core ----
 add_library(jetbot_rl_ppo
   src/ppo/action_scaler.cpp
@@ -16,15 +14,17 @@ add_library(jetbot_rl_ppo
   src/ppo/policy.cpp
   src/ppo/ppo.cpp
   src/ppo/ppo_config.cpp
+  src/ppo/ppo_losses.cpp
   src/ppo/progress_csv.cpp
   src/ppo/rollout_storage.cpp
   src/ppo/runner.cpp
+  src/ppo/training_logger.cpp
 )
 target_include_directories(jetbot_rl_ppo PUBLIC include)
 target_compile_options(jetbot_rl_ppo PUBLIC ${TORCH_CXX_FLAGS})
 # libtorch's headers are not -Wextra clean: include them as system headers.
 target_include_directories(jetbot_rl_ppo SYSTEM PUBLIC ${TORCH_INCLUDE_DIRS})
-target_link_libraries(jetbot_rl_ppo PUBLIC ${TORCH_LIBRARIES})
+target_link_libraries(jetbot_rl_ppo PUBLIC jetbot_rl_core ${TORCH_LIBRARIES})
 
 install(TARGETS jetbot_rl_ppo
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
@@ -38,20 +38,22 @@ if(CATKIN_ENABLE_TESTING)
     test/ppo/test_checkpoint.cpp
     test/ppo/test_config.cpp
     test/ppo/test_runner.cpp
+    test/ppo/test_update.cpp
+    test/ppo/test_in_process.cpp
   )
   target_link_libraries(test_ppo jetbot_rl_ppo)
+  target_compile_definitions(test_ppo PRIVATE JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
 endif()
 
 # ---- ROS client of jetbot_env and the two nodes ----
 add_library(jetbot_rl_ppo_ros
   src/ppo/ros/policy_node.cpp
-  src/ppo/ros/ros_vec_env.cpp
   src/ppo/ros/stop_signal.cpp
   src/ppo/ros/trainer_node.cpp
   src/ppo/ros/trainer_params.cpp
 )
 target_include_directories(jetbot_rl_ppo_ros PUBLIC include ${catkin_INCLUDE_DIRS})
-target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo ${catkin_LIBRARIES})
+target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo jetbot_rl_ros)
 add_dependencies(jetbot_rl_ppo_ros ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
 add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)

@@ -9,6 +9,7 @@
 
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/robot_model.h"
+#include "jetbot_rl/step_result.h"
 #include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
@@ -17,24 +18,6 @@ class EnvWorld;
 class PhysicsModel;
 class ThreadPool;
 struct WorkerContext;
-
-/// An env that was reset on its own because its physics diverged.
-struct Divergence {
-  std::uint32_t env = 0;
-  std::string reason;
-};
-
-/// The batch after a step() or a reset(); field names follow the EnvStep message.
-struct StepResult {
-  std::vector<float> observations;           ///< num_envs x obs_dim, after auto-reset.
-  std::vector<float> rewards;                ///< num_envs (0 after a reset()).
-  std::vector<std::uint8_t> terminated;      ///< num_envs.
-  std::vector<std::uint8_t> truncated;       ///< num_envs: time-out or divergence.
-  std::vector<std::uint32_t> episode_steps;  ///< num_envs: steps into the current episode.
-  std::vector<std::uint32_t> reset_env_ids;  ///< Envs that ended in this step and were reset.
-  std::vector<float> final_observations;     ///< len(reset_env_ids) x obs_dim, before the reset.
-  std::vector<Divergence> divergences;       ///< Envs among reset_env_ids that diverged.
-};
 
 /// Pose of one URDF link in the world frame (env origin included).
 struct LinkPose {
@@ -68,10 +51,13 @@ class BatchedEnv {
     return step(actions.data(), actions.size());
   }
   /// Resets the listed envs (all when empty) to the rest pose, reseeding their random streams
-  /// first when `seed` is given. Throws InputError for an unknown or repeated id; nothing is reset
-  /// then. Rewards of the returned state are zero and no env is flagged.
+  /// first when `seed` is given; `episode_steps` is empty (every reset env starts at episode step
+  /// 0) or holds the step each listed env starts at (< max_episode_length - 1: staggered starts).
+  /// Throws InputError for an unknown or repeated id or a bad episode step; nothing is reset
+  /// then. Rewards of the returned state are zero and no env is flagged; the step counter stays.
   const StepResult& reset(const std::vector<std::uint32_t>& env_ids = {},
-                          std::optional<std::uint64_t> seed = std::nullopt);
+                          std::optional<std::uint64_t> seed = std::nullopt,
+                          const std::vector<std::uint32_t>& episode_steps = {});
   /// The batch after the last step() or reset().
   const StepResult& state() const { return result_; }
 
@@ -82,6 +68,8 @@ class BatchedEnv {
   double controlDt() const { return config_.controlDt(); }
   int maxEpisodeLength() const { return config_.maxEpisodeLength(); }
   const EnvConfig& config() const { return config_; }
+  /// What a learner needs to know: sizes, action bounds, control step, names.
+  BatchSpec spec() const;
   const Task& task() const { return *task_; }
   Task& task() { return *task_; }
   const RobotModel& robot() const { return *robot_; }

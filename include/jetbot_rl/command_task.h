@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
@@ -21,9 +22,6 @@ class CommandTask : public Task {
   enum class Variant { kExp, kSum, kProduct };
 
   explicit CommandTask(Variant variant = Variant::kExp) : variant_(variant) {}
-  /// Parses "exp", "sum" or "product"; throws ConfigError naming the value otherwise.
-  static Variant parseVariant(const std::string& name);
-  static std::string variantName(Variant variant);
 
   std::string name() const override { return "command"; }
   std::vector<std::string> observationNames() const override {
@@ -37,12 +35,20 @@ class CommandTask : public Task {
   void observe(int env, const RootState& state, float* obs) const override;
   float reward(int env, const RootState& state) const override;
 
+  int commandDim() const override { return 2; }
+  /// Sets env `env`'s command (x, y, normalised); InputError for a bad env id or a zero or
+  /// non-finite vector. Kept until the env's next reset, or across resets when `hold`.
+  void setCommand(int env, const std::vector<double>& command, bool hold) override;
+  std::vector<std::string> arrowNames() const override { return {"command"}; }
+  Eigen::Vector2d arrowDirection(int env, int) const override { return command(env); }
+
   Variant variant() const { return variant_; }
   /// Unit command of env `env` in the world (= env) frame's x-y plane.
   const Eigen::Vector2d& command(int env) const { return commands_.at(env); }
-  /// Sets env `env`'s command (normalised); throws InputError for a bad env id or a zero or
-  /// non-finite vector. Kept until the env's next reset, or across resets when `hold`.
-  void setCommand(int env, const Eigen::Vector2d& command, bool hold = false);
+  /// setCommand() with a 2-D vector.
+  void setCommand(int env, const Eigen::Vector2d& command, bool hold = false) {
+    setCommand(env, std::vector<double>{command.x(), command.y()}, hold);
+  }
   /// True when env `env`'s command is held across resets.
   bool held(int env) const { return held_.at(env) != 0; }
 
@@ -56,6 +62,17 @@ class CommandTask : public Task {
   Variant variant_;
   std::vector<Eigen::Vector2d> commands_;
   std::vector<unsigned char> held_;  // per env; not vector<bool>: envs are written concurrently
+};
+
+template <>
+struct EnumNames<CommandTask::Variant> {
+  static const std::vector<std::pair<CommandTask::Variant, const char*>>& list() {
+    static const std::vector<std::pair<CommandTask::Variant, const char*>> names{
+        {CommandTask::Variant::kExp, "exp"},
+        {CommandTask::Variant::kSum, "sum"},
+        {CommandTask::Variant::kProduct, "product"}};
+    return names;
+  }
 };
 
 }  // namespace jetbot_rl

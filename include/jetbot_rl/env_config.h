@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/config_fields.h"
+
 namespace jetbot_rl {
 
 /// Configuration of a batch of environments; defaults are the Isaac Lab Jetbot seed's.
@@ -29,5 +31,21 @@ struct EnvConfig {
   /// Thread count after resolving 0 to the number of cores.
   int resolvedThreads() const;
 };
+
+/// The fields of EnvConfig with their rules (see config_fields.h).
+template <typename C, typename V>
+IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
+  v("num_envs", c.num_envs, inRange(1, 1000000));
+  v("env_spacing", c.env_spacing, positiveUpTo(1000.0, "m"));
+  v("physics_dt", c.physics_dt, positiveUpTo(0.1, "s"));
+  v("decimation", c.decimation, inRange(1, 1000));
+  v("episode_length_s", c.episode_length_s, positive("s"));
+  v("dof_names", c.dof_names, NameList{});
+  v("seed", c.seed, atLeast<std::uint64_t>(0));
+  v("num_threads", c.num_threads, inRange(0, 1024, "", "0: all cores"));
+  v("drive_gain", c.drive_gain, positive("N m s/rad"));
+  v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"));
+  v("solver_iterations", c.solver_iterations, inRange(1, 1000));
+}
 
 }  // namespace jetbot_rl

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/errors.h"
 #include "jetbot_rl/rng.h"
 
 namespace jetbot_rl {
@@ -50,6 +51,26 @@ class Task {
     (void)env;
     (void)state;
     return false;
+  }
+
+  /// Size of the command a user can set per env (SetCommand's x, y); 0: the task takes none.
+  virtual int commandDim() const { return 0; }
+  /// Sets env `env`'s command (`commandDim()` values), kept across its resets when `hold`;
+  /// throws InputError naming the env and value when invalid, or when the task takes none.
+  virtual void setCommand(int env, const std::vector<double>& command, bool hold) {
+    (void)env;
+    (void)command;
+    (void)hold;
+    throw InputError("task '" + name() + "' takes no command");
+  }
+  /// Names of the directions to draw per env besides the robot's forward arrow (marker
+  /// namespaces), one per arrowDirection() index.
+  virtual std::vector<std::string> arrowNames() const { return {}; }
+  /// Unit direction `arrow` of env `env` in the env frame's ground plane.
+  virtual Eigen::Vector2d arrowDirection(int env, int arrow) const {
+    (void)env;
+    (void)arrow;
+    return Eigen::Vector2d::UnitX();
   }
 };
 

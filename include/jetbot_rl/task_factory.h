@@ -4,16 +4,40 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/command_task.h"
+#include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
 
-/// Names accepted by makeTask().
-std::vector<std::string> taskNames();
+/// The tasks makeTask() builds.
+enum class TaskKind {
+  kVelocity,  ///< VelocityTask: drive fast (the walkthrough's first part).
+  kCommand,   ///< CommandTask: turn to a random command and drive along it.
+};
 
-/// Builds task `name` ("velocity" or "command"); `reward` selects the command task's reward
-/// variant ("exp", "sum", "product") and is ignored by the velocity task. Throws ConfigError
-/// naming the parameter and value.
-std::unique_ptr<Task> makeTask(const std::string& name, const std::string& reward = "exp");
+template <>
+struct EnumNames<TaskKind> {
+  static const std::vector<std::pair<TaskKind, const char*>>& list() {
+    static const std::vector<std::pair<TaskKind, const char*>> names{
+        {TaskKind::kVelocity, "velocity"}, {TaskKind::kCommand, "command"}};
+    return names;
+  }
+};
+
+/// Which task an env runs: the `task` and `reward` parameters.
+struct TaskConfig {
+  TaskKind task = TaskKind::kVelocity;
+  CommandTask::Variant reward = CommandTask::Variant::kExp;  ///< Ignored by the velocity task.
+};
+
+template <typename C, typename V>
+IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
+  v("task", c.task, AnyValue{});
+  v("reward", c.reward, AnyValue{});
+}
+
+/// Builds the configured task.
+std::unique_ptr<Task> makeTask(const TaskConfig& config);
 
 }  // namespace jetbot_rl

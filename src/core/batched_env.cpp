@@ -4,10 +4,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "jetbot_rl/env_world.h"
+#include "env_world.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/physics_model.h"
-#include "jetbot_rl/thread_pool.h"
+#include "physics_model.h"
+#include "thread_pool.h"
 
 namespace jetbot_rl {
 
@@ -87,6 +87,7 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   }
 
   pool_->run(pool_->size(), [this](int w) { stepRange(firstEnvOf(w), firstEnvOf(w + 1)); });
+  ++result_.step;
 
   result_.reset_env_ids.clear();
   result_.final_observations.clear();
@@ -143,7 +144,8 @@ void BatchedEnv::resetEnv(int env) {
 }
 
 const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
-                                    std::optional<std::uint64_t> seed) {
+                                    std::optional<std::uint64_t> seed,
+                                    const std::vector<std::uint32_t>& episode_steps) {
   const int n = config_.num_envs;
   std::vector<std::uint8_t> selected(n, env_ids.empty() ? 1 : 0);
   for (std::uint32_t id : env_ids) {
@@ -158,10 +160,29 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
     }
     selected[id] = 1;
   }
+  const std::size_t count = env_ids.empty() ? static_cast<std::size_t>(n) : env_ids.size();
+  if (!episode_steps.empty() && episode_steps.size() != count) {
+    throw InputError("episode_steps: expected " + std::to_string(count) +
+                     " values (one per reset env) or none, got " +
+                     std::to_string(episode_steps.size()));
+  }
+  const auto last_start = static_cast<std::uint32_t>(config_.maxEpisodeLength() - 2);
+  for (std::size_t k = 0; k < episode_steps.size(); ++k) {
+    if (episode_steps[k] > last_start) {
+      throw InputError("episode_steps[" + std::to_string(k) +
+                       "] = " + std::to_string(episode_steps[k]) +
+                       ": must be <= " + std::to_string(last_start) + " (max_episode_length - 2)");
+    }
+  }
   for (int e = 0; e < n; ++e) {
     if (!selected[e]) continue;
     if (seed) rngs_[e] = Rng(*seed, e);
     resetEnv(e);
+  }
+  // Starting steps are given in env_ids order, which need not be ascending.
+  for (std::size_t i = 0; i < episode_steps.size(); ++i) {
+    const std::uint32_t id = env_ids.empty() ? static_cast<std::uint32_t>(i) : env_ids[i];
+    result_.episode_steps[id] = episode_steps[i];
   }
   for (int e = 0; e < n; ++e) {
     task_->observe(e, worlds_[e]->rootState(),
@@ -174,6 +195,21 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   result_.final_observations.clear();
   result_.divergences.clear();
   return result_;
+}
+
+BatchSpec BatchedEnv::spec() const {
+  BatchSpec spec;
+  spec.num_envs = numEnvs();
+  spec.obs_dim = obsDim();
+  spec.action_dim = actionDim();
+  spec.action_low = action_low_;
+  spec.action_high = action_high_;
+  spec.control_dt = controlDt();
+  spec.max_episode_length = maxEpisodeLength();
+  spec.task = task_->name();
+  spec.observation_names = task_->observationNames();
+  spec.action_names = config_.dof_names;
+  return spec;
 }
 
 void BatchedEnv::checkEnv(int env) const {

@@ -7,37 +7,23 @@
 
 namespace jetbot_rl {
 
-CommandTask::Variant CommandTask::parseVariant(const std::string& name) {
-  if (name == "exp") return Variant::kExp;
-  if (name == "sum") return Variant::kSum;
-  if (name == "product") return Variant::kProduct;
-  throw ConfigError("invalid reward = '" + name + "': must be exp, sum or product");
-}
-
-std::string CommandTask::variantName(Variant variant) {
-  switch (variant) {
-    case Variant::kExp:
-      return "exp";
-    case Variant::kSum:
-      return "sum";
-    case Variant::kProduct:
-      return "product";
-  }
-  return "?";
-}
-
 void CommandTask::resetEnv(int env, Rng& rng) {
   // Drawn even when held, so that holding does not shift the env's random stream.
   const double angle = 2.0 * M_PI * rng.uniform();
   if (!held_[env]) commands_[env] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
 }
 
-void CommandTask::setCommand(int env, const Eigen::Vector2d& command, bool hold) {
+void CommandTask::setCommand(int env, const std::vector<double>& values, bool hold) {
   if (env < 0 || env >= static_cast<int>(commands_.size())) {
     std::ostringstream s;
     s << "command: env " << env << " is out of range [0, " << commands_.size() << ")";
     throw InputError(s.str());
   }
+  if (values.size() != 2) {
+    throw InputError("command of env " + std::to_string(env) + ": expected 2 values (x, y), got " +
+                     std::to_string(values.size()));
+  }
+  const Eigen::Vector2d command(values[0], values[1]);
   if (!command.allFinite() || command.norm() < 1e-9) {
     std::ostringstream s;
     s << "command of env " << env << ": (" << command.x() << ", " << command.y()

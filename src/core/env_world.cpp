@@ -1,4 +1,4 @@
-#include "jetbot_rl/env_world.h"
+#include "env_world.h"
 
 #include <cmath>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "jetbot_rl/lean_dispatcher.h"
+#include "lean_dispatcher.h"
 
 #include <LinearMath/btPoolAllocator.h>
 

@@ -1,4 +1,4 @@
-#include "jetbot_rl/physics_model.h"
+#include "physics_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "jetbot_rl/thread_pool.h"
+#include "thread_pool.h"
 
 namespace jetbot_rl {
 

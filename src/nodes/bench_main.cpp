@@ -5,8 +5,8 @@
 #include <random>
 #include <string>
 
+#include "bench_args.h"
 #include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/bench_args.h"
 
 namespace {
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <numeric>
 
+#include "bench_args.h"
 #include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/bench_args.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;

@@ -3,8 +3,8 @@
 
 #include <cstdio>
 
-#include "jetbot_rl/bench_args.h"
-#include "jetbot_rl/ros/lockstep_bench.h"
+#include "bench_args.h"
+#include "lockstep_bench.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "jetbot_rl_ros_bench", ros::init_options::AnonymousName);

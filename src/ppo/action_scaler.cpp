@@ -10,8 +10,8 @@ namespace jetbot_rl {
 namespace ppo {
 
 ActionScaler::ActionScaler(const std::vector<float>& low, const std::vector<float>& high,
-                           const std::string& squash)
-    : tanh_(squash == "tanh") {
+                           ActionSquash squash)
+    : tanh_(squash == ActionSquash::kTanh) {
   if (low.empty() || low.size() != high.size()) {
     throw ConfigError("action limits: action_low has " + std::to_string(low.size()) +
                       " values and action_high " + std::to_string(high.size()));
@@ -22,9 +22,6 @@ ActionScaler::ActionScaler(const std::vector<float>& low, const std::vector<floa
                         std::to_string(low[i]) + ", " + std::to_string(high[i]) +
                         "] must be finite with low < high");
     }
-  }
-  if (squash != "clip" && squash != "tanh") {
-    throw ConfigError("invalid action_squash = '" + squash + "': must be clip or tanh");
   }
   const torch::Tensor lo = torch::tensor(low, torch::kFloat);
   const torch::Tensor hi = torch::tensor(high, torch::kFloat);

@@ -13,19 +13,21 @@ namespace ppo {
 namespace {
 
 torch::nn::Sequential makeMlp(int in, const std::vector<int>& hidden, int out,
-                              const std::string& activation) {
+                              Activation activation) {
   torch::nn::Sequential mlp;
   int width = in;
   for (int h : hidden) {
     mlp->push_back(torch::nn::Linear(width, h));
-    if (activation == "elu") {
-      mlp->push_back(torch::nn::ELU());
-    } else if (activation == "tanh") {
-      mlp->push_back(torch::nn::Tanh());
-    } else if (activation == "relu") {
-      mlp->push_back(torch::nn::ReLU());
-    } else {
-      throw ConfigError("invalid activation = '" + activation + "': must be elu, tanh or relu");
+    switch (activation) {
+      case Activation::kElu:
+        mlp->push_back(torch::nn::ELU());
+        break;
+      case Activation::kTanh:
+        mlp->push_back(torch::nn::Tanh());
+        break;
+      case Activation::kRelu:
+        mlp->push_back(torch::nn::ReLU());
+        break;
     }
     width = h;
   }
@@ -45,8 +47,8 @@ torch::Tensor gaussianLogProb(const torch::Tensor& x, const torch::Tensor& mean,
 
 ActorCriticImpl::ActorCriticImpl(int obs_dim, int action_dim,
                                  const std::vector<int>& actor_hidden_dims,
-                                 const std::vector<int>& critic_hidden_dims,
-                                 const std::string& activation, double init_noise_std)
+                                 const std::vector<int>& critic_hidden_dims, Activation activation,
+                                 double init_noise_std)
     : obs_dim_(obs_dim), action_dim_(action_dim) {
   if (obs_dim < 1 || action_dim < 1) {
     throw ConfigError("invalid model size: obs_dim " + std::to_string(obs_dim) + ", action_dim " +

@@ -7,15 +7,22 @@ namespace jetbot_rl {
 namespace ppo {
 
 EpisodeTracker::EpisodeTracker(int num_envs, std::size_t window)
-    : current_(static_cast<std::size_t>(num_envs), 0.0), window_(window) {}
+    : current_(static_cast<std::size_t>(num_envs), 0.0),
+      skip_(static_cast<std::size_t>(num_envs), 0),
+      window_(window) {}
 
-const std::vector<double>& EpisodeTracker::add(const EnvBatch& batch) {
+const std::vector<double>& EpisodeTracker::add(const StepResult& batch) {
   for (std::size_t i = 0; i < current_.size() && i < batch.rewards.size(); ++i) {
     current_[i] += batch.rewards[i];
   }
   ended_.clear();
   for (std::uint32_t id : batch.reset_env_ids) {
     if (id >= current_.size()) continue;
+    if (skip_[id]) {
+      skip_[id] = 0;
+      current_[id] = 0.0;
+      continue;
+    }
     ended_.push_back(current_[id]);
     recent_.push_back(current_[id]);
     if (recent_.size() > window_) recent_.pop_front();
@@ -25,10 +32,8 @@ const std::vector<double>& EpisodeTracker::add(const EnvBatch& batch) {
   return ended_;
 }
 
-void EpisodeTracker::discard(const std::vector<std::uint32_t>& ids) {
-  for (std::uint32_t id : ids) {
-    if (id < current_.size()) current_[id] = 0.0;
-  }
+void EpisodeTracker::skipCurrent(std::uint32_t id) {
+  if (id < skip_.size()) skip_[id] = 1;
 }
 
 double EpisodeTracker::meanReturn() const {

@@ -4,15 +4,37 @@
 #include <torch/torch.h>
 
 #include <algorithm>
+#include <string>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/ppo_losses.h"
 
 namespace jetbot_rl {
 namespace ppo {
 
-Ppo::Ppo(int obs_dim, int action_dim, const PpoConfig& config)
+namespace {
+
+torch::Tensor floats(const std::vector<float>& v, int rows, int cols) {
+  return torch::from_blob(const_cast<float*>(v.data()), {rows, cols}, torch::kFloat).clone();
+}
+
+torch::Tensor flags(const std::vector<std::uint8_t>& v) {
+  return torch::from_blob(const_cast<std::uint8_t*>(v.data()), {static_cast<int64_t>(v.size())},
+                          torch::kUInt8)
+      .to(torch::kFloat);
+}
+
+}  // namespace
+
+Ppo::Ppo(const BatchSpec& spec, const PpoConfig& config)
     : config_(config),
-      model_(obs_dim, action_dim, config.actor_hidden_dims, config.critic_hidden_dims,
+      num_envs_(spec.num_envs),
+      obs_dim_(spec.obs_dim),
+      model_(spec.obs_dim, spec.action_dim, config.actor_hidden_dims, config.critic_hidden_dims,
              config.activation, config.init_noise_std),
-      normalizer_(obs_dim, config.normalize_observations),
+      normalizer_(spec.obs_dim, config.normalize_observations),
+      storage_(config.num_steps_per_env, spec.num_envs, spec.obs_dim, spec.action_dim),
+      scaler_(spec.action_low, spec.action_high, config.action_squash),
       learning_rate_(config.learning_rate) {
   optimizer_ = std::make_unique<torch::optim::Adam>(model_->parameters(),
                                                     torch::optim::AdamOptions(learning_rate_));
@@ -25,7 +47,86 @@ void Ppo::setLearningRate(double lr) {
   }
 }
 
-UpdateStats Ppo::update(const RolloutStorage& storage) {
+double Ppo::actionStd() { return model_->actionStd().mean().item<double>(); }
+
+torch::Tensor Ppo::values(const std::vector<float>& observations, int rows) {
+  torch::NoGradGuard no_grad;
+  return model_->value(normalizer_->normalize(floats(observations, rows, obs_dim_)));
+}
+
+const std::vector<float>& Ppo::act(const StepResult& state) {
+  if (step_ >= storage_.numSteps()) {
+    throw Error("Ppo::act: the rollout holds " + std::to_string(step_) +
+                " steps already; call update() first");
+  }
+  if (state.observations.size() != static_cast<std::size_t>(num_envs_) * obs_dim_) {
+    throw Error("Ppo::act: expected " + std::to_string(num_envs_ * obs_dim_) +
+                " observations, got " + std::to_string(state.observations.size()));
+  }
+  const torch::Tensor obs = floats(state.observations, num_envs_, obs_dim_);
+  normalizer_->update(obs);
+  obs_ = normalizer_->normalize(obs);
+  sample_ = model_->act(obs_);
+  scaler_.toEnv(sample_.actions, actions_);
+  acted_ = true;
+  return actions_;
+}
+
+void Ppo::processEnvStep(const StepResult& r) {
+  if (!acted_) throw Error("Ppo::processEnvStep without act()");
+  const int n = num_envs_;
+  if (r.rewards.size() != static_cast<std::size_t>(n) || r.terminated.size() != r.rewards.size() ||
+      r.truncated.size() != r.rewards.size() ||
+      r.final_observations.size() != r.reset_env_ids.size() * obs_dim_) {
+    throw Error("step " + std::to_string(r.step) + " does not match the batch (" +
+                std::to_string(n) + " envs, obs_dim " + std::to_string(obs_dim_) + ")");
+  }
+  // Time-outs bootstrap with V(final observation), never as terminal states.
+  std::vector<std::uint8_t> has_final(n, 0);
+  std::vector<int64_t> rows, envs;
+  for (std::size_t k = 0; k < r.reset_env_ids.size(); ++k) {
+    const std::uint32_t id = r.reset_env_ids[k];
+    if (id >= static_cast<std::uint32_t>(n)) {
+      throw Error("step " + std::to_string(r.step) + ": reset env id " + std::to_string(id) +
+                  " is out of range");
+    }
+    has_final[id] = 1;
+    if (r.truncated[id] && !r.terminated[id]) {
+      rows.push_back(static_cast<int64_t>(k));
+      envs.push_back(id);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if ((r.truncated[i] || r.terminated[i]) && !has_final[i]) {
+      throw Error("env " + std::to_string(i) + " ended in step " + std::to_string(r.step) +
+                  " but has no final observation in reset_env_ids");
+    }
+  }
+  torch::Tensor truncated_values = torch::zeros({n});
+  if (!rows.empty()) {
+    const int ended = static_cast<int>(r.reset_env_ids.size());
+    const torch::Tensor v =
+        values(r.final_observations, ended).index_select(0, torch::tensor(rows, torch::kLong));
+    truncated_values.index_copy_(0, torch::tensor(envs, torch::kLong), v);
+  }
+  const torch::Tensor rewards =
+      torch::from_blob(const_cast<float*>(r.rewards.data()), {n}, torch::kFloat).clone();
+  storage_.add(step_, obs_, sample_.actions, sample_.log_probs, sample_.values, sample_.mean,
+               sample_.std, rewards, flags(r.terminated), flags(r.truncated), truncated_values);
+  ++step_;
+  acted_ = false;
+}
+
+void Ppo::computeReturns(const StepResult& state) {
+  if (step_ != storage_.numSteps()) {
+    throw Error("Ppo::computeReturns: the rollout holds " + std::to_string(step_) + " of " +
+                std::to_string(storage_.numSteps()) + " steps");
+  }
+  storage_.computeReturns(values(state.observations, num_envs_), config_.gamma, config_.lam);
+}
+
+UpdateStats Ppo::update() {
+  const RolloutStorage& storage = storage_;
   const PpoConfig& c = config_;
   UpdateStats stats;
   int updates = 0;
@@ -34,39 +135,14 @@ UpdateStats Ppo::update(const RolloutStorage& storage) {
     for (const MiniBatch& b : storage.miniBatches(c.num_mini_batches)) {
       const ActionEvaluation e = model_->evaluate(b.obs, b.actions);
 
-      // KL(old || new) of diagonal Gaussians; drives the adaptive learning rate (rsl_rl).
-      double kl = 0.0;
-      {
-        torch::NoGradGuard no_grad;
-        const torch::Tensor kl_t =
-            (torch::log(e.std / b.old_std) +
-             (b.old_std.square() + (b.old_mean - e.mean).square()) / (2.0 * e.std.square()) - 0.5)
-                .sum(-1)
-                .mean();
-        kl = kl_t.item<double>();
-      }
-      if (c.schedule == "adaptive") {
-        if (kl > 2.0 * c.desired_kl) {
-          setLearningRate(std::max(c.min_learning_rate, learning_rate_ / 1.5));
-        } else if (kl < 0.5 * c.desired_kl && kl > 0.0) {
-          setLearningRate(std::min(c.max_learning_rate, learning_rate_ * 1.5));
-        }
-      }
+      // KL(old || new) drives the adaptive learning rate (rsl_rl).
+      const double kl = gaussianKl(b.old_mean, b.old_std, e.mean, e.std);
+      setLearningRate(adaptedLearningRate(learning_rate_, kl, c));
 
       const torch::Tensor ratio = torch::exp(e.log_probs - b.old_log_probs);
-      const torch::Tensor surrogate =
-          torch::max(-b.advantages * ratio,
-                     -b.advantages * torch::clamp(ratio, 1.0 - c.clip_param, 1.0 + c.clip_param))
-              .mean();
-      torch::Tensor value_loss;
-      if (c.use_clipped_value_loss) {
-        const torch::Tensor clipped =
-            b.old_values + torch::clamp(e.values - b.old_values, -c.clip_param, c.clip_param);
-        value_loss =
-            torch::max((e.values - b.returns).square(), (clipped - b.returns).square()).mean();
-      } else {
-        value_loss = (e.values - b.returns).square().mean();
-      }
+      const torch::Tensor surrogate = clippedSurrogate(ratio, b.advantages, c.clip_param);
+      const torch::Tensor value_loss =
+          valueLoss(e.values, b.old_values, b.returns, c.clip_param, c.use_clipped_value_loss);
       const torch::Tensor entropy = e.entropy.mean();
       const torch::Tensor loss =
           surrogate + c.value_loss_coef * value_loss - c.entropy_coef * entropy;
@@ -88,6 +164,7 @@ UpdateStats Ppo::update(const RolloutStorage& storage) {
   stats.entropy /= updates;
   stats.approx_kl /= updates;
   stats.learning_rate = learning_rate_;
+  step_ = 0;
   return stats;
 }
 

@@ -21,36 +21,24 @@ diagnostic_msgs::KeyValue keyValue(const std::string& key, const std::string& va
 EnvDiagnostics::EnvDiagnostics(ros::NodeHandle& nh, const std::string& name,
                                const std::string& mode, int num_envs)
     : pub_(nh.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10)),
-      name_(name),
-      mode_(mode),
       num_envs_(num_envs),
       last_publish_(std::chrono::steady_clock::now()) {
   msg_.status.resize(1);
-  msg_.status[0].name = name_;
+  msg_.status[0].name = name;
   msg_.status[0].hardware_id = "jetbot_rl";
+  msg_.status[0].values = {keyValue("mode", mode)};
 }
 
-void EnvDiagnostics::countRejection(const std::string& reason) {
-  ++rejections_;
-  last_rejection_ = reason;
-}
-
-void EnvDiagnostics::noteDivergences(const std::vector<Divergence>& divergences,
-                                     std::uint64_t total) {
-  diverged_ = total;
-  if (!divergences.empty()) last_divergence_ = divergences.back().reason;
-}
-
-void EnvDiagnostics::publish() {
+void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   const auto now = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(now - last_publish_).count();
-  const double rate = seconds > 0.0 ? (steps_ - steps_at_publish_) / seconds : 0.0;
+  const double rate = seconds > 0.0 ? (c.steps - previous_.steps) / seconds : 0.0;
   char rate_text[32];
   std::snprintf(rate_text, sizeof(rate_text), "%.1f", rate);
 
   diagnostic_msgs::DiagnosticStatus& s = msg_.status[0];
-  const bool new_rejections = rejections_ > rejections_at_publish_;
-  const bool new_divergences = diverged_ > diverged_at_publish_;
+  const bool new_rejections = c.rejections > previous_.rejections;
+  const bool new_divergences = c.diverged > previous_.diverged;
   s.level = (new_rejections || new_divergences) ? diagnostic_msgs::DiagnosticStatus::WARN
                                                 : diagnostic_msgs::DiagnosticStatus::OK;
   if (new_rejections && new_divergences) {
@@ -62,23 +50,19 @@ void EnvDiagnostics::publish() {
   } else {
     s.message = "OK";
   }
-  s.values.clear();
-  s.values.push_back(keyValue("mode", mode_));
+  s.values.resize(1);  // keeps "mode"
   s.values.push_back(keyValue("num_envs", std::to_string(num_envs_)));
-  s.values.push_back(keyValue("current step", std::to_string(step_)));
-  s.values.push_back(keyValue("steps applied", std::to_string(steps_)));
+  s.values.push_back(keyValue("current step", std::to_string(step)));
+  s.values.push_back(keyValue("steps applied", std::to_string(c.steps)));
   s.values.push_back(keyValue("step rate (steps/s)", rate_text));
-  s.values.push_back(keyValue("rejected messages", std::to_string(rejections_)));
-  s.values.push_back(keyValue("last rejection reason", last_rejection_));
-  s.values.push_back(keyValue("diverged envs reset", std::to_string(diverged_)));
-  s.values.push_back(keyValue("last divergence reason", last_divergence_));
+  s.values.push_back(keyValue("rejected messages", std::to_string(c.rejections)));
+  s.values.push_back(keyValue("last rejection reason", c.last_rejection));
+  s.values.push_back(keyValue("diverged envs reset", std::to_string(c.diverged)));
+  s.values.push_back(keyValue("last divergence reason", c.last_divergence));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
-
   last_publish_ = now;
-  steps_at_publish_ = steps_;
-  rejections_at_publish_ = rejections_;
-  diverged_at_publish_ = diverged_;
+  previous_ = c;
 }
 
 }  // namespace jetbot_rl

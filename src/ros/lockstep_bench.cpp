@@ -1,4 +1,4 @@
-#include "jetbot_rl/ros/lockstep_bench.h"
+#include "lockstep_bench.h"
 
 #include <ros/ros.h>
 #include <ros/topic.h>

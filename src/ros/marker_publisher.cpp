@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "jetbot_rl/command_task.h"
-
 namespace jetbot_rl {
 namespace {
 
@@ -76,8 +74,11 @@ visualization_msgs::Marker marker(const std::string& ns, int id, int type,
 }  // namespace
 
 EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs,
-                                       bool enabled)
-    : envs_(std::clamp(envs, 0, env.numEnvs())), enabled_(enabled) {
+                                       double rate, bool enabled)
+    : envs_(std::clamp(envs, 0, env.numEnvs())),
+      enabled_(enabled),
+      arrows_(static_cast<int>(env.task().arrowNames().size())),
+      gate_(rate) {
   pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (!enabled_) {
     deleteAll();
@@ -93,7 +94,7 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
       break;
     }
   }
-  const bool has_command = dynamic_cast<const CommandTask*>(&env.task()) != nullptr;
+  const std::vector<std::string> arrow_names = env.task().arrowNames();
   for (int e = 0; e < envs_; ++e) {
     auto body = marker("body", e, visualization_msgs::Marker::CUBE, envColour(e, 0.0));
     body.scale.x = size.x();
@@ -106,10 +107,10 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
     forward.scale.y = kShaftDiameter;
     forward.scale.z = kHeadDiameter;
     array_.markers.push_back(forward);
-    if (has_command) {
-      auto command = marker("command", e, visualization_msgs::Marker::ARROW, envColour(e, 0.6));
-      command.scale = forward.scale;
-      array_.markers.push_back(command);
+    for (const std::string& name : arrow_names) {
+      auto arrow = marker(name, e, visualization_msgs::Marker::ARROW, envColour(e, 0.6));
+      arrow.scale = forward.scale;
+      array_.markers.push_back(arrow);
     }
   }
 }
@@ -126,9 +127,9 @@ void EnvMarkerPublisher::deleteAll() {
   pub_.publish(clear);
 }
 
-void EnvMarkerPublisher::publish(const BatchedEnv& env, const ros::Time& stamp) {
-  if (!enabled_ || envs_ == 0) return;
-  const auto* command_task = dynamic_cast<const CommandTask*>(&env.task());
+void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) {
+  if (!enabled_ || envs_ == 0 || !gate_.due(msg->header.stamp, reset)) return;
+  const ros::Time& stamp = msg->header.stamp;
   std::size_t k = 0;
   for (int e = 0; e < envs_; ++e) {
     const RootState s = env.rootState(e);
@@ -145,15 +146,20 @@ void EnvMarkerPublisher::publish(const BatchedEnv& env, const ros::Time& stamp) 
     auto& forward_marker = array_.markers[k++];
     forward_marker.header.stamp = stamp;
     setPose(forward_marker.pose, arrow_base, yawQuaternion(std::atan2(forward.y(), forward.x())));
-    if (command_task) {
-      const Eigen::Vector2d& c = command_task->command(e);
-      auto& command_marker = array_.markers[k++];
-      command_marker.header.stamp = stamp;
-      setPose(command_marker.pose, arrow_base + Eigen::Vector3d(0, 0, 0.01),
+    for (int a = 0; a < arrows_; ++a) {
+      const Eigen::Vector2d c = env.task().arrowDirection(e, a);
+      auto& arrow_marker = array_.markers[k++];
+      arrow_marker.header.stamp = stamp;
+      setPose(arrow_marker.pose, arrow_base + Eigen::Vector3d(0, 0, 0.01 * (a + 1)),
               yawQuaternion(std::atan2(c.y(), c.x())));
     }
   }
-  pub_.publish(array_);
+  due_ = true;
+}
+
+void EnvMarkerPublisher::send() {
+  if (due_) pub_.publish(array_);
+  due_ = false;
 }
 
 }  // namespace jetbot_rl

@@ -5,7 +5,7 @@
 namespace jetbot_rl {
 
 EnvTfPublisher::EnvTfPublisher(int tf_envs, double tf_rate)
-    : tf_envs_(std::max(0, tf_envs)), period_(1.0 / tf_rate) {
+    : tf_envs_(std::max(0, tf_envs)), gate_(tf_rate) {
   if (tf_envs_ > 0) broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
 }
 
@@ -13,16 +13,8 @@ std::string EnvTfPublisher::frameName(int env, const std::string& link) {
   return "env_" + std::to_string(env) + "/" + link;
 }
 
-bool EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool force) {
-  if (!broadcaster_) return false;
-  if (published_ && stamp == last_) {
-    // tf2 listeners drop a second batch with the same stamp (TF_REPEATED_DATA): a forced batch
-    // at an unchanged time (a reset) goes out with the next step instead.
-    pending_ = pending_ || force;
-    return false;
-  }
-  if (!force && !pending_ && published_ && stamp - last_ < period_) return false;
-  pending_ = false;
+void EnvTfPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) {
+  if (!broadcaster_ || !gate_.due(msg->header.stamp, reset)) return;
   const int envs = std::min(tf_envs_, env.numEnvs());
   std::size_t k = 0;
   for (int e = 0; e < envs; ++e) {
@@ -33,7 +25,7 @@ bool EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool 
         transforms_[k].child_frame_id = frameName(e, link.link);
       }
       geometry_msgs::TransformStamped& t = transforms_[k++];
-      t.header.stamp = stamp;
+      t.header.stamp = msg->header.stamp;
       const Eigen::Vector3d p = link.pose.translation();
       const Eigen::Quaterniond q(link.pose.rotation());
       t.transform.translation.x = p.x();
@@ -46,10 +38,12 @@ bool EnvTfPublisher::update(const BatchedEnv& env, const ros::Time& stamp, bool 
     }
   }
   transforms_.resize(k);
-  broadcaster_->sendTransform(transforms_);
-  last_ = stamp;
-  published_ = true;
-  return true;
+  due_ = true;
+}
+
+void EnvTfPublisher::send() {
+  if (due_) broadcaster_->sendTransform(transforms_);
+  due_ = false;
 }
 
 }  // namespace jetbot_rl

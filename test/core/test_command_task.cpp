@@ -48,7 +48,7 @@ TEST(CommandTask, EveryRewardVariant) {
     CommandTask task(variant);
     task.resize(1);
     task.setCommand(0, Eigen::Vector2d(1, 0));
-    EXPECT_NEAR(task.reward(0, s), expected, 1e-6) << CommandTask::variantName(variant);
+    EXPECT_NEAR(task.reward(0, s), expected, 1e-6) << enumName(variant);
   }
   // The product variant rewards reversing away from the command; exp does not.
   const RootState reversing = yawedState(M_PI, -0.4);  // facing away, moving towards +x
@@ -64,10 +64,10 @@ TEST(CommandTask, EveryRewardVariant) {
 TEST(CommandTask, VariantNamesRoundTripAndBadOnesAreNamed) {
   for (auto v :
        {CommandTask::Variant::kExp, CommandTask::Variant::kSum, CommandTask::Variant::kProduct}) {
-    EXPECT_EQ(CommandTask::parseVariant(CommandTask::variantName(v)), v);
+    EXPECT_EQ(parseEnum<CommandTask::Variant>("reward", enumName(v)), v);
   }
   try {
-    CommandTask::parseVariant("max");
+    parseEnum<CommandTask::Variant>("reward", "max");
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("reward = 'max'"), std::string::npos) << e.what();
@@ -139,16 +139,24 @@ namespace jetbot_rl {
 namespace {
 
 TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
-  for (const auto& name : taskNames()) EXPECT_EQ(makeTask(name)->name(), name);
-  EXPECT_EQ(static_cast<CommandTask&>(*makeTask("command", "sum")).variant(),
-            CommandTask::Variant::kSum);
+  for (const auto& [kind, name] : EnumNames<TaskKind>::list()) {
+    TaskConfig config;
+    fieldsFromYaml(std::string("task: ") + name, config);
+    EXPECT_EQ(config.task, kind);
+    EXPECT_EQ(makeTask(config)->name(), name);
+  }
+  TaskConfig config;
+  fieldsFromYaml("task: command\nreward: sum", config);
+  EXPECT_EQ(static_cast<CommandTask&>(*makeTask(config)).variant(), CommandTask::Variant::kSum);
   try {
-    makeTask("maze");
+    fieldsFromYaml("task: maze", config);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("task = 'maze'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("task = 'maze': must be velocity or command"),
+              std::string::npos)
+        << e.what();
   }
-  EXPECT_THROW(makeTask("command", "max"), ConfigError);
+  EXPECT_THROW(fieldsFromYaml("reward: max", config), ConfigError);
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "jetbot_rl/thread_pool.h"
+#include "thread_pool.h"
 
 namespace jetbot_rl {
 namespace {

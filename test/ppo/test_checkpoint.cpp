@@ -26,7 +26,8 @@ PpoConfig testConfig() {
   PpoConfig c;
   c.actor_hidden_dims = {16, 8};
   c.critic_hidden_dims = {12};
-  c.activation = "tanh";
+  c.activation = Activation::kTanh;
+  c.num_steps_per_env = kSteps;
   c.num_mini_batches = 2;
   c.num_learning_epochs = 2;
   c.learning_rate = 3e-3;
@@ -34,19 +35,38 @@ PpoConfig testConfig() {
   return c;
 }
 
-/// A rollout with random data, returns computed.
-RolloutStorage randomRollout(Ppo& ppo) {
-  RolloutStorage storage(kSteps, kEnvs, kObs, kAct);
+BatchSpec testSpec(int obs_dim = kObs) {
+  BatchSpec spec;
+  spec.num_envs = kEnvs;
+  spec.obs_dim = obs_dim;
+  spec.action_dim = kAct;
+  spec.action_low.assign(kAct, -1.0f);
+  spec.action_high.assign(kAct, 1.0f);
+  spec.control_dt = 1.0 / 60.0;
+  spec.max_episode_length = 300;
+  return spec;
+}
+
+std::vector<float> randomFloats(int n, double scale, double offset) {
+  const torch::Tensor t = scale * torch::randn({n}) + offset;
+  return std::vector<float>(t.data_ptr<float>(), t.data_ptr<float>() + n);
+}
+
+/// Fills `ppo`'s rollout with random observations and rewards through act / processEnvStep and
+/// computes its returns (deterministic for a given torch seed and model).
+void randomRollout(Ppo& ppo) {
+  StepResult r;
+  r.terminated.assign(kEnvs, 0);
+  r.truncated.assign(kEnvs, 0);
+  r.episode_steps.assign(kEnvs, 0);
+  r.observations = randomFloats(kEnvs * kObs, 3.0, 1.0);
   for (int t = 0; t < kSteps; ++t) {
-    const torch::Tensor raw = 3.0 * torch::randn({kEnvs, kObs}) + 1.0;
-    ppo.normalizer()->update(raw);
-    const torch::Tensor obs = ppo.normalizer()->normalize(raw);
-    const ActionSample s = ppo.model()->act(obs);
-    storage.add(t, obs, s.actions, s.log_probs, s.values, s.mean, s.std, torch::rand({kEnvs}),
-                torch::zeros({kEnvs}), torch::zeros({kEnvs}), torch::zeros({kEnvs}));
+    ppo.act(r);
+    r.observations = randomFloats(kEnvs * kObs, 3.0, 1.0);
+    r.rewards = randomFloats(kEnvs, 1.0, 0.5);
+    ppo.processEnvStep(r);
   }
-  storage.computeReturns(torch::zeros({kEnvs}), 0.99, 0.95);
-  return storage;
+  ppo.computeReturns(r);
 }
 
 std::vector<torch::Tensor> parameters(Ppo& ppo) {
@@ -67,8 +87,11 @@ class CheckpointTest : public testing::Test {
  protected:
   void SetUp() override {
     torch::manual_seed(1);
-    trained = std::make_unique<Ppo>(kObs, kAct, testConfig());
-    for (int i = 0; i < 3; ++i) trained->update(randomRollout(*trained));
+    trained = std::make_unique<Ppo>(testSpec(), testConfig());
+    for (int i = 0; i < 3; ++i) {
+      randomRollout(*trained);
+      trained->update();
+    }
     meta.iteration = 42;
     meta.env_steps = 123456;
     meta.elapsed_s = 12.5;
@@ -100,7 +123,7 @@ TEST_F(CheckpointTest, MetadataRoundTrip) {
 
 TEST_F(CheckpointTest, SameOutputsAndNormaliserAfterReload) {
   torch::manual_seed(99);  // different initial weights: the load must overwrite them
-  Ppo loaded(kObs, kAct, testConfig());
+  Ppo loaded(testSpec(), testConfig());
   const torch::Tensor obs = torch::randn({10, kObs});
   ASSERT_FALSE(torch::equal(loaded.model()->actionMean(obs), trained->model()->actionMean(obs)));
 
@@ -120,17 +143,17 @@ TEST_F(CheckpointTest, SameOutputsAndNormaliserAfterReload) {
 TEST_F(CheckpointTest, OptimiserStateRestored) {
   // The same update on the original and on the reloaded learner gives identical parameters only
   // if Adam's moments and step counts were restored; a fresh Adam gives different ones.
-  Ppo loaded(kObs, kAct, testConfig());
+  Ppo loaded(testSpec(), testConfig());
   loadCheckpoint(path, loaded);
-  Ppo fresh_optimiser(kObs, kAct, testConfig());
+  Ppo fresh_optimiser(testSpec(), testConfig());
   loadPolicy(path, fresh_optimiser.model(), fresh_optimiser.normalizer());
   fresh_optimiser.setLearningRate(trained->learningRate());
 
-  torch::manual_seed(5);
-  const RolloutStorage rollout = randomRollout(*trained);
-  auto updateWithSeed = [&rollout](Ppo& ppo) {
+  auto updateWithSeed = [](Ppo& ppo) {
+    torch::manual_seed(5);  // the same rollout: same data, same sampled actions
+    randomRollout(ppo);
     torch::manual_seed(11);  // same minibatch permutations
-    ppo.update(rollout);
+    ppo.update();
     return parameters(ppo);
   };
   const auto expected = updateWithSeed(*trained);
@@ -165,7 +188,7 @@ TEST_F(CheckpointTest, ErrorsNameTheFile) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("missing.pt"), std::string::npos) << e.what();
   }
-  Ppo other(kObs + 1, kAct, testConfig());
+  Ppo other(testSpec(kObs + 1), testConfig());
   EXPECT_THROW(loadCheckpoint(path, other), Error);
   const std::string garbage = tempPath("garbage.pt");
   std::ofstream(garbage) << "not a checkpoint";

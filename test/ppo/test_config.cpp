@@ -14,15 +14,31 @@ TEST(PpoConfig, YamlRoundTrip) {
   PpoConfig c;
   c.seed = 3;
   c.actor_hidden_dims = {64, 32, 16};
-  c.activation = "relu";
+  c.activation = Activation::kRelu;
   c.learning_rate = 3.14159e-4;
   c.use_clipped_value_loss = false;
-  c.schedule = "fixed";
+  c.schedule = LrSchedule::kFixed;
   const PpoConfig back = fromYaml(toYaml(c));
   EXPECT_EQ(toYaml(back), toYaml(c));
   EXPECT_EQ(back.actor_hidden_dims, c.actor_hidden_dims);
   EXPECT_DOUBLE_EQ(back.learning_rate, c.learning_rate);
   EXPECT_FALSE(back.use_clipped_value_loss);
+}
+
+TEST(PpoConfig, EnumsAreParsedOnceAndBadNamesAreNamed) {
+  EXPECT_EQ(fromYaml("activation: relu\nschedule: fixed\naction_squash: tanh\n").activation,
+            Activation::kRelu);
+  for (const auto& [yaml, field] :
+       {std::pair{"activation: sigmoid", "activation = 'sigmoid': must be elu, tanh or relu"},
+        std::pair{"schedule: cosine", "schedule = 'cosine': must be adaptive or fixed"},
+        std::pair{"action_squash: none", "action_squash = 'none': must be clip or tanh"}}) {
+    try {
+      fromYaml(yaml);
+      FAIL() << "accepted " << yaml;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(PpoConfig, FromYamlIgnoresCommentsAndUnknownKeys) {
@@ -52,17 +68,8 @@ TEST(PpoConfig, InvalidValuesNameTheParameter) {
   c.actor_hidden_dims = {};
   expectInvalid(c, "actor_hidden_dims");
   c = PpoConfig();
-  c.activation = "sigmoid";
-  expectInvalid(c, "activation");
-  c = PpoConfig();
   c.learning_rate = -1;
   expectInvalid(c, "learning_rate");
-  c = PpoConfig();
-  c.schedule = "cosine";
-  expectInvalid(c, "schedule");
-  c = PpoConfig();
-  c.action_squash = "none";
-  expectInvalid(c, "action_squash");
   c = PpoConfig();
   c.num_mini_batches = 0;
   expectInvalid(c, "num_mini_batches");

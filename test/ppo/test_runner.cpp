@@ -17,38 +17,43 @@ namespace ppo {
 namespace {
 
 /// A Jetbot-like toy: wheel targets [rad/s] in +-20 drive a first-order forward speed v and
-/// yaw rate w; obs = [v, w, 0]; reward = |v| [m/s] (at most 0.6); time-out after 20 steps.
+/// yaw rate w; obs = [v, w, 0]; reward = |v| [m/s] (at most 0.6); time-out after 20 steps
+/// (episode step max_episode_length - 1, as the core).
 class ToyEnv : public VecEnv {
  public:
   explicit ToyEnv(int num_envs, std::int64_t interrupt_at = -1) : interrupt_at_(interrupt_at) {
-    info_.num_envs = num_envs;
-    info_.obs_dim = 3;
-    info_.action_dim = 2;
-    info_.action_low = {-20.0f, -20.0f};
-    info_.action_high = {20.0f, 20.0f};
-    info_.control_dt = 1.0 / 60.0;
-    info_.max_episode_length = 21;
-    info_.task = "toy";
+    spec_.num_envs = num_envs;
+    spec_.obs_dim = 3;
+    spec_.action_dim = 2;
+    spec_.action_low = {-20.0f, -20.0f};
+    spec_.action_high = {20.0f, 20.0f};
+    spec_.control_dt = 1.0 / 60.0;
+    spec_.max_episode_length = 21;
+    spec_.task = "toy";
   }
-  const EnvInfo& info() const override { return info_; }
+  const BatchSpec& spec() const override { return spec_; }
   void setObservationNames(const std::vector<std::string>& names) {
-    info_.observation_names = names;
+    spec_.observation_names = names;
   }
-  const EnvBatch& reset(std::int64_t) override {
-    const auto n = static_cast<std::size_t>(info_.num_envs);
-    b_ = EnvBatch();
+  const StepResult& reset(std::int64_t, const std::vector<std::uint32_t>& episode_steps) override {
+    const auto n = static_cast<std::size_t>(spec_.num_envs);
+    b_ = StepResult();
     b_.observations.assign(n * 3, 0.0f);
     b_.rewards.assign(n, 0.0f);
     b_.terminated.assign(n, 0);
     b_.truncated.assign(n, 0);
-    episode_steps_.assign(n, 0);
+    b_.episode_steps.assign(n, 0);
+    if (!episode_steps.empty()) b_.episode_steps = episode_steps;
+    starts = episode_steps;
     return b_;
   }
-  const EnvBatch& step(const std::vector<float>& a) override {
+  void stepAsync(const std::vector<float>& a) override { actions_ = a; }
+  const StepResult& stepWait() override {
     if (interrupt_at_ >= 0 && static_cast<std::int64_t>(b_.step) == interrupt_at_) {
       throw Interrupted("test interrupt");
     }
-    const auto n = static_cast<std::size_t>(info_.num_envs);
+    const std::vector<float>& a = actions_;
+    const auto n = static_cast<std::size_t>(spec_.num_envs);
     EXPECT_EQ(a.size(), n * 2);
     ++b_.step;
     b_.reset_env_ids.clear();
@@ -59,32 +64,25 @@ class ToyEnv : public VecEnv {
       o[0] = 0.5f * o[0] + 0.5f * 0.03f * 0.5f * (a[2 * i] + a[2 * i + 1]);
       o[1] = 0.5f * o[1] + 0.5f * 0.03f * (a[2 * i + 1] - a[2 * i]) / 0.1125f;
       b_.rewards[i] = std::abs(o[0]);
-      b_.truncated[i] = ++episode_steps_[i] >= 20;
+      b_.truncated[i] = ++b_.episode_steps[i] >= 20;
       if (b_.truncated[i]) {
         b_.reset_env_ids.push_back(static_cast<std::uint32_t>(i));
         b_.final_observations.insert(b_.final_observations.end(), o, o + 3);
         o[0] = o[1] = o[2] = 0.0f;
-        episode_steps_[i] = 0;
+        b_.episode_steps[i] = 0;
+        ends.emplace_back(b_.step, i);
       }
     }
     return b_;
   }
-  const EnvBatch& resetEnvs(const std::vector<std::uint32_t>& ids) override {
-    for (std::uint32_t i : ids) {
-      EXPECT_LT(i, b_.rewards.size());
-      b_.observations[3 * i] = b_.observations[3 * i + 1] = b_.observations[3 * i + 2] = 0.0f;
-      episode_steps_[i] = 0;
-      cuts.emplace_back(b_.step, i);
-    }
-    return b_;
-  }
 
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cuts;  ///< (step, env) of resetEnvs
+  std::vector<std::uint32_t> starts;                          ///< episode_steps of the last reset
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> ends;  ///< (step, env) of every time-out
 
  private:
-  EnvInfo info_;
-  EnvBatch b_;
-  std::vector<int> episode_steps_;
+  BatchSpec spec_;
+  StepResult b_;
+  std::vector<float> actions_;
   std::int64_t interrupt_at_;
 };
 
@@ -215,13 +213,23 @@ TEST(Runner, InterruptSavesTheLastCompletedIterationAndResumeContinues) {
   for (int i = 1; i <= 5; ++i) EXPECT_EQ(rows[i][0], std::to_string(i));
 }
 
-TEST(Runner, StaggersTheFirstEpisodes) {
-  // 8 envs, time-out after 20 steps: env i's first episode is cut after i x 20 / 8 steps.
+TEST(Runner, StaggersTheFirstEpisodesOnceAtTheStart) {
+  // 8 envs, time-out at episode step 20: env i starts at episode step i x 20 / 8, so its first
+  // episode ends after 20 - start steps, then every 20 steps; nothing is reset mid-rollout.
   ToyEnv env(8);
   train(env, runDir("stagger"), 3);
-  const std::vector<std::pair<std::uint64_t, std::uint32_t>> expected{
-      {2, 1}, {5, 2}, {7, 3}, {10, 4}, {12, 5}, {15, 6}, {17, 7}};
-  EXPECT_EQ(env.cuts, expected);
+  const std::vector<std::uint32_t> starts{0, 2, 5, 7, 10, 12, 15, 17};
+  EXPECT_EQ(env.starts, starts);
+  EXPECT_EQ(staggeredStarts(8, 21), starts);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> first_ends;
+  std::vector<bool> seen(8, false);
+  for (const auto& [step, id] : env.ends) {
+    if (!seen[id]) first_ends.emplace_back(step, id);
+    seen[id] = true;
+  }
+  std::sort(first_ends.begin(), first_ends.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  for (const auto& [step, id] : first_ends) EXPECT_EQ(step, 20u - starts[id]) << "env " << id;
 
   ToyEnv plain(8);
   RunnerOptions o;
@@ -232,7 +240,8 @@ TEST(Runner, StaggersTheFirstEpisodes) {
   OnPolicyRunner runner(plain, c, o);
   runner.setLogger([](const std::string&) {});
   runner.learn();
-  EXPECT_TRUE(plain.cuts.empty());
+  EXPECT_TRUE(plain.starts.empty());
+  for (const auto& [step, id] : plain.ends) EXPECT_EQ(step % 20, 0u) << "env " << id;
 }
 
 TEST(Runner, WritesObservationMeansOfLateEpisodeSteps) {

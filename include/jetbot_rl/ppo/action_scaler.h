@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/ppo/ppo_config.h"
+
 namespace jetbot_rl {
 namespace ppo {
 
@@ -12,9 +14,8 @@ namespace ppo {
 /// tanh), then affinely onto [low, high] per dimension (rad/s for the Jetbot's wheels).
 class ActionScaler {
  public:
-  /// `low`/`high` per action dimension from EnvSpec; ConfigError unless low < high, finite.
-  ActionScaler(const std::vector<float>& low, const std::vector<float>& high,
-               const std::string& squash);
+  /// `low`/`high` per action dimension from the spec; ConfigError unless low < high, finite.
+  ActionScaler(const std::vector<float>& low, const std::vector<float>& high, ActionSquash squash);
 
   /// [B, A] normalised actions -> [B, A] env actions.
   torch::Tensor toEnv(const torch::Tensor& actions) const;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/ppo/ppo_config.h"
+
 namespace jetbot_rl {
 namespace ppo {
 
@@ -30,9 +32,9 @@ struct ActionEvaluation {
 /// Gaussian policy with a learned, state-independent log-std and a separate MLP value function.
 class ActorCriticImpl : public torch::nn::Module {
  public:
-  /// Builds both MLPs (hidden `activation`: elu, tanh or relu); std starts at `init_noise_std`.
+  /// Builds both MLPs with the hidden `activation`; std starts at `init_noise_std`.
   ActorCriticImpl(int obs_dim, int action_dim, const std::vector<int>& actor_hidden_dims,
-                  const std::vector<int>& critic_hidden_dims, const std::string& activation,
+                  const std::vector<int>& critic_hidden_dims, Activation activation,
                   double init_noise_std);
 
   /// Samples actions (no gradients); uses torch's default generator.

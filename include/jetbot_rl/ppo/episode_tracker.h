@@ -5,7 +5,7 @@
 #include <deque>
 #include <vector>
 
-#include "jetbot_rl/ppo/vec_env.h"
+#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -17,9 +17,9 @@ class EpisodeTracker {
 
   /// Adds one step's rewards; returns the returns of the episodes that ended in it (in
   /// reset_env_ids order).
-  const std::vector<double>& add(const EnvBatch& batch);
-  /// Drops the running returns of `ids` (episodes cut by the learner are not counted).
-  void discard(const std::vector<std::uint32_t>& ids);
+  const std::vector<double>& add(const StepResult& batch);
+  /// The running episode of env `id` is not counted when it ends (it started part-way).
+  void skipCurrent(std::uint32_t id);
   /// Mean return of the last `window` completed episodes; NaN before the first one ends.
   double meanReturn() const;
   /// Episodes completed so far.
@@ -27,6 +27,7 @@ class EpisodeTracker {
 
  private:
   std::vector<double> current_, ended_;
+  std::vector<std::uint8_t> skip_;  // per env: do not count the running episode
   std::deque<double> recent_;
   std::size_t window_;
   std::int64_t episodes_ = 0;

@@ -1,11 +1,20 @@
 #pragma once
 
-#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "jetbot_rl/config_fields.h"
 
 namespace jetbot_rl {
 namespace ppo {
+
+/// Hidden-layer activation of both MLPs.
+enum class Activation { kElu, kTanh, kRelu };
+/// How a Gaussian sample is squashed into [-1, 1] before it is scaled to the action limits.
+enum class ActionSquash { kClip, kTanh };
+/// Learning-rate schedule: KL-controlled (rsl_rl) or fixed.
+enum class LrSchedule { kAdaptive, kFixed };
 
 /// Every PPO hyper-parameter; defaults match config/ppo.yaml.
 struct PpoConfig {
@@ -14,24 +23,24 @@ struct PpoConfig {
 
   // --- rollout ---
   int num_steps_per_env = 16;  ///< Control steps per env per iteration (rollout length T).
-  /// Cut env i's first episode after i x (max_episode_length - 1) / num_envs steps (a time-out,
-  /// bootstrapped), so that episodes end at staggered steps, as rsl_rl's random initial
-  /// episode lengths: every rollout then holds episode starts and ends.
+  /// Start env i's first episode at episode step i x (max_episode_length - 1) / num_envs (as
+  /// rsl_rl's random initial episode lengths), so that episodes end at staggered steps and every
+  /// rollout holds episode starts and ends.
   bool stagger_episodes = true;
 
   // --- model ---
   std::vector<int> actor_hidden_dims{32, 32};   ///< Hidden layer widths of the policy MLP.
   std::vector<int> critic_hidden_dims{32, 32};  ///< Hidden layer widths of the value MLP.
-  std::string activation = "elu";               ///< Hidden activation: elu, tanh or relu.
+  Activation activation = Activation::kElu;     ///< Hidden activation.
   double init_noise_std = 1.0;  ///< Initial policy std, in normalised action units ([-1, 1]).
-  std::string action_squash = "clip";  ///< Sample -> [-1, 1]: clip or tanh; then scaled to limits.
-  bool normalize_observations = true;  ///< Running mean/std observation normaliser.
+  ActionSquash action_squash = ActionSquash::kClip;  ///< Sample -> [-1, 1], then to the limits.
+  bool normalize_observations = true;                ///< Running mean/std observation normaliser.
 
   // --- PPO update ---
-  int num_learning_epochs = 5;         ///< Passes over each rollout.
-  int num_mini_batches = 4;            ///< Minibatches per epoch.
-  double learning_rate = 1e-3;         ///< Adam learning rate (initial, when adaptive).
-  std::string schedule = "adaptive";   ///< adaptive (KL-controlled learning rate) or fixed.
+  int num_learning_epochs = 5;                  ///< Passes over each rollout.
+  int num_mini_batches = 4;                     ///< Minibatches per epoch.
+  double learning_rate = 1e-3;                  ///< Adam learning rate (initial, when adaptive).
+  LrSchedule schedule = LrSchedule::kAdaptive;  ///< KL-controlled or fixed learning rate.
   double desired_kl = 0.01;            ///< Adaptive schedule: target KL divergence per minibatch.
   double min_learning_rate = 1e-5;     ///< Adaptive schedule: lower bound of the learning rate.
   double max_learning_rate = 1e-2;     ///< Adaptive schedule: upper bound of the learning rate.
@@ -43,6 +52,35 @@ struct PpoConfig {
   double entropy_coef = 0.005;         ///< Weight of the entropy bonus.
   double max_grad_norm = 1.0;          ///< Global gradient-norm clip.
 };
+
+/// The fields of PpoConfig with their rules: the one list that validation, the echo, YAML
+/// (config.yaml, checkpoints) and the ROS parameter loader share.
+template <typename C, typename V>
+IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
+  v("seed", c.seed, atLeast(0));
+  v("num_steps_per_env", c.num_steps_per_env, inRange(1, 100000));
+  v("stagger_episodes", c.stagger_episodes, AnyValue{});
+  v("actor_hidden_dims", c.actor_hidden_dims, IntList{1, 4096});
+  v("critic_hidden_dims", c.critic_hidden_dims, IntList{1, 4096});
+  v("activation", c.activation, AnyValue{});
+  v("init_noise_std", c.init_noise_std, positive());
+  v("action_squash", c.action_squash, AnyValue{});
+  v("normalize_observations", c.normalize_observations, AnyValue{});
+  v("num_learning_epochs", c.num_learning_epochs, inRange(1, 1000));
+  v("num_mini_batches", c.num_mini_batches, atLeast(1));
+  v("learning_rate", c.learning_rate, positive());
+  v("schedule", c.schedule, AnyValue{});
+  v("desired_kl", c.desired_kl, positive());
+  v("min_learning_rate", c.min_learning_rate, positive());
+  v("max_learning_rate", c.max_learning_rate, positive());
+  v("gamma", c.gamma, inRange(0.0, 1.0));
+  v("lam", c.lam, inRange(0.0, 1.0));
+  v("clip_param", c.clip_param, positive());
+  v("use_clipped_value_loss", c.use_clipped_value_loss, AnyValue{});
+  v("value_loss_coef", c.value_loss_coef, atLeast(0.0));
+  v("entropy_coef", c.entropy_coef, atLeast(0.0));
+  v("max_grad_norm", c.max_grad_norm, positive());
+}
 
 /// Throws ConfigError naming the first invalid field and its value.
 void validate(const PpoConfig& config);
@@ -57,34 +95,33 @@ PpoConfig fromYaml(const std::string& yaml, PpoConfig config = PpoConfig());
 /// True when both configs build the same network (hidden dims, activation).
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b);
 
-/// Calls `visitor(name, field)` for every field, in declaration order; the one list of names
-/// that the YAML writer/reader and the ROS parameter loader share.
-template <typename Config, typename Visitor>
-void visitFields(Config& c, Visitor&& visitor) {
-  visitor("seed", c.seed);
-  visitor("num_steps_per_env", c.num_steps_per_env);
-  visitor("stagger_episodes", c.stagger_episodes);
-  visitor("actor_hidden_dims", c.actor_hidden_dims);
-  visitor("critic_hidden_dims", c.critic_hidden_dims);
-  visitor("activation", c.activation);
-  visitor("init_noise_std", c.init_noise_std);
-  visitor("action_squash", c.action_squash);
-  visitor("normalize_observations", c.normalize_observations);
-  visitor("num_learning_epochs", c.num_learning_epochs);
-  visitor("num_mini_batches", c.num_mini_batches);
-  visitor("learning_rate", c.learning_rate);
-  visitor("schedule", c.schedule);
-  visitor("desired_kl", c.desired_kl);
-  visitor("min_learning_rate", c.min_learning_rate);
-  visitor("max_learning_rate", c.max_learning_rate);
-  visitor("gamma", c.gamma);
-  visitor("lam", c.lam);
-  visitor("clip_param", c.clip_param);
-  visitor("use_clipped_value_loss", c.use_clipped_value_loss);
-  visitor("value_loss_coef", c.value_loss_coef);
-  visitor("entropy_coef", c.entropy_coef);
-  visitor("max_grad_norm", c.max_grad_norm);
-}
-
 }  // namespace ppo
+
+template <>
+struct EnumNames<ppo::Activation> {
+  static const std::vector<std::pair<ppo::Activation, const char*>>& list() {
+    static const std::vector<std::pair<ppo::Activation, const char*>> names{
+        {ppo::Activation::kElu, "elu"},
+        {ppo::Activation::kTanh, "tanh"},
+        {ppo::Activation::kRelu, "relu"}};
+    return names;
+  }
+};
+template <>
+struct EnumNames<ppo::ActionSquash> {
+  static const std::vector<std::pair<ppo::ActionSquash, const char*>>& list() {
+    static const std::vector<std::pair<ppo::ActionSquash, const char*>> names{
+        {ppo::ActionSquash::kClip, "clip"}, {ppo::ActionSquash::kTanh, "tanh"}};
+    return names;
+  }
+};
+template <>
+struct EnumNames<ppo::LrSchedule> {
+  static const std::vector<std::pair<ppo::LrSchedule, const char*>>& list() {
+    static const std::vector<std::pair<ppo::LrSchedule, const char*>> names{
+        {ppo::LrSchedule::kAdaptive, "adaptive"}, {ppo::LrSchedule::kFixed, "fixed"}};
+    return names;
+  }
+};
+
 }  // namespace jetbot_rl

@@ -5,12 +5,11 @@
 #include <memory>
 #include <string>
 
-#include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/checkpoint.h"
-#include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/ppo.h"
-#include "jetbot_rl/ppo/vec_env.h"
+#include "jetbot_rl/ppo/training_logger.h"
+#include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -29,40 +28,37 @@ struct RunnerOptions {
   int obs_stats_from_step = -1;
 };
 
-/// The final figures of a run.
-struct TrainingSummary {
-  bool interrupted = false;     ///< Stopped early (Ctrl-C); checkpoints/latest.pt was saved.
-  std::string error;            ///< Non-empty: the run failed (e.g. the env stopped answering).
-  std::int64_t iterations = 0;  ///< Completed iterations.
-  std::int64_t env_steps = 0;
-  double elapsed_s = 0.0;
-  double final_reward = 0.0;          ///< Mean reward per step of the last iteration [m/s].
-  double final_episode_return = 0.0;  ///< Mean return of the last 100 episodes.
-  double best_reward = 0.0;           ///< Best iteration's mean reward per step.
-  double target_reward = 0.0;
-  std::int64_t target_iteration = -1;  ///< First iteration reaching target_reward; -1: never.
-  std::int64_t target_env_steps = -1;
-  double target_elapsed_s = -1.0;
-  double mean_env_steps_per_s = 0.0;  ///< Env steps / wall time of this session.
-  std::string run_dir;
-};
+/// The parameters among RunnerOptions (extra_config is not one), with their rules.
+template <typename C, typename V>
+IfConfig<C, RunnerOptions> visitFields(C& c, V&& v) {
+  v("iterations", c.iterations, atLeast<std::int64_t>(1));
+  v("run_dir", c.run_dir, AnyValue{});
+  v("resume", c.resume, AnyValue{});
+  v("save_interval", c.save_interval, atLeast(1));
+  v("target_reward", c.target_reward,
+    Range<double>{-1e300, 1e300, false, false, "m/s", "reported only"});
+  v("obs_stats_from_step", c.obs_stats_from_step,
+    atLeast(-1, "control steps", "-1: max_episode_length / 2"));
+}
 
-/// The final figures as "name: value" lines (printed at the end and written to summary.yaml).
-std::string describeSummary(const TrainingSummary& summary);
+/// Episode steps that stagger num_envs starts evenly over an episode (rsl_rl randomises them):
+/// env i starts at i x (max_episode_length - 1) / num_envs.
+std::vector<std::uint32_t> staggeredStarts(int num_envs, int max_episode_length);
 
 /**
- * On-policy training loop (rsl_rl's OnPolicyRunner): collects num_steps_per_env steps of every
- * env with the stochastic policy, computes GAE with time-out bootstrapping, updates with PPO,
- * logs, writes progress.csv and checkpoints. Knows the env only through VecEnv.
+ * On-policy training loop (rsl_rl's OnPolicyRunner): resets the env once (staggered starts),
+ * then per iteration collects num_steps_per_env steps with Ppo::act / processEnvStep, computes
+ * returns, updates, logs (TrainingLogger) and saves checkpoints. Knows the env only through
+ * VecEnv.
  */
 class OnPolicyRunner {
  public:
-  /// Seeds torch with config.seed and builds the model, or loads options.resume. Throws
+  /// Seeds torch with config.seed and builds the algorithm, or loads options.resume. Throws
   /// ConfigError (bad hyper-parameter) or Error (unreadable checkpoint).
   OnPolicyRunner(VecEnv& env, const PpoConfig& config, const RunnerOptions& options);
 
   /// Where progress lines and notes go (default: stdout).
-  void setLogger(std::function<void(const std::string&)> logger) { log_ = std::move(logger); }
+  void setLogger(std::function<void(const std::string&)> sink) { sink_ = std::move(sink); }
   /// Called after every iteration, after its CSV row is written.
   void setIterationCallback(std::function<void(const IterationStats&)> cb) {
     on_iteration_ = std::move(cb);
@@ -77,35 +73,18 @@ class OnPolicyRunner {
   std::int64_t iteration() const { return iteration_; }
 
  private:
-  /// One rollout into storage_; returns the sum of rewards. Sums the late observations into
-  /// obs_sum_ and obs_count_.
-  double collect();
   /// Saves the state after the last completed update; `elapsed_s` = training time so far.
-  void save(const std::string& path, double elapsed_s);
+  void save(const std::string& path, double elapsed_s, double best_reward);
 
   VecEnv& env_;
   PpoConfig config_;
   RunnerOptions options_;
   std::unique_ptr<Ppo> ppo_;
-  std::unique_ptr<ActionScaler> scaler_;
-  std::unique_ptr<RolloutStorage> storage_;
-  std::unique_ptr<EpisodeTracker> tracker_;
-  std::function<void(const std::string&)> log_;
+  std::function<void(const std::string&)> sink_;
   std::function<void(const IterationStats&)> on_iteration_;
-
   std::int64_t iteration_ = 0, env_steps_ = 0;
   double elapsed_before_ = 0.0;  ///< Wall time of earlier sessions (resume).
-  double best_reward_ = -1e300;
-  const EnvBatch* batch_ = nullptr;   ///< The env's current state.
-  std::vector<std::int64_t> cut_at_;  ///< Per env: step (since the reset) to cut its first
-                                      ///< episode (stagger_episodes); 0: none.
-  std::int64_t steps_since_reset_ = 0;
-  std::vector<float> actions_;
-  std::vector<std::string> obs_names_;      ///< EnvInfo::observation_names, or obs0, obs1, ...
-  int obs_from_step_ = 0;                   ///< Resolved RunnerOptions::obs_stats_from_step.
-  std::vector<std::int64_t> episode_step_;  ///< Per env: steps since its episode began.
-  std::vector<double> obs_sum_;  ///< Per component: sum over this rollout's late samples.
-  std::int64_t obs_count_ = 0;   ///< Late samples (env steps) in this rollout.
+  double best_reward_ = -1e300;  ///< Of earlier sessions (resume).
 };
 
 }  // namespace ppo

@@ -4,26 +4,28 @@
 #include <ros/publisher.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/ros/state_output.h"
 
 namespace jetbot_rl {
 
 /**
  * visualization_msgs/MarkerArray on ~markers (latched, frame `world`) for the first `envs` envs:
- * the chassis as a box, an arrow along the robot's forward direction and, for the command task, an
- * arrow along its command (the walkthrough's two arrows); coloured per env. When disabled, and
- * when the node ends, it publishes DELETEALL so that RViz drops stale markers.
+ * the chassis as a box, an arrow along the robot's forward direction and one per direction the
+ * task draws (Task::arrowNames: the command task's command, the walkthrough's second arrow);
+ * coloured per env. Sent at most `rate` Hz of simulation time (with the tf batches). When
+ * disabled, and when the node ends, it publishes DELETEALL so that RViz drops stale markers.
  */
-class EnvMarkerPublisher {
+class EnvMarkerPublisher : public StateOutput {
  public:
   /// `envs`: envs with markers (clamped to the batch); `enabled`: the `markers` parameter.
-  EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs, bool enabled);
-  ~EnvMarkerPublisher();
+  EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs, double rate,
+                     bool enabled);
+  ~EnvMarkerPublisher() override;
   EnvMarkerPublisher(const EnvMarkerPublisher&) = delete;
   EnvMarkerPublisher& operator=(const EnvMarkerPublisher&) = delete;
 
-  /// Publishes the markers of the current state, stamped `stamp` (simulation time).
-  void publish(const BatchedEnv& env, const ros::Time& stamp);
+  void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
+  void send() override;
 
  private:
   void deleteAll();
@@ -31,6 +33,9 @@ class EnvMarkerPublisher {
   ros::Publisher pub_;
   int envs_;
   bool enabled_;
+  int arrows_;  // the task's arrows per env
+  SimRateGate gate_;
+  bool due_ = false;
   visualization_msgs::MarkerArray array_;  // reused: names, colours and scales are set once
   Eigen::Isometry3d body_offset_;          // chassis box in the root link frame
 };

@@ -6,16 +6,21 @@
 
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 
 /// Copies `result` into `msg`, reusing the capacity of its arrays (no allocation once warm).
-/// `stamp` is the simulation time of the state [s]; `step` the EnvStep.step counter.
-void fillEnvStep(const StepResult& result, int num_envs, int obs_dim, std::uint64_t step,
-                 const ros::Time& stamp, EnvStep& msg);
+/// `stamp` is the simulation time of the state [s].
+void toMsg(const StepResult& result, int num_envs, int obs_dim, const ros::Time& stamp,
+           EnvStep& msg);
+/// Copies `msg` into `result` (divergences are not carried by the message); Error naming the
+/// field when its sizes do not fit `spec`.
+void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& result);
 
-/// The EnvSpec of `env`: sizes, action bounds [rad/s], control step [s], names.
-EnvSpec makeEnvSpec(const BatchedEnv& env);
+/// The EnvSpec message of `spec`.
+EnvSpec toMsg(const BatchSpec& spec);
+/// The BatchSpec of `msg`; Error naming the field when it is inconsistent.
+BatchSpec fromMsg(const EnvSpec& msg);
 
 }  // namespace jetbot_rl

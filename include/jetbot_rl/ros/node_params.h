@@ -4,8 +4,9 @@
 
 #include <string>
 
+#include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/env_config.h"
-#include "jetbot_rl/task_factory.h"  // makeTask(): the valid `task` names
+#include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
 
@@ -15,11 +16,19 @@ enum class EnvMode {
   kRealtime,  ///< Steps on a wall-clock timer with the latest targets (driving by hand).
 };
 
+template <>
+struct EnumNames<EnvMode> {
+  static const std::vector<std::pair<EnvMode, const char*>>& list() {
+    static const std::vector<std::pair<EnvMode, const char*>> names{
+        {EnvMode::kLockstep, "lockstep"}, {EnvMode::kRealtime, "realtime"}};
+    return names;
+  }
+};
+
 /// Every private parameter of jetbot_env_node; defaults match config/jetbot_env.yaml.
 struct NodeParams {
-  EnvConfig env;                  ///< num_envs, env_spacing, physics_dt, ..., solver_iterations.
-  std::string task = "velocity";  ///< Task name (`velocity` or `command`).
-  std::string reward = "exp";     ///< Command task's reward variant (`exp`, `sum`, `product`).
+  EnvConfig env;    ///< num_envs, env_spacing, physics_dt, ..., solver_iterations.
+  TaskConfig task;  ///< task, reward.
   EnvMode mode = EnvMode::kLockstep;
   double real_time_factor = 1.0;  ///< Realtime mode: simulated seconds per wall second.
   double action_timeout = 0.5;    ///< Realtime mode: targets older than this brake [s, wall].
@@ -29,17 +38,21 @@ struct NodeParams {
   bool markers = true;            ///< Publish ~markers for the envs with tf.
 };
 
-/// Name of a mode as given to the `mode` parameter.
-std::string modeName(EnvMode mode);
+template <typename C, typename V>
+IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
+  visitFields(c.env, v);
+  visitFields(c.task, v);
+  v("mode", c.mode, AnyValue{});
+  v("real_time_factor", c.real_time_factor, positiveUpTo(1000.0));
+  v("action_timeout", c.action_timeout, positive("s, wall"));
+  v("publish_clock", c.publish_clock, AnyValue{});
+  v("tf_envs", c.tf_envs, atLeast(0, "", "0: no tf"));
+  v("tf_rate", c.tf_rate, positive("Hz of simulation time"));
+  v("markers", c.markers, AnyValue{});
+}
 
 /// Reads the private parameters from `pnh`, keeping the default of every absent one, and
 /// validates them all. Throws ConfigError naming the first invalid parameter and its value.
 NodeParams loadNodeParams(const ros::NodeHandle& pnh);
-
-/// Throws ConfigError naming the first invalid parameter and its value.
-void validateNodeParams(const NodeParams& params);
-
-/// One line per parameter, "name: value", for the start-up INFO echo.
-std::string describeNodeParams(const NodeParams& params);
 
 }  // namespace jetbot_rl

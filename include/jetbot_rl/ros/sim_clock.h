@@ -7,24 +7,28 @@
 
 #include <cstdint>
 
+#include "jetbot_rl/ros/state_output.h"
+
 namespace jetbot_rl {
 
-/// Simulation time: step x control_dt, computed from the step count so that it never drifts.
-/// Publishes it on /clock when enabled.
-class SimClock {
+/// Simulation time after `step` control steps of `control_dt` [s], computed from the step count
+/// (rounded to the nanosecond) so that it never drifts.
+ros::Time simTime(std::uint64_t step, double control_dt);
+
+/// /clock: the simulation time of every state.
+class ClockOutput : public StateOutput {
  public:
-  /// `control_dt` [s]; advertises /clock on `nh` only when `publish` is true.
-  SimClock(ros::NodeHandle& nh, double control_dt, bool publish);
-  /// Simulation time after `step` control steps [s].
-  ros::Time timeAt(std::uint64_t step) const;
-  /// Publishes timeAt(step) on /clock (no-op when disabled).
-  void publish(std::uint64_t step);
+  explicit ClockOutput(ros::NodeHandle& nh);
+  void capture(const BatchedEnv&, const EnvStep::ConstPtr& msg, bool) override {
+    msg_.clock = msg->header.stamp;
+    due_ = true;
+  }
+  void send() override;
 
  private:
-  double control_dt_;
-  bool enabled_;
   ros::Publisher pub_;
   rosgraph_msgs::Clock msg_;
+  bool due_ = false;
 };
 
 }  // namespace jetbot_rl

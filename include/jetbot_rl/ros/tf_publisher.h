@@ -1,37 +1,31 @@
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
-#include <ros/time.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/ros/state_output.h"
 
 namespace jetbot_rl {
 
 /// Broadcasts world -> env_<i>/<link> for every URDF link of the first `tf_envs` envs, at most
-/// `tf_rate` Hz of simulation time.
-class EnvTfPublisher {
+/// `tf_rate` Hz of simulation time and after every reset (see SimRateGate).
+class EnvTfPublisher : public StateOutput {
  public:
-  /// `tf_envs`: envs that get frames (0 disables); `tf_rate` [Hz of simulation time].
+  /// `tf_envs`: envs that get frames (clamped to the batch; 0 disables); `tf_rate` [Hz].
   EnvTfPublisher(int tf_envs, double tf_rate);
-  /// Publishes when at least 1/tf_rate of simulation time passed since the last batch, or when
-  /// `force` (start-up, resets). `stamp` is the simulation time of the current state [s]; a
-  /// forced batch at the stamp of the previous batch is sent with the next step instead, since
-  /// tf2 listeners ignore repeated stamps.
-  /// Returns true when it published a batch.
-  bool update(const BatchedEnv& env, const ros::Time& stamp, bool force);
+  void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
+  void send() override;
   /// Frame name of `link` of env `env`: "env_<env>/<link>".
   static std::string frameName(int env, const std::string& link);
 
  private:
   int tf_envs_;
-  ros::Duration period_;
-  ros::Time last_{0, 0};
-  bool published_ = false;
-  bool pending_ = false;  // a forced batch waits for a new stamp
+  SimRateGate gate_;
+  bool due_ = false;
   std::vector<geometry_msgs::TransformStamped> transforms_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> broadcaster_;
 };

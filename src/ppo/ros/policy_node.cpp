@@ -7,15 +7,17 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <sstream>
 
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
-#include "jetbot_rl/ppo/ros/ros_vec_env.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
+#include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/param_reader.h"
+#include "jetbot_rl/ros/ros_vec_env.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -24,34 +26,38 @@ namespace {
 /// Private parameters of jetbot_policy_node.
 struct PolicyParams {
   std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
-  std::string env = "jetbot_env";  ///< The jetbot_env node (relative: in the node's namespace).
-  std::string mode = "realtime";   ///< The env's mode: lockstep or realtime.
-  int steps = 0;                   ///< Control steps to drive; 0: until Ctrl-C.
-  int reset_seed = -1;             ///< Seed of the initial reset; < 0 keeps the env's stream.
-  double step_timeout = 10.0;      ///< [s, wall]
+  std::string env = "jetbot_env";     ///< The jetbot_env node (relative: in the node's namespace).
+  EnvMode mode = EnvMode::kRealtime;  ///< The env's mode.
+  int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
+  int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
+  double step_timeout = 10.0;         ///< [s, wall]
 };
+
+}  // namespace
+}  // namespace ppo
+
+template <typename C, typename V>
+IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
+  v("checkpoint", c.checkpoint, AnyValue{});
+  v("env", c.env, AnyValue{});
+  v("mode", c.mode, AnyValue{});
+  v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
+  v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));
+  v("step_timeout", c.step_timeout, positive("s, wall"));
+}
+
+namespace ppo {
+namespace {
 
 PolicyParams loadParams(const ros::NodeHandle& pnh) {
   PolicyParams p;
-  readParam(pnh, "checkpoint", p.checkpoint);
-  readParam(pnh, "env", p.env);
-  readParam(pnh, "mode", p.mode);
-  readParam(pnh, "steps", p.steps);
-  readParam(pnh, "reset_seed", p.reset_seed);
-  readParam(pnh, "step_timeout", p.step_timeout);
+  readFields(pnh, p);
+  validateFields(p);
   if (p.checkpoint.empty()) {
-    throw ConfigError("invalid checkpoint = '': name a checkpoint file or a run directory");
+    throwInvalid("checkpoint", "''", "name a checkpoint file or a run directory");
   }
   if (std::filesystem::is_directory(p.checkpoint)) {
     p.checkpoint = (std::filesystem::path(p.checkpoint) / "checkpoints/best.pt").string();
-  }
-  if (p.mode != "lockstep" && p.mode != "realtime") {
-    throw ConfigError("invalid mode = '" + p.mode + "': must be lockstep or realtime");
-  }
-  if (p.steps < 0) throw ConfigError("invalid steps = " + std::to_string(p.steps) + ": >= 0");
-  if (!std::isfinite(p.step_timeout) || p.step_timeout <= 0.0) {
-    throw ConfigError("invalid step_timeout = " + std::to_string(p.step_timeout) +
-                      ": must be a positive number of seconds");
   }
   return p;
 }
@@ -72,11 +78,7 @@ int runPolicyNode() {
     ros::shutdown();
     return 1;
   }
-  ROS_INFO(
-      "parameters of %s:\ncheckpoint: %s\nenv: %s\nmode: %s\nsteps: %d\nreset_seed: %d\n"
-      "step_timeout: %g s",
-      pnh.getNamespace().c_str(), params.checkpoint.c_str(), params.env.c_str(),
-      params.mode.c_str(), params.steps, params.reset_seed, params.step_timeout);
+  ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
@@ -84,8 +86,8 @@ int runPolicyNode() {
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;
   try {
-    RosVecEnv env(params.env, params.mode == "lockstep", params.step_timeout, &stop);
-    const EnvInfo& info = env.info();
+    RosVecEnv env(params.env, params.mode == EnvMode::kLockstep, params.step_timeout, &stop);
+    const BatchSpec& info = env.spec();
     if (info.obs_dim != policy->obsDim()) {
       throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +
                         " does not fit the policy's " + std::to_string(policy->obsDim()));
@@ -94,7 +96,7 @@ int runPolicyNode() {
 
     EpisodeTracker tracker(info.num_envs);
     std::vector<float> actions;  // the targets last published
-    EnvBatch rewards_only;
+    StepResult rewards_only;
     std::int64_t episodes = 0;
     env.setObserver([&](const EnvStep& msg) {
       rewards_only.rewards = msg.rewards;
@@ -117,9 +119,9 @@ int runPolicyNode() {
       }
     });
 
-    const EnvBatch* batch = &env.reset(params.reset_seed);
+    const StepResult* batch = &env.reset(params.reset_seed);
     ROS_INFO("driving %d env(s) of %s with the mean action (%s mode)", info.num_envs,
-             params.env.c_str(), params.mode.c_str());
+             params.env.c_str(), enumName(params.mode).c_str());
     for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
       policy->act(batch->observations, info.num_envs, actions);
       batch = &env.step(actions);

@@ -5,31 +5,30 @@
 #include <std_msgs/Float32MultiArray.h>
 #include <torch/utils.h>
 
+#include <memory>
 #include <sstream>
 
+#include "jetbot_rl/local_vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
-#include "jetbot_rl/ppo/ros/ros_vec_env.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ros/node_params.h"
+#include "jetbot_rl/ros/ros_vec_env.h"
 
 namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-std::string describeSpec(const EnvSpec& spec) {
+std::string describeSpec(const BatchSpec& spec) {
   std::ostringstream s;
-  s << "# environment (from ~spec)\nenv_num_envs: " << spec.num_envs
+  s << "# environment (from its spec)\nenv_num_envs: " << spec.num_envs
     << "\nenv_obs_dim: " << spec.obs_dim << "\nenv_action_dim: " << spec.action_dim
-    << "\nenv_action_low: [";
-  for (std::size_t i = 0; i < spec.action_low.size(); ++i) {
-    s << (i ? ", " : "") << spec.action_low[i];
-  }
-  s << "]\nenv_action_high: [";
-  for (std::size_t i = 0; i < spec.action_high.size(); ++i) {
-    s << (i ? ", " : "") << spec.action_high[i];
-  }
-  s << "]\nenv_control_dt: " << spec.control_dt
+    << "\nenv_action_low: ";
+  writeValue(s, spec.action_low);
+  s << "\nenv_action_high: ";
+  writeValue(s, spec.action_high);
+  s << "\nenv_control_dt: " << spec.control_dt
     << "\nenv_max_episode_length: " << spec.max_episode_length << "\nenv_task: " << spec.task
     << "\n";
   return s.str();
@@ -47,21 +46,40 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
   return msg;
 }
 
+/// The env the trainer trains on: an env node, or one built in this process from ~env_config.
+std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& pnh,
+                                const std::atomic<bool>& stop) {
+  if (!params.env_in_process) {
+    return std::make_unique<RosVecEnv>(params.env, /*lockstep=*/true, params.step_timeout, &stop);
+  }
+  const ros::NodeHandle env_pnh(pnh, "env_config");
+  const NodeParams env_params = loadNodeParams(env_pnh);
+  ROS_INFO_STREAM("in-process env, parameters of " << env_pnh.getNamespace() << ":\n"
+                                                   << describeFields(env_params));
+  std::string urdf;
+  if (!ros::NodeHandle().getParam("robot_description", urdf)) {
+    throw ConfigError("robot_description is not set: load the robot's URDF into it");
+  }
+  return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
+      RobotModel::fromUrdfString(urdf), env_params.env, makeTask(env_params.task)));
+}
+
 }  // namespace
 
 int runTrainerNode() {
   const std::atomic<bool>& stop = installStopSignalHandlers();
-  ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
+  PpoConfig ppo;
   TrainerParams params;
   try {
-    params = loadTrainerParams(pnh);
+    params = loadTrainerParams(pnh, ppo);
   } catch (const Error& e) {
     ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
     ros::shutdown();
     return 1;
   }
-  ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeTrainerParams(params));
+  ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n"
+                                   << describeFields(params) << describeFields(ppo));
   torch::set_num_threads(params.torch_threads);
 
   // Latched: a late subscriber (a test, rqt_plot started later) still gets the newest row.
@@ -69,27 +87,21 @@ int runTrainerNode() {
       pnh.advertise<std_msgs::Float32MultiArray>("training_stats", 10, /*latch=*/true);
   int code = 0;
   try {
-    RosVecEnv env(params.env, /*lockstep=*/true, params.step_timeout, &stop);
-    const EnvSpec& spec = env.spec();
-    ROS_INFO("environment %s: %u envs, task %s, obs_dim %u, action_dim %u, control step %.4f s",
-             params.env.c_str(), spec.num_envs, spec.task.c_str(), spec.obs_dim, spec.action_dim,
-             spec.control_dt);
+    const std::unique_ptr<VecEnv> env = makeEnv(params, pnh, stop);
+    const BatchSpec& spec = env->spec();
+    ROS_INFO("environment %s: %d envs, task %s, obs_dim %d, action_dim %d, control step %.4f s",
+             params.env_in_process ? "in this process" : params.env.c_str(), spec.num_envs,
+             spec.task.c_str(), spec.obs_dim, spec.action_dim, spec.control_dt);
 
-    RunnerOptions options;
-    options.iterations = params.iterations;
-    options.run_dir = params.run_dir;
-    options.resume = params.resume;
-    options.save_interval = params.save_interval;
-    options.target_reward = params.target_reward;
-    options.obs_stats_from_step = params.obs_stats_from_step;
-    options.extra_config =
-        "# trainer\n" + describeTrainerParams(params, false) + describeSpec(spec);
-    OnPolicyRunner runner(env, params.ppo, options);
+    RunnerOptions options = params.run;
+    options.extra_config = "# trainer\n" + fieldsToYaml(params) + describeSpec(spec);
+    OnPolicyRunner runner(*env, ppo, options);
     runner.setLogger([](const std::string& line) { ROS_INFO_STREAM(line); });
     runner.setIterationCallback(
         [&stats_pub](const IterationStats& s) { stats_pub.publish(statsMessage(s)); });
-    ROS_INFO("training for %d iterations of %d steps x %u envs into %s", params.iterations,
-             runner.config().num_steps_per_env, spec.num_envs, params.run_dir.c_str());
+    ROS_INFO("training for %lld iterations of %d steps x %d envs into %s",
+             static_cast<long long>(options.iterations), runner.config().num_steps_per_env,
+             spec.num_envs, options.run_dir.c_str());
 
     const TrainingSummary summary = runner.learn();
     ROS_INFO_STREAM("final figures:\n" << describeSummary(summary));

@@ -13,23 +13,21 @@
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/WheelTargets.h"
-#include "jetbot_rl/ppo/vec_env.h"
+#include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
-namespace ppo {
 
 /**
  * A jetbot_env node as a VecEnv, through its public interface only: waits for the latched
  * `<env>/spec`, calls `<env>/reset`, publishes `<env>/wheel_targets` (tcpNoDelay) and waits for
  * the matching `<env>/env_step`.
  *
- * Lockstep: step() publishes targets with `step` = the current EnvStep.step and blocks until the
- * EnvStep with step + 1 arrives (resending the targets every 0.5 s without an answer: a message
- * sent while the env's subscription is still connecting is lost; a late duplicate is rejected by
- * the env as stale). Realtime: step() publishes the targets and blocks until any
- * newer EnvStep arrives (the node steps on its own clock). Every wait blocks on a private
- * callback queue (no polling sleeps), up to `timeout`, and ends early with Interrupted when
- * `*stop` becomes true.
+ * Lockstep: stepAsync() publishes targets with `step` = the current EnvStep.step; stepWait()
+ * blocks until the EnvStep with step + 1 arrives (resending the targets every 0.5 s without an
+ * answer: a message sent while the env's subscription is still connecting is lost; a late
+ * duplicate is rejected by the env as stale). Realtime: stepWait() blocks until any newer EnvStep
+ * arrives (the node steps on its own clock). Every wait blocks on a private callback queue (no
+ * polling sleeps), up to `timeout`, and ends early with Interrupted when `*stop` becomes true.
  */
 class RosVecEnv : public VecEnv {
  public:
@@ -38,32 +36,33 @@ class RosVecEnv : public VecEnv {
   RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
             const std::atomic<bool>* stop);
 
-  const EnvInfo& info() const override { return info_; }
-  /// Calls ~reset (all envs, `seed` >= 0 reseeds) and waits until its published state arrives
-  /// on ~env_step (proving the subscription is connected); retries the call once a second.
-  const EnvBatch& reset(std::int64_t seed) override;
-  /// One control step with `actions` [rad/s], num_envs x action_dim.
-  const EnvBatch& step(const std::vector<float>& actions) override;
-  /// Calls ~reset for `ids` (seed -1: the streams continue); the step does not change.
-  const EnvBatch& resetEnvs(const std::vector<std::uint32_t>& ids) override;
+  const BatchSpec& spec() const override { return spec_; }
+  /// Calls ~reset (all envs, `seed` >= 0 reseeds, `episode_steps` staggered starts) and waits
+  /// until its published state arrives on ~env_step (proving the subscription is connected);
+  /// calls it again once a second until then.
+  const StepResult& reset(std::int64_t seed,
+                          const std::vector<std::uint32_t>& episode_steps = {}) override;
+  /// Publishes `actions` [rad/s] (num_envs x action_dim) for the current step.
+  void stepAsync(const std::vector<float>& actions) override;
+  /// Waits for the answer to stepAsync(): Error naming the node after `timeout`.
+  const StepResult& stepWait() override;
 
   /// Called for every EnvStep received after the last reset (realtime mode may deliver several
-  /// per step() call; they all pass here, in order).
+  /// per step; they all pass here, in order).
   void setObserver(std::function<void(const EnvStep&)> observer) {
     observer_ = std::move(observer);
   }
-  const EnvSpec& spec() const { return spec_; }
+  /// The node's namespace, as given.
+  const std::string& name() const { return env_ns_; }
 
  private:
   void onSpec(const EnvSpec::ConstPtr& msg);
   void onEnvStep(const EnvStep::ConstPtr& msg);
-  void onTargetsSubscriber(const ros::SingleSubscriberPublisher&);
   /// Processes callbacks until `done()` (true) or `timeout` [s] (false); Interrupted when
   /// stopped.
   bool waitUntil(const std::function<bool()>& done, double timeout, const std::string& what);
   /// Processes callbacks until `done()` or the deadline: Error(`what`) after `timeout`.
   void waitFor(const std::function<bool()>& done, double timeout, const std::string& what);
-  void toBatch(const EnvStep& msg);
 
   std::string env_ns_;
   bool lockstep_;
@@ -76,11 +75,12 @@ class RosVecEnv : public VecEnv {
   ros::ServiceClient reset_client_;
 
   bool has_spec_ = false;
-  EnvSpec spec_;
-  EnvInfo info_;
-  EnvBatch batch_;
+  std::string spec_error_;  ///< Why a received EnvSpec was refused.
+  BatchSpec spec_;
+  StepResult result_;
   WheelTargets targets_;
-  std::uint64_t step_ = 0;      ///< EnvStep.step of batch_.
+  bool sent_ = false;           ///< stepAsync() awaits its stepWait().
+  std::uint64_t step_ = 0;      ///< EnvStep.step of result_.
   bool accepting_ = false;      ///< After a reset: EnvSteps newer than step_ are taken.
   bool connected_ = false;      ///< An EnvStep has been received: the subscription works.
   std::uint64_t observed_ = 0;  ///< Newest step passed to the observer.
@@ -88,5 +88,4 @@ class RosVecEnv : public VecEnv {
   std::function<void(const EnvStep&)> observer_;
 };
 
-}  // namespace ppo
 }  // namespace jetbot_rl

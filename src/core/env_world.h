@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/lean_dispatcher.h"
-#include "jetbot_rl/physics_model.h"
 #include "jetbot_rl/task.h"
+#include "lean_dispatcher.h"
+#include "physics_model.h"
 
 namespace jetbot_rl {
 

@@ -1,4 +1,4 @@
-#include "jetbot_rl/ppo/ros/ros_vec_env.h"
+#include "jetbot_rl/ros/ros_vec_env.h"
 
 #include <ros/console.h>
 #include <ros/transport_hints.h>
@@ -7,9 +7,9 @@
 #include <chrono>
 
 #include "jetbot_rl/Reset.h"
+#include "jetbot_rl/ros/msg_conversion.h"
 
 namespace jetbot_rl {
-namespace ppo {
 namespace {
 
 // The lockstep learner has one message in flight; realtime players drop old states only.
@@ -32,13 +32,16 @@ RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
   spec_sub_ = nh_.subscribe(env_ns_ + "/spec", 1, &RosVecEnv::onSpec, this);
   step_sub_ = nh_.subscribe(env_ns_ + "/env_step", kQueueSize, &RosVecEnv::onEnvStep, this,
                             ros::TransportHints().tcpNoDelay());
+  // The connect callback only wakes waitFor() (it runs on queue_), whose predicate reads
+  // getNumSubscribers().
   targets_pub_ = nh_.advertise<WheelTargets>(
       env_ns_ + "/wheel_targets", kQueueSize,
-      [this](const ros::SingleSubscriberPublisher& p) { onTargetsSubscriber(p); });
+      ros::SubscriberStatusCallback([](const ros::SingleSubscriberPublisher&) {}));
   reset_client_ = nh_.serviceClient<Reset>(env_ns_ + "/reset", /*persistent=*/true);
 
   waitFor([this] { return has_spec_; }, timeout_,
-          "latched spec on " + spec_sub_.getTopic() + " (is jetbot_env running?)");
+          "latched spec on " + spec_sub_.getTopic() + " (is jetbot_env running?)" +
+              (spec_error_.empty() ? "" : "; received an " + spec_error_));
   waitFor([this] { return targets_pub_.getNumSubscribers() > 0; }, timeout_,
           "the env to subscribe to " + targets_pub_.getTopic());
   if (!reset_client_.waitForExistence(ros::Duration(timeout_))) {
@@ -49,22 +52,13 @@ RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
 
 void RosVecEnv::onSpec(const EnvSpec::ConstPtr& msg) {
   if (has_spec_) return;
-  if (msg->num_envs < 1 || msg->obs_dim < 1 || msg->action_dim < 1 ||
-      msg->action_low.size() != msg->action_dim || msg->action_high.size() != msg->action_dim) {
-    ROS_ERROR("ignoring an inconsistent EnvSpec on %s", spec_sub_.getTopic().c_str());
-    return;
+  try {
+    spec_ = fromMsg(*msg);
+    has_spec_ = true;
+  } catch (const Error& e) {
+    spec_error_ = e.what();
+    ROS_ERROR("ignoring an EnvSpec on %s: %s", spec_sub_.getTopic().c_str(), e.what());
   }
-  spec_ = *msg;
-  info_.num_envs = static_cast<int>(msg->num_envs);
-  info_.obs_dim = static_cast<int>(msg->obs_dim);
-  info_.action_dim = static_cast<int>(msg->action_dim);
-  info_.action_low = msg->action_low;
-  info_.action_high = msg->action_high;
-  info_.control_dt = msg->control_dt;
-  info_.max_episode_length = static_cast<int>(msg->max_episode_length);
-  info_.task = msg->task;
-  info_.observation_names = msg->observation_names;
-  has_spec_ = true;
 }
 
 void RosVecEnv::onEnvStep(const EnvStep::ConstPtr& msg) {
@@ -75,10 +69,6 @@ void RosVecEnv::onEnvStep(const EnvStep::ConstPtr& msg) {
     if (observer_) observer_(*msg);
   }
   if (!newest_ || msg->step > newest_->step) newest_ = msg;
-}
-
-void RosVecEnv::onTargetsSubscriber(const ros::SingleSubscriberPublisher&) {
-  // Only wakes waitFor(): the predicate reads getNumSubscribers().
 }
 
 bool RosVecEnv::waitUntil(const std::function<bool()>& done, double timeout,
@@ -101,9 +91,11 @@ void RosVecEnv::waitFor(const std::function<bool()>& done, double timeout,
   if (!waitUntil(done, timeout, what)) throw Error("no " + what + " within " + seconds(timeout));
 }
 
-const EnvBatch& RosVecEnv::reset(std::int64_t seed) {
+const StepResult& RosVecEnv::reset(std::int64_t seed,
+                                   const std::vector<std::uint32_t>& episode_steps) {
   Reset srv;
   srv.request.seed = seed;  // env_ids empty: all envs
+  srv.request.episode_steps = episode_steps;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
   for (;;) {
     accepting_ = false;
@@ -127,27 +119,35 @@ const EnvBatch& RosVecEnv::reset(std::int64_t seed) {
       if (left <= 1.0) throw;  // otherwise reset again: the first publication went unheard
     }
   }
-  toBatch(srv.response.state);
+  fromMsg(srv.response.state, spec_, result_);
   step_ = srv.response.state.step;
   observed_ = step_;
   newest_.reset();
+  sent_ = false;
   accepting_ = true;
-  return batch_;
+  return result_;
 }
 
-const EnvBatch& RosVecEnv::step(const std::vector<float>& actions) {
-  if (!accepting_) throw Error("RosVecEnv::step before reset");
+void RosVecEnv::stepAsync(const std::vector<float>& actions) {
+  if (!accepting_) throw Error("RosVecEnv::stepAsync before reset");
+  if (sent_) throw Error("RosVecEnv::stepAsync twice without stepWait");
   targets_.header.stamp = ros::Time::now();
   targets_.step = step_;
   targets_.velocities = actions;
   targets_pub_.publish(targets_);
+  sent_ = true;
+}
+
+const StepResult& RosVecEnv::stepWait() {
+  if (!sent_) throw Error("RosVecEnv::stepWait without stepAsync");
+  sent_ = false;
   const std::uint64_t expected = step_ + 1;
   if (lockstep_) {
     // The targets can be lost only while the env's subscription to a new publisher is being
     // connected (our subscriber count may come from another node, e.g. rostopic echo): resend
     // them when no answer came within kResendAfter. A duplicate that arrives after the env
     // stepped is rejected by it as stale, so no step is ever applied twice.
-    const std::string what = "EnvStep " + std::to_string(expected) + " on " + step_sub_.getTopic() +
+    const std::string what = "EnvStep " + std::to_string(expected) + " from " + env_ns_ +
                              " (a rejected WheelTargets? see /diagnostics)";
     const auto deadline =
         std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
@@ -172,48 +172,10 @@ const EnvBatch& RosVecEnv::step(const std::vector<float>& actions) {
     waitFor([this] { return newest_ != nullptr; }, timeout_,
             "a newer EnvStep on " + step_sub_.getTopic());
   }
-  toBatch(*newest_);
+  fromMsg(*newest_, spec_, result_);
   step_ = newest_->step;
   newest_.reset();
-  return batch_;
+  return result_;
 }
 
-const EnvBatch& RosVecEnv::resetEnvs(const std::vector<std::uint32_t>& ids) {
-  if (!accepting_) throw Error("RosVecEnv::resetEnvs before reset");
-  Reset srv;
-  srv.request.env_ids = ids;
-  srv.request.seed = -1;
-  if (!reset_client_.call(srv)) throw Error("call of " + reset_client_.getService() + " failed");
-  if (!srv.response.success) {
-    throw Error(reset_client_.getService() + " refused: " + srv.response.message);
-  }
-  if (srv.response.state.step != step_) {
-    throw Error("~reset answered with step " + std::to_string(srv.response.state.step) +
-                " instead of " + std::to_string(step_) + ": is another node stepping " + env_ns_ +
-                "?");
-  }
-  // Keep this step's rewards and episode ends; take the new observations.
-  batch_.observations = srv.response.state.observations;
-  return batch_;
-}
-
-void RosVecEnv::toBatch(const EnvStep& msg) {
-  const std::size_t n = static_cast<std::size_t>(info_.num_envs);
-  const std::size_t obs_dim = static_cast<std::size_t>(info_.obs_dim);
-  if (msg.num_envs != n || msg.obs_dim != obs_dim || msg.observations.size() != n * obs_dim ||
-      msg.rewards.size() != n || msg.terminated.size() != n || msg.truncated.size() != n ||
-      msg.final_observations.size() != msg.reset_env_ids.size() * obs_dim) {
-    throw Error("EnvStep " + std::to_string(msg.step) + " does not match the spec (" +
-                std::to_string(n) + " envs, obs_dim " + std::to_string(obs_dim) + ")");
-  }
-  batch_.step = msg.step;
-  batch_.observations = msg.observations;
-  batch_.rewards = msg.rewards;
-  batch_.terminated = msg.terminated;
-  batch_.truncated = msg.truncated;
-  batch_.reset_env_ids = msg.reset_env_ids;
-  batch_.final_observations = msg.final_observations;
-}
-
-}  // namespace ppo
 }  // namespace jetbot_rl

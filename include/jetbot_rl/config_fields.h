@@ -1,0 +1,232 @@
+#pragma once
+
+// One list of fields per configuration struct drives everything done with it: a struct provides
+// `visitFields(config, visitor)`, which calls `visitor(name, field, rule)` for every field in
+// order, and the functions below validate it, echo it and write and read it as YAML; the ROS
+// adapter reads it from parameters with the same list (jetbot_rl/ros/param_reader.h).
+
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+
+/// Enables visitFields(C&, V) for the configuration type T, const or not.
+template <typename C, typename T>
+using IfConfig = std::enable_if_t<std::is_same_v<std::remove_const_t<C>, T>>;
+
+/// Names of an enum's values, for parameters and YAML: specialise with a static `list()`
+/// returning a `std::vector<std::pair<E, const char*>>`.
+template <typename E>
+struct EnumNames;
+
+template <typename T, typename = void>
+struct IsNamedEnum : std::false_type {};
+template <typename T>
+struct IsNamedEnum<T, std::void_t<decltype(EnumNames<T>::list())>> : std::true_type {};
+
+/// The name of `value` as parameters and YAML spell it.
+template <typename E>
+std::string enumName(E value) {
+  for (const auto& [v, name] : EnumNames<E>::list()) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
+/// "a, b or c": the accepted names.
+template <typename E>
+std::string enumChoices() {
+  const auto& list = EnumNames<E>::list();
+  std::string s;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    s += (i == 0 ? "" : i + 1 == list.size() ? " or " : ", ") + std::string(list[i].second);
+  }
+  return s;
+}
+
+/// Parses `text` for field `field`; ConfigError naming the field, the value and the choices.
+template <typename E>
+E parseEnum(const std::string& field, const std::string& text) {
+  for (const auto& [v, name] : EnumNames<E>::list()) {
+    if (text == name) return v;
+  }
+  throwInvalid(field, "'" + text + "'", "must be " + enumChoices<E>());
+}
+
+// ---- rules: what a field's value must be ----
+
+/// Any value of the type (bools, free strings, enums: an enum is checked when it is parsed).
+struct AnyValue {
+  const char* unit = "";
+  template <typename T>
+  void check(const std::string&, const T&) const {}
+};
+
+/// A number in [lo, hi], either end optionally open; infinite ends read as "> lo" / "<= hi".
+template <typename T>
+struct Range {
+  T lo, hi;
+  bool lo_open = false, hi_open = false;
+  const char* unit = "";
+  const char* note = "";  ///< Appended to the rule, e.g. "0: all cores".
+
+  void check(const std::string& name, T value) const {
+    bool ok = true;
+    if constexpr (std::is_floating_point_v<T>) ok = std::isfinite(value);
+    ok = ok && (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
+    if (!ok) throwInvalid(name, value, text());
+  }
+  std::string text() const {
+    std::ostringstream s;
+    const bool unbounded = hi == std::numeric_limits<T>::max() ||
+                           (std::is_floating_point_v<T> && std::isinf(static_cast<double>(hi)));
+    if (unbounded) {
+      s << "must be " << (lo_open ? "> " : ">= ") << lo;
+    } else {
+      s << "must be in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+    }
+    if (*unit) s << " " << unit;
+    if (*note) s << " (" << note << ")";
+    return s.str();
+  }
+};
+
+/// [lo, hi] inclusive.
+template <typename T>
+Range<T> inRange(T lo, T hi, const char* unit = "", const char* note = "") {
+  return {lo, hi, false, false, unit, note};
+}
+/// (0, hi] for durations and sizes that must be positive.
+inline Range<double> positiveUpTo(double hi, const char* unit = "") {
+  return {0.0, hi, true, false, unit, ""};
+}
+/// > 0, finite.
+inline Range<double> positive(const char* unit = "") {
+  return {0.0, std::numeric_limits<double>::infinity(), true, false, unit, ""};
+}
+/// >= lo, finite.
+template <typename T>
+Range<T> atLeast(T lo, const char* unit = "", const char* note = "") {
+  const T hi = std::is_floating_point_v<T> ? std::numeric_limits<T>::infinity()
+                                           : std::numeric_limits<T>::max();
+  return {lo, hi, false, false, unit, note};
+}
+
+/// A non-empty list of distinct, non-empty names.
+struct NameList {
+  const char* unit = "";
+  void check(const std::string& name, const std::vector<std::string>& names) const {
+    if (names.empty()) throwInvalid(name, "[]", "must name at least one");
+    std::set<std::string> seen;
+    for (const auto& n : names) {
+      if (n.empty()) throwInvalid(name, "''", "names must not be empty");
+      if (!seen.insert(n).second) throwInvalid(name, n, "is listed twice");
+    }
+  }
+};
+
+/// A non-empty list of integers, each in [lo, hi].
+struct IntList {
+  int lo, hi;
+  const char* unit = "";
+  void check(const std::string& name, const std::vector<int>& values) const;
+};
+
+// ---- text of a value: the echo, YAML and error messages ----
+
+inline void writeValue(std::ostream& s, bool v) { s << (v ? "true" : "false"); }
+inline void writeValue(std::ostream& s, int v) { s << v; }
+inline void writeValue(std::ostream& s, std::int64_t v) { s << v; }
+inline void writeValue(std::ostream& s, std::uint64_t v) { s << v; }
+inline void writeValue(std::ostream& s, double v) {
+  s << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
+}
+inline void writeValue(std::ostream& s, const std::string& v) { s << v; }
+template <typename T>
+void writeValue(std::ostream& s, const std::vector<T>& v) {
+  s << "[";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i) s << ", ";
+    writeValue(s, v[i]);
+  }
+  s << "]";
+}
+template <typename E, typename = std::enable_if_t<IsNamedEnum<E>::value>>
+void writeValue(std::ostream& s, E v) {
+  s << enumName(v);
+}
+
+/// Parses one YAML scalar or flow list into `v`; ConfigError naming `field` on a wrong type.
+void readValue(const std::string& field, const std::string& text, bool& v);
+void readValue(const std::string& field, const std::string& text, int& v);
+void readValue(const std::string& field, const std::string& text, std::int64_t& v);
+void readValue(const std::string& field, const std::string& text, std::uint64_t& v);
+void readValue(const std::string& field, const std::string& text, double& v);
+void readValue(const std::string& field, const std::string& text, std::string& v);
+void readValue(const std::string& field, const std::string& text, std::vector<int>& v);
+void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v);
+template <typename E, typename = std::enable_if_t<IsNamedEnum<E>::value>>
+void readValue(const std::string& field, const std::string& text, E& v) {
+  v = parseEnum<E>(field, text);
+}
+
+// ---- what is done with a field list ----
+
+/// Checks every field against its rule; ConfigError naming the first invalid one and its value.
+template <typename C>
+void validateFields(const C& config) {
+  visitFields(config, [](const char* name, const auto& value, const auto& rule) {
+    rule.check(name, value);
+  });
+}
+
+/// One "name: value [unit]" line per field (the start-up echo).
+template <typename C>
+std::string describeFields(const C& config) {
+  std::ostringstream s;
+  visitFields(config, [&s](const char* name, const auto& value, const auto& rule) {
+    s << name << ": ";
+    writeValue(s, value);
+    if (*rule.unit) s << "  # " << rule.unit;
+    s << "\n";
+  });
+  return s.str();
+}
+
+/// One "name: value" line per field, readable by fieldsFromYaml().
+template <typename C>
+std::string fieldsToYaml(const C& config) {
+  std::ostringstream s;
+  visitFields(config, [&s](const char* name, const auto& value, const auto&) {
+    s << name << ": ";
+    writeValue(s, value);
+    s << "\n";
+  });
+  return s.str();
+}
+
+/// "key: value" lines of flat YAML (comments dropped), in order.
+std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& yaml);
+
+/// Reads the fields present in `yaml` (fieldsToYaml's format) over `config`; unknown keys are
+/// ignored. ConfigError for a value of the wrong type. Does not validate.
+template <typename C>
+void fieldsFromYaml(const std::string& yaml, C& config) {
+  for (const auto& [key, text] : yamlLines(yaml)) {
+    visitFields(config, [&key = key, &text = text](const char* name, auto& value, const auto&) {
+      if (key == name) readValue(key, text, value);
+    });
+  }
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,111 @@
+#include "jetbot_rl/config_fields.h"
+
+namespace jetbot_rl {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+[[noreturn]] void badValue(const std::string& field, const std::string& text, const char* type) {
+  throwInvalid(field, "'" + text + "'", std::string("must be ") + type);
+}
+
+/// The items of a flow list "[a, b]".
+std::vector<std::string> listItems(const std::string& field, const std::string& text,
+                                   const char* type) {
+  if (text.size() < 2 || text.front() != '[' || text.back() != ']') badValue(field, text, type);
+  std::vector<std::string> items;
+  std::istringstream s(text.substr(1, text.size() - 2));
+  std::string item;
+  while (std::getline(s, item, ',')) items.push_back(trim(item));
+  if (items.size() == 1 && items[0].empty()) items.clear();
+  return items;
+}
+
+}  // namespace
+
+void IntList::check(const std::string& name, const std::vector<int>& values) const {
+  std::ostringstream text;
+  writeValue(text, values);
+  if (values.empty()) throwInvalid(name, "[]", "needs at least one value");
+  for (int v : values) {
+    if (v < lo || v > hi) {
+      throwInvalid(
+          name, text.str(),
+          "every value must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+  }
+}
+
+void readValue(const std::string& field, const std::string& text, bool& v) {
+  if (text == "true" || text == "True") {
+    v = true;
+  } else if (text == "false" || text == "False") {
+    v = false;
+  } else {
+    badValue(field, text, "true or false");
+  }
+}
+
+void readValue(const std::string& field, const std::string& text, int& v) {
+  std::istringstream s(text);
+  long long x;
+  if (!(s >> x) || !(s >> std::ws).eof() || x < std::numeric_limits<int>::min() ||
+      x > std::numeric_limits<int>::max()) {
+    badValue(field, text, "an integer");
+  }
+  v = static_cast<int>(x);
+}
+
+void readValue(const std::string& field, const std::string& text, std::int64_t& v) {
+  std::istringstream s(text);
+  if (!(s >> v) || !(s >> std::ws).eof()) badValue(field, text, "an integer");
+}
+
+void readValue(const std::string& field, const std::string& text, std::uint64_t& v) {
+  std::istringstream s(text);
+  if (text.empty() || text[0] == '-' || !(s >> v) || !(s >> std::ws).eof()) {
+    badValue(field, text, "an integer >= 0");
+  }
+}
+
+void readValue(const std::string& field, const std::string& text, double& v) {
+  std::istringstream s(text);
+  if (!(s >> v) || !(s >> std::ws).eof()) badValue(field, text, "a number");
+}
+
+void readValue(const std::string&, const std::string& text, std::string& v) { v = text; }
+
+void readValue(const std::string& field, const std::string& text, std::vector<int>& v) {
+  std::vector<int> out;
+  for (const auto& item : listItems(field, text, "a list of integers [a, b]")) {
+    int x = 0;
+    readValue(field, item, x);
+    out.push_back(x);
+  }
+  v = out;
+}
+
+void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v) {
+  v = listItems(field, text, "a list of names [a, b]");
+}
+
+std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& yaml) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  std::istringstream in(yaml);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    lines.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+  }
+  return lines;
+}
+
+}  // namespace jetbot_rl
