@@ -64,15 +64,12 @@ class CommandTask : public Task {
   std::vector<unsigned char> held_;  // per env; not vector<bool>: envs are written concurrently
 };
 
-template <>
-struct EnumNames<CommandTask::Variant> {
-  static const std::vector<std::pair<CommandTask::Variant, const char*>>& list() {
-    static const std::vector<std::pair<CommandTask::Variant, const char*>> names{
-        {CommandTask::Variant::kExp, "exp"},
-        {CommandTask::Variant::kSum, "sum"},
-        {CommandTask::Variant::kProduct, "product"}};
-    return names;
-  }
-};
+inline const EnumNameList<CommandTask::Variant>& enumNames(CommandTask::Variant) {
+  static const EnumNameList<CommandTask::Variant> names{
+      {CommandTask::Variant::kExp, "exp"},
+      {CommandTask::Variant::kSum, "sum"},
+      {CommandTask::Variant::kProduct, "product"}};
+  return names;
+}
 
 }  // namespace jetbot_rl

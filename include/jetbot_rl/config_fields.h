@@ -24,20 +24,20 @@ namespace jetbot_rl {
 template <typename C, typename T>
 using IfConfig = std::enable_if_t<std::is_same_v<std::remove_const_t<C>, T>>;
 
-/// Names of an enum's values, for parameters and YAML: specialise with a static `list()`
-/// returning a `std::vector<std::pair<E, const char*>>`.
+/// The names of an enum's values, for parameters and YAML. An enum gets them from a function
+/// `const EnumNameList<E>& enumNames(E)` declared beside it (found by argument lookup).
 template <typename E>
-struct EnumNames;
+using EnumNameList = std::vector<std::pair<E, const char*>>;
 
 template <typename T, typename = void>
 struct IsNamedEnum : std::false_type {};
 template <typename T>
-struct IsNamedEnum<T, std::void_t<decltype(EnumNames<T>::list())>> : std::true_type {};
+struct IsNamedEnum<T, std::void_t<decltype(enumNames(std::declval<T>()))>> : std::true_type {};
 
 /// The name of `value` as parameters and YAML spell it.
 template <typename E>
 std::string enumName(E value) {
-  for (const auto& [v, name] : EnumNames<E>::list()) {
+  for (const auto& [v, name] : enumNames(value)) {
     if (v == value) return name;
   }
   return "?";
@@ -46,7 +46,7 @@ std::string enumName(E value) {
 /// "a, b or c": the accepted names.
 template <typename E>
 std::string enumChoices() {
-  const auto& list = EnumNames<E>::list();
+  const auto& list = enumNames(E{});
   std::string s;
   for (std::size_t i = 0; i < list.size(); ++i) {
     s += (i == 0 ? "" : i + 1 == list.size() ? " or " : ", ") + std::string(list[i].second);
@@ -57,7 +57,7 @@ std::string enumChoices() {
 /// Parses `text` for field `field`; ConfigError naming the field, the value and the choices.
 template <typename E>
 E parseEnum(const std::string& field, const std::string& text) {
-  for (const auto& [v, name] : EnumNames<E>::list()) {
+  for (const auto& [v, name] : enumNames(E{})) {
     if (text == name) return v;
   }
   throwInvalid(field, "'" + text + "'", "must be " + enumChoices<E>());

@@ -16,14 +16,11 @@ enum class TaskKind {
   kCommand,   ///< CommandTask: turn to a random command and drive along it.
 };
 
-template <>
-struct EnumNames<TaskKind> {
-  static const std::vector<std::pair<TaskKind, const char*>>& list() {
-    static const std::vector<std::pair<TaskKind, const char*>> names{
-        {TaskKind::kVelocity, "velocity"}, {TaskKind::kCommand, "command"}};
-    return names;
-  }
-};
+inline const EnumNameList<TaskKind>& enumNames(TaskKind) {
+  static const EnumNameList<TaskKind> names{{TaskKind::kVelocity, "velocity"},
+                                            {TaskKind::kCommand, "command"}};
+  return names;
+}
 
 /// Which task an env runs: the `task` and `reward` parameters.
 struct TaskConfig {

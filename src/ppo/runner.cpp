@@ -122,7 +122,6 @@ TrainingSummary OnPolicyRunner::learn() {
   summary.best_reward = best_reward_;
   TrainingLogger logger(spec.num_envs, log_options, summary);
   logger.setSink(sink_);
-  logger.setIterationCallback(on_iteration_);
 
   const std::int64_t first_iteration = iteration_;
   const std::int64_t steps_per_iteration =
@@ -180,6 +179,7 @@ TrainingSummary OnPolicyRunner::learn() {
       if (iteration_ % options_.save_interval == 0 || iteration_ == options_.iterations) {
         save(latest, elapsed_at_save, summary.best_reward);
       }
+      if (on_iteration_) on_iteration_(s);
     }
   } catch (const Interrupted& e) {
     summary.interrupted = true;

@@ -104,7 +104,6 @@ bool TrainingLogger::endIteration(IterationStats& s) {
   summary_.final_episode_return = s.mean_episode_return;
   const bool best = s.mean_reward_per_step > summary_.best_reward;
   if (best) summary_.best_reward = s.mean_reward_per_step;
-  if (on_iteration_) on_iteration_(s);
   return best;
 }
 

@@ -139,7 +139,7 @@ namespace jetbot_rl {
 namespace {
 
 TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
-  for (const auto& [kind, name] : EnumNames<TaskKind>::list()) {
+  for (const auto& [kind, name] : enumNames(TaskKind{})) {
     TaskConfig config;
     fieldsFromYaml(std::string("task: ") + name, config);
     EXPECT_EQ(config.task, kind);

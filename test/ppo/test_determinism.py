@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Two trainings with the same seed (run side by side by determinism.test) write identical
-progress.csv files, timing columns aside."""
+"""Trainings with the same seed (run side by side by determinism.test: two through env nodes, one
+with the env in the trainer's process) write identical progress.csv files, timing columns aside."""
 import os
 import unittest
 
@@ -15,15 +15,20 @@ class TestDeterminism(unittest.TestCase):
         iterations = rospy.get_param('~iterations')
         a = StatsWatcher('/a/jetbot_ppo_trainer/training_stats')
         b = StatsWatcher('/b/jetbot_ppo_trainer/training_stats')
-        a.wait_iteration(iterations)
-        b.wait_iteration(iterations)
-        rows_a = learning_columns(os.path.join(rospy.get_param('~run_dir_a'), 'progress.csv'))
-        rows_b = learning_columns(os.path.join(rospy.get_param('~run_dir_b'), 'progress.csv'))
+        c = StatsWatcher('/c/jetbot_ppo_trainer/training_stats')
+        for watcher in (a, b, c):
+            watcher.wait_iteration(iterations)
+        rows = {name: learning_columns(os.path.join(rospy.get_param('~run_dir_' + name),
+                                                    'progress.csv'))
+                for name in 'abc'}
+        rows_a = rows['a']
         self.assertEqual(len(rows_a), iterations + 1)
         self.assertIn('mean_reward_per_step', rows_a[0])
         self.assertNotIn('elapsed_s', rows_a[0])
-        for row_a, row_b in zip(rows_a, rows_b):
-            self.assertEqual(row_a, row_b)
+        for name in 'bc':
+            self.assertEqual(len(rows[name]), len(rows_a), name)
+            for row_a, row in zip(rows_a, rows[name]):
+                self.assertEqual(row_a, row, 'run %s differs from run a' % name)
         # The curve moves (identical constant rows would prove nothing).
         column = rows_a[0].index('mean_reward_per_step')
         self.assertGreater(len(set(row[column] for row in rows_a[1:])), iterations // 2)

@@ -95,33 +95,21 @@ PpoConfig fromYaml(const std::string& yaml, PpoConfig config = PpoConfig());
 /// True when both configs build the same network (hidden dims, activation).
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b);
 
+inline const EnumNameList<Activation>& enumNames(Activation) {
+  static const EnumNameList<Activation> names{
+      {Activation::kElu, "elu"}, {Activation::kTanh, "tanh"}, {Activation::kRelu, "relu"}};
+  return names;
+}
+inline const EnumNameList<ActionSquash>& enumNames(ActionSquash) {
+  static const EnumNameList<ActionSquash> names{{ActionSquash::kClip, "clip"},
+                                                {ActionSquash::kTanh, "tanh"}};
+  return names;
+}
+inline const EnumNameList<LrSchedule>& enumNames(LrSchedule) {
+  static const EnumNameList<LrSchedule> names{{LrSchedule::kAdaptive, "adaptive"},
+                                              {LrSchedule::kFixed, "fixed"}};
+  return names;
+}
+
 }  // namespace ppo
-
-template <>
-struct EnumNames<ppo::Activation> {
-  static const std::vector<std::pair<ppo::Activation, const char*>>& list() {
-    static const std::vector<std::pair<ppo::Activation, const char*>> names{
-        {ppo::Activation::kElu, "elu"},
-        {ppo::Activation::kTanh, "tanh"},
-        {ppo::Activation::kRelu, "relu"}};
-    return names;
-  }
-};
-template <>
-struct EnumNames<ppo::ActionSquash> {
-  static const std::vector<std::pair<ppo::ActionSquash, const char*>>& list() {
-    static const std::vector<std::pair<ppo::ActionSquash, const char*>> names{
-        {ppo::ActionSquash::kClip, "clip"}, {ppo::ActionSquash::kTanh, "tanh"}};
-    return names;
-  }
-};
-template <>
-struct EnumNames<ppo::LrSchedule> {
-  static const std::vector<std::pair<ppo::LrSchedule, const char*>>& list() {
-    static const std::vector<std::pair<ppo::LrSchedule, const char*>> names{
-        {ppo::LrSchedule::kAdaptive, "adaptive"}, {ppo::LrSchedule::kFixed, "fixed"}};
-    return names;
-  }
-};
-
 }  // namespace jetbot_rl

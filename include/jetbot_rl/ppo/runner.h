@@ -59,7 +59,7 @@ class OnPolicyRunner {
 
   /// Where progress lines and notes go (default: stdout).
   void setLogger(std::function<void(const std::string&)> sink) { sink_ = std::move(sink); }
-  /// Called after every iteration, after its CSV row is written.
+  /// Called after every iteration, after its CSV row and checkpoints are written.
   void setIterationCallback(std::function<void(const IterationStats&)> cb) {
     on_iteration_ = std::move(cb);
   }

@@ -56,10 +56,6 @@ class TrainingLogger {
 
   /// Where progress lines and notes go (default: stdout).
   void setSink(std::function<void(const std::string&)> sink) { sink_ = std::move(sink); }
-  /// Called after every iteration, after its CSV row is written.
-  void setIterationCallback(std::function<void(const IterationStats&)> cb) {
-    on_iteration_ = std::move(cb);
-  }
   void log(const std::string& line) const { sink_(line); }
 
   /// Envs that start their first episode part-way (staggered starts, `episode_steps` > 0): that
@@ -70,9 +66,8 @@ class TrainingLogger {
   /// One env step's answer: rewards and ended episodes.
   void recordStep(const StepResult& result);
   /// Completes `stats` with the iteration's figures (reward per step, returns, observation
-  /// means), writes the CSV row and the progress line, calls the callback and updates the
-  /// summary; starts the next iteration's sums. Returns true when the reward per step is the
-  /// best so far.
+  /// means), writes the CSV row and the progress line and updates the summary; starts the next
+  /// iteration's sums. Returns true when the reward per step is the best so far.
   bool endIteration(IterationStats& stats);
 
  private:
@@ -81,7 +76,6 @@ class TrainingLogger {
   ProgressCsv csv_;
   EpisodeTracker tracker_;
   std::function<void(const std::string&)> sink_;
-  std::function<void(const IterationStats&)> on_iteration_;
   double reward_sum_ = 0.0;
   std::int64_t reward_count_ = 0;
   std::vector<double> obs_sum_;  ///< Per component: sum over this rollout's late samples.

@@ -16,14 +16,11 @@ enum class EnvMode {
   kRealtime,  ///< Steps on a wall-clock timer with the latest targets (driving by hand).
 };
 
-template <>
-struct EnumNames<EnvMode> {
-  static const std::vector<std::pair<EnvMode, const char*>>& list() {
-    static const std::vector<std::pair<EnvMode, const char*>> names{
-        {EnvMode::kLockstep, "lockstep"}, {EnvMode::kRealtime, "realtime"}};
-    return names;
-  }
-};
+inline const EnumNameList<EnvMode>& enumNames(EnvMode) {
+  static const EnumNameList<EnvMode> names{{EnvMode::kLockstep, "lockstep"},
+                                           {EnvMode::kRealtime, "realtime"}};
+  return names;
+}
 
 /// Every private parameter of jetbot_env_node; defaults match config/jetbot_env.yaml.
 struct NodeParams {

@@ -33,7 +33,7 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::int64_t& value);
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::uint64_t& value);
 
-/// An enum parameter is its name as a string (EnumNames<E>); ConfigError naming the choices.
+/// An enum parameter is its name as a string (enumNames(E)); ConfigError naming the choices.
 template <typename E, std::enable_if_t<IsNamedEnum<E>::value, int> = 0>
 void readParam(const ros::NodeHandle& pnh, const std::string& name, E& value) {
   std::string text = enumName(value);
