@@ -46,6 +46,19 @@ void EnvConfig::validate() const {
   if (solver_iterations < 1 || solver_iterations > 1000) {
     throwInvalid("solver_iterations", solver_iterations, "must be in [1, 1000]");
   }
+  if (!std::isfinite(wheel_velocity_limit) || wheel_velocity_limit < 0.0) {
+    throwInvalid("wheel_velocity_limit", wheel_velocity_limit,
+                 "must be >= 0 rad/s (0: the URDF <limit velocity>)");
+  }
+  if (!std::isfinite(caster_friction) || caster_friction < 0.0) {
+    throwInvalid("caster_friction", caster_friction, "must be >= 0");
+  }
+  if (!std::isfinite(wheel_radius) || wheel_radius < 0.0) {
+    throwInvalid("wheel_radius", wheel_radius, "must be >= 0 m (0: derived from the URDF)");
+  }
+  if (!std::isfinite(wheel_separation) || wheel_separation < 0.0) {
+    throwInvalid("wheel_separation", wheel_separation, "must be >= 0 m (0: derived from the URDF)");
+  }
 }
 
 int EnvConfig::maxEpisodeLength() const {
