@@ -187,6 +187,28 @@ TEST(UrdfCases, RestHeightCountsMeshVertices) {
   EXPECT_NEAR(model->restHeight(), -(0.010 - 0.05 + 0.015), 1e-9);
 }
 
+TEST(UrdfCases, ALoneMeshStandsWhereItsVerticesAre) {
+  // No caster: the chassis mesh, lowered to the ground, is the base body's only shape (placed in
+  // its COM frame, 7 cm from base_footprint) and slides on its flat bottom.
+  std::string urdf = replaceOnce(tribotUrdfText(),
+                                 "<collision>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
+                                 "      <geometry><box size=\"0.03 0.03 0.02\"/></geometry>\n"
+                                 "    </collision>",
+                                 "");
+  urdf = replaceOnce(
+      urdf, "<collision>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n      <geometry><mesh",
+      "<collision>\n      <origin xyz=\"0 0 -0.025\" rpy=\"0 0 0\"/>\n      "
+      "<geometry><mesh");
+  const auto model = RobotModel::fromUrdfString(urdf, testResolver);
+  ASSERT_EQ(model->bodies()[0].collisions.size(), 1u);
+  EXPECT_NEAR(model->restHeight(), 0.0, 1e-5);
+  BatchedEnv env(model, tribotConfig(1));
+  for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
+  EXPECT_NEAR(env.rootState(0).position.z(), 0.0, 1e-3);
+  EXPECT_LT(env.rootState(0).comLinearVelocityBody().norm(), 1e-3);
+  EXPECT_NEAR(forwardSpeed(model, 5.0f), 5.0 * 0.033, 0.05 * 5.0 * 0.033);
+}
+
 TEST(UrdfCases, PackageUriWithoutResolverNamesTheLinkAndUri) {
   expectModelError(
       [] { RobotModel::fromUrdfFile(TRIBOT_URDF); },
@@ -196,7 +218,8 @@ TEST(UrdfCases, PackageUriWithoutResolverNamesTheLinkAndUri) {
 TEST(UrdfCases, AResolverThatFailsIsNamed) {
   expectModelError(
       [] { RobotModel::fromUrdfFile(TRIBOT_URDF, [](const std::string&) { return ""; }); },
-      {"link 'base_link'", "package://jetbot_rl/test/urdf/meshes/chassis.stl", "resolved"});
+      {"link 'base_link'", "package://jetbot_rl/test/urdf/meshes/chassis.stl",
+       "could not be resolved"});
   expectModelError(
       [] {
         RobotModel::fromUrdfFile(TRIBOT_URDF, [](const std::string&) -> std::string {
@@ -255,7 +278,7 @@ TEST(UrdfCases, ObjCasterLoadsFromAPlainPath) {
 TEST(UrdfCases, ColladaUnitIsAppliedAndItsUpAxisIgnored) {
   const std::string dae = writeTempFile("tetra.dae", R"(<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-  <asset><unit name="millimeter" meter="0.001"/><up_axis>Y_UP</up_axis></asset>
+  <asset><unit name="millimeter" meter="0.001"/><up_axis>Z_UP</up_axis></asset>
   <library_geometries>
     <geometry id="tetra" name="tetra"><mesh>
       <source id="points">
@@ -278,7 +301,7 @@ TEST(UrdfCases, ColladaUnitIsAppliedAndItsUpAxisIgnored) {
   ASSERT_EQ(v.size(), 4u);
   Eigen::Vector3d high = Eigen::Vector3d::Zero();
   for (const auto& p : v) high = high.cwiseMax(p);
-  // Millimetres become metres; y stays y and z stays z (no Y_UP to Z_UP rotation).
+  // Millimetres become metres; y stays y and z stays z (assimp would turn Z_UP into Y_UP).
   EXPECT_TRUE(high.isApprox(Eigen::Vector3d(0.010, 0.020, 0.030), 1e-6)) << high.transpose();
 }
 
