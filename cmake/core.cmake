@@ -1,15 +1,19 @@
 # The ROS-free core (Bullet, Eigen, urdfdom), its programs and its gtests; included by CMakeLists.txt
 # after catkin_package().
 
-# ---- ROS-free core: Bullet, Eigen, urdfdom ----
+# ---- ROS-free core: Bullet, Eigen, urdfdom, assimp (collision meshes) ----
+pkg_check_modules(ASSIMP REQUIRED assimp)
 add_library(jetbot_rl_core
   src/core/batched_env.cpp
   src/core/command_task.cpp
   src/core/config_fields.cpp
+  src/core/diff_drive.cpp
+  src/core/dof_limits.cpp
   src/core/env_config.cpp
   src/core/env_world.cpp
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
+  src/core/mesh_loader.cpp
   src/core/physics_model.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp
@@ -24,6 +28,8 @@ target_include_directories(jetbot_rl_core SYSTEM PUBLIC ${BULLET_INCLUDE_DIRS} $
 target_include_directories(jetbot_rl_core PRIVATE src/core)
 target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
 target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
+target_include_directories(jetbot_rl_core PRIVATE ${ASSIMP_INCLUDE_DIRS})
+target_link_libraries(jetbot_rl_core PRIVATE ${ASSIMP_LIBRARIES})
 
 add_executable(jetbot_rl_bench src/nodes/bench_main.cpp)
 target_compile_definitions(jetbot_rl_bench PRIVATE JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
@@ -53,8 +59,13 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_command_task.cpp
     test/core/test_determinism.cpp
     test/core/test_thread_pool.cpp
+    test/core/test_diff_drive.cpp
+    test/core/test_urdf_cases.cpp
+    test/core/test_tribot.cpp
   )
   target_link_libraries(test_core jetbot_rl_core)
   target_include_directories(test_core PRIVATE src/core)
-  target_compile_definitions(test_core PRIVATE JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
+  target_compile_definitions(test_core PRIVATE JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf"
+    TRIBOT_URDF="${PROJECT_SOURCE_DIR}/test/urdf/tribot.urdf"
+    JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endif()

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/robot_model.h"
 #include "jetbot_rl/step_result.h"
@@ -23,6 +24,19 @@ struct WorkerContext;
 struct LinkPose {
   std::string link;
   Eigen::Isometry3d pose;
+};
+
+/// One env's moving (revolute and continuous) joints, in BatchedEnv::jointNames() order.
+struct JointStates {
+  std::vector<double> position;  ///< [rad] about the URDF axis.
+  std::vector<double> velocity;  ///< [rad/s].
+  std::vector<double> effort;    ///< Drive torque of the last physics step [N m]; 0 if undriven.
+};
+
+/// Velocity of a frame, expressed in that frame.
+struct BodyTwist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   ///< Of the frame's origin [m/s].
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  ///< [rad/s].
 };
 
 /**
@@ -73,9 +87,13 @@ class BatchedEnv {
   const Task& task() const { return *task_; }
   Task& task() { return *task_; }
   const RobotModel& robot() const { return *robot_; }
-  /// Lower and upper action bounds per dof: -/+ the URDF velocity limit [rad/s].
+  /// Lower and upper action bounds per dof: -/+ its velocity limit [rad/s] (see dofLimits()).
   const std::vector<float>& actionLow() const { return action_low_; }
   const std::vector<float>& actionHigh() const { return action_high_; }
+  /// Limits of every dof in action order, and whether each came from the URDF or a parameter.
+  const std::vector<DofLimits>& dofLimits() const { return dof_limits_; }
+  /// Every revolute and continuous joint of the robot, driven or not, root to leaves.
+  const std::vector<std::string>& jointNames() const { return joint_names_; }
   /// Number of envs reset because they diverged, since construction.
   std::uint64_t divergedCount() const { return diverged_count_; }
 
@@ -91,6 +109,12 @@ class BatchedEnv {
   double maxJointError(int env) const;
   /// Velocity of dof `dof` of env `env` [rad/s].
   double dofVelocity(int env, int dof) const;
+  /// Joint positions, velocities and drive efforts of env `env`, in jointNames() order; the
+  /// vectors are resized, so a reused `out` allocates nothing.
+  void jointStates(int env, JointStates& out) const;
+  /// Twist of env `env`'s root link frame, in that frame (odometry's twist; the pose is
+  /// rootState()'s position and orientation).
+  BodyTwist rootTwist(int env) const;
 
  private:
   void checkEnv(int env) const;
@@ -109,6 +133,9 @@ class BatchedEnv {
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<Rng> rngs_;
   std::vector<float> action_low_, action_high_;
+  std::vector<DofLimits> dof_limits_;
+  std::vector<std::string> joint_names_;
+  std::vector<int> dof_of_joint_;      // per jointNames() entry: its dof, or -1
   std::vector<float> targets_;         // clamped actions of the current step
   std::vector<std::uint8_t> ended_;    // per env: ended in the current step
   std::vector<float> final_scratch_;   // per env final observation slot

@@ -21,6 +21,14 @@ struct EnvConfig {
   double drive_gain = 10.0;    ///< Velocity drive gain [N m s/rad].
   double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
   int solver_iterations = 10;  ///< Bullet constraint solver iterations per physics step.
+  /// Wheel (dof) velocity limit [rad/s] for every dof; 0 takes the URDF <limit velocity>.
+  double wheel_velocity_limit = 0.0;
+  /// Coulomb friction coefficient with the ground of every body no dof drives (chassis, caster).
+  double caster_friction = 0.0;
+  /// Wheel radius for DiffDrive [m]; 0 derives it from the wheels' collision shapes.
+  double wheel_radius = 0.0;
+  /// Distance between the two wheels for DiffDrive [m]; 0 derives it from the dof joints.
+  double wheel_separation = 0.0;
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;
@@ -46,6 +54,11 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   v("drive_gain", c.drive_gain, positive("N m s/rad"));
   v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"));
   v("solver_iterations", c.solver_iterations, inRange(1, 1000));
+  v("wheel_velocity_limit", c.wheel_velocity_limit,
+    atLeast(0.0, "rad/s", "0: the URDF <limit velocity>"));
+  v("caster_friction", c.caster_friction, atLeast(0.0));
+  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: derived from the URDF"));
+  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: derived from the URDF"));
 }
 
 }  // namespace jetbot_rl

@@ -5,16 +5,23 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/mesh_loader.h"
+
 namespace jetbot_rl {
 
 /// One collision primitive, expressed in its body's link frame.
 struct CollisionGeometry {
-  enum class Type { kBox, kCylinder, kSphere };
+  enum class Type { kBox, kCylinder, kSphere, kMesh };
   Type type = Type::kBox;
-  /// Box: full extents x, y, z [m]; cylinder: radius, length along its z [m]; sphere: radius [m].
+  /// Box: full extents x, y, z [m]; cylinder: radius, length along its z [m]; sphere: radius [m];
+  /// mesh: the URDF scale.
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   /// Pose of the primitive in the body's link frame.
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  /// Mesh: the vertices of its convex hull, scaled, in the primitive's frame [m].
+  std::vector<Eigen::Vector3d> vertices;
+  /// Mesh: the filename as the URDF gives it.
+  std::string mesh_uri;
 };
 
 /// A link rigidly attached to a body by fixed joints (kept for tf and visualisation).
@@ -54,16 +61,21 @@ struct BodyModel {
 /**
  * Immutable robot description built from a URDF with urdfdom, shared by all envs.
  *
- * Supports a tree of links joined by revolute, continuous and fixed joints with box, cylinder and
- * sphere collision shapes; fixed children are merged into their parent body. Every error throws
- * ModelError naming the link or joint.
+ * Supports a tree of links joined by revolute, continuous and fixed joints with box, cylinder,
+ * sphere and mesh collision shapes (meshes become their convex hull); fixed children are merged
+ * into their parent body, so a massless root link (base_footprint) fixed to the chassis is the
+ * root body's link frame. Visual elements are ignored. Every error throws ModelError naming the
+ * link or joint.
  */
 class RobotModel {
  public:
-  /// Parses URDF text (what the robot_description parameter holds).
-  static std::shared_ptr<const RobotModel> fromUrdfString(const std::string& urdf_xml);
-  /// Parses a URDF file.
-  static std::shared_ptr<const RobotModel> fromUrdfFile(const std::string& path);
+  /// Parses URDF text (what the robot_description parameter holds); `resolver` turns mesh URIs
+  /// other than plain paths and file:// (e.g. package://) into paths, none: such URIs are errors.
+  static std::shared_ptr<const RobotModel> fromUrdfString(const std::string& urdf_xml,
+                                                          const MeshResolver& resolver = {});
+  /// Parses a URDF file; `resolver` as for fromUrdfString().
+  static std::shared_ptr<const RobotModel> fromUrdfFile(const std::string& path,
+                                                        const MeshResolver& resolver = {});
 
   const std::string& name() const { return name_; }
   /// Bodies in topological order: the root first, every parent before its children.

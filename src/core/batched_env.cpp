@@ -31,6 +31,15 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   for (const auto& dof : physics_->dofs()) {
     action_low_.push_back(static_cast<float>(-dof.velocity_limit));
     action_high_.push_back(static_cast<float>(dof.velocity_limit));
+    dof_limits_.push_back(dof);
+  }
+  for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
+    joint_names_.push_back(robot_->bodies()[b].joint_name);
+    dof_of_joint_.push_back(-1);
+  }
+  for (std::size_t d = 0; d < physics_->dofs().size(); ++d) {
+    const int body = physics_->joints()[physics_->dofs()[d].joint].child;
+    dof_of_joint_[body - 1] = static_cast<int>(d);
   }
   task_->resize(n);
   targets_.assign(static_cast<std::size_t>(n) * actionDim(), 0.0f);
@@ -279,6 +288,28 @@ double BatchedEnv::dofVelocity(int env, int dof) const {
   if (dof < 0 || dof >= actionDim())
     throw InputError("dof " + std::to_string(dof) + " is out of range");
   return worlds_[env]->dofVelocity(dof);
+}
+
+void BatchedEnv::jointStates(int env, JointStates& out) const {
+  checkEnv(env);
+  const EnvWorld& world = *worlds_[env];
+  const std::size_t n = joint_names_.size();
+  out.position.resize(n);
+  out.velocity.resize(n);
+  out.effort.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const int body = static_cast<int>(j) + 1;  // joint j drives body j + 1
+    out.position[j] = world.jointPosition(body);
+    out.velocity[j] = world.jointVelocity(body);
+    out.effort[j] = dof_of_joint_[j] < 0 ? 0.0 : world.dofEffort(dof_of_joint_[j]);
+  }
+}
+
+BodyTwist BatchedEnv::rootTwist(int env) const {
+  checkEnv(env);
+  BodyTwist twist;
+  worlds_[env]->rootLinkTwist(twist.linear, twist.angular);
+  return twist;
 }
 
 }  // namespace jetbot_rl

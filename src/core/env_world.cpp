@@ -137,6 +137,7 @@ void EnvWorld::step(double dt) {
     motors_[d]->setMaxAppliedImpulse(static_cast<btScalar>(torque * dt));
   }
   world_->stepSimulation(static_cast<btScalar>(dt), 0);
+  last_dt_ = dt;
   stepped_ = true;
 }
 
@@ -226,6 +227,22 @@ int EnvWorld::contactPoints(int* pairs) const {
   }
   if (pairs) *pairs = dispatcher_->getNumManifolds();
   return points;
+}
+
+double EnvWorld::dofEffort(int dof) const {
+  btMultiBodyJointMotor* motor = motors_[dof];
+  if (!stepped_ || last_dt_ <= 0.0 || motor->getNumRows() < 1) return 0.0;
+  return motor->getAppliedImpulse(0) / last_dt_;
+}
+
+void EnvWorld::rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const {
+  const btTransform link = linkPose(0);
+  const btVector3 com = comPose(0).getOrigin();
+  const btVector3 omega = robot_->getBaseOmega();
+  const btVector3 origin_velocity = robot_->getBaseVel() + omega.cross(link.getOrigin() - com);
+  const btMatrix3x3 to_link = link.getBasis().transpose();
+  linear = toEigen(to_link * origin_velocity);
+  angular = toEigen(to_link * omega);
 }
 
 double EnvWorld::dofVelocity(int dof) const {

@@ -56,6 +56,15 @@ class EnvWorld {
   double dofVelocity(int dof) const;
   /// Pose of body `body`'s link frame in the env frame.
   btTransform linkPose(int body) const;
+  /// Position [rad] of the joint from body `body`'s parent (body >= 1), about its URDF axis.
+  double jointPosition(int body) const { return robot_->getJointPos(body - 1); }
+  /// Velocity [rad/s] of the joint from body `body`'s parent (body >= 1).
+  double jointVelocity(int body) const { return robot_->getJointVel(body - 1); }
+  /// Torque the drive of dof `dof` applied in the last physics step [N m] (0 before one).
+  double dofEffort(int dof) const;
+  /// Velocity of the root link frame's origin [m/s] and angular velocity [rad/s], both in the
+  /// root link frame.
+  void rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
   /// Contact points of the last collision detection, and the pairs they belong to.
   int contactPoints(int* pairs = nullptr) const;
 
@@ -74,6 +83,7 @@ class EnvWorld {
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
   std::vector<btMultiBodyJointMotor*> motors_;  // per dof, owned by constraints_
   std::vector<float> targets_;
+  double last_dt_ = 0.0;  // [s] of the last step(), for efforts
   bool stepped_ = false;
 };
 

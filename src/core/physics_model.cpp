@@ -55,7 +55,7 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
         btVector3(m.principal_inertia.x(), m.principal_inertia.y(), m.principal_inertia.z());
     b.com_in_link = toBullet(m.com_frame);
     b.rest_pose = toBullet(link_poses.back() * m.com_frame);
-    b.friction = driven[i] ? kWheelFriction : kBodyFriction;
+    b.friction = driven[i] ? kWheelFriction : static_cast<btScalar>(config.caster_friction);
     b.shape = makeShape(m, b.com_in_link);
     bodies_.push_back(b);
 
@@ -86,16 +86,25 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
     Dof d;
     d.name = name;
     d.joint = joint_of_body[robot_->bodyOfJoint(name)];
-    d.velocity_limit = m.velocity_limit;
+    d.urdf_velocity_limit = m.velocity_limit;
+    d.urdf_effort_limit = m.effort_limit;
+    // A positive parameter wins over the URDF, for every dof.
+    d.velocity_source =
+        config.wheel_velocity_limit > 0.0 ? LimitSource::kParameter : LimitSource::kUrdf;
+    d.velocity_limit =
+        config.wheel_velocity_limit > 0.0 ? config.wheel_velocity_limit : m.velocity_limit;
+    d.effort_source = config.effort_limit > 0.0 ? LimitSource::kParameter : LimitSource::kUrdf;
     d.effort_limit = config.effort_limit > 0.0 ? config.effort_limit : m.effort_limit;
     if (!(std::isfinite(d.velocity_limit) && d.velocity_limit > 0.0)) {
       std::ostringstream s;
-      s << "needs <limit velocity> > 0 [rad/s] to clamp targets, got " << d.velocity_limit;
+      s << "needs <limit velocity> > 0 [rad/s] to clamp targets, got " << d.velocity_limit
+        << "; set the wheel_velocity_limit parameter [rad/s]";
       throw ModelError(jointError(name, s.str()));
     }
     if (!(std::isfinite(d.effort_limit) && d.effort_limit > 0.0)) {
       std::ostringstream s;
-      s << "needs <limit effort> > 0 [N m] (or an effort_limit override), got " << d.effort_limit;
+      s << "needs <limit effort> > 0 [N m] for its drive, got " << d.effort_limit
+        << "; set the effort_limit parameter [N m]";
       throw ModelError(jointError(name, s.str()));
     }
     dofs_.push_back(d);
@@ -118,7 +127,19 @@ class RollingShape : public Shape {
   }
 };
 
-bool isRound(const CollisionGeometry& g) { return g.type != CollisionGeometry::Type::kBox; }
+bool isRound(const CollisionGeometry& g) {
+  return g.type == CollisionGeometry::Type::kCylinder || g.type == CollisionGeometry::Type::kSphere;
+}
+
+/// The convex hull of a mesh's vertices, expressed in the frame `in_frame` maps them to.
+std::unique_ptr<btCollisionShape> makeHull(const CollisionGeometry& g,
+                                           const btTransform& in_frame) {
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const auto& v : g.vertices) hull->addPoint(in_frame * toBullet(v), false);
+  hull->recalcLocalAabb();
+  hull->setMargin(0);  // the hull is the mesh's surface; the ground is its only contact
+  return hull;
+}
 
 /// A cylinder along the COM frame's axis `axis` (0, 1, 2), with a rounded tread.
 std::unique_ptr<btCollisionShape> makeCylinder(double radius, double length, int axis) {
@@ -152,6 +173,7 @@ std::unique_ptr<btCollisionShape> makePrimitive(const CollisionGeometry& g) {
     case CollisionGeometry::Type::kCylinder:
       return makeCylinder(g.size.x(), g.size.y(), 2);
     case CollisionGeometry::Type::kSphere:
+    case CollisionGeometry::Type::kMesh:  // made by makeHull()
       break;
   }
   return std::make_unique<RollingShape<btSphereShape>>(g.size.x());
@@ -186,13 +208,21 @@ btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransfo
     }
   }
 
+  // Hull vertices can be placed in the COM frame directly: a lone mesh needs no compound.
+  if (body.collisions.size() == 1 && body.collisions[0].type == CollisionGeometry::Type::kMesh) {
+    return keep(makeHull(body.collisions[0], link_in_com * toBullet(body.collisions[0].origin)));
+  }
+
   const bool all_round = std::all_of(body.collisions.begin(), body.collisions.end(), isRound);
   std::unique_ptr<btCompoundShape> compound =
       all_round ? std::make_unique<RollingShape<btCompoundShape>>(false)
                 : std::make_unique<btCompoundShape>(/*enableDynamicAabbTree=*/false);
   for (const auto& g : body.collisions) {
-    std::unique_ptr<btCollisionShape> primitive = makePrimitive(g);
-    compound->addChildShape(link_in_com * toBullet(g.origin), primitive.get());
+    const btTransform in_com = link_in_com * toBullet(g.origin);
+    std::unique_ptr<btCollisionShape> primitive = g.type == CollisionGeometry::Type::kMesh
+                                                      ? makeHull(g, btTransform::getIdentity())
+                                                      : makePrimitive(g);
+    compound->addChildShape(in_com, primitive.get());
     shapes_.push_back(std::move(primitive));
   }
   return keep(std::move(compound));

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/robot_model.h"
 
@@ -36,25 +37,24 @@ class PhysicsModel {
     bool limited = false;
     btScalar lower = 0, upper = 0;  ///< [rad]
   };
-  struct Dof {
-    std::string name;
-    int joint = 0;                ///< Index into joints().
-    double velocity_limit = 0.0;  ///< [rad/s]
-    double effort_limit = 0.0;    ///< [N m]
+  /// A driven joint: its limits (name, velocity_limit [rad/s], effort_limit [N m], sources).
+  struct Dof : DofLimits {
+    int joint = 0;  ///< Index into joints().
   };
 
-  /// Friction of bodies driven by a dof joint (rubber tyre on a floor).
+  /// Friction of bodies driven by a dof joint (rubber tyre on a floor); every other body (the
+  /// chassis and its caster) gets EnvConfig::caster_friction.
   static constexpr btScalar kWheelFriction = 1.0;
-  /// Friction of every other body: the chassis and its caster ball slide freely.
-  static constexpr btScalar kBodyFriction = 0.0;
-  /// Collision margin of boxes, kept inside their URDF size [m].
+  /// Collision margin of boxes, kept inside their URDF size [m]. Mesh hulls have none, so that
+  /// they touch the ground where their vertices are.
   static constexpr btScalar kCollisionMargin = 0.001;
   /// Cylinder edge rounding as a fraction of min(radius, half length), kept inside the URDF size.
   static constexpr btScalar kTreadRounding = 1.0;
   /// Contact breaking threshold of round shapes (spheres, cylinders) [m].
   static constexpr btScalar kRollingContactBreakingThreshold = 1e-4;
 
-  /// Throws ModelError naming a dof joint the URDF lacks or whose limits are unusable.
+  /// Throws ModelError naming a dof joint the URDF lacks, or whose limits are unusable and the
+  /// parameter that would give them.
   PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config);
   ~PhysicsModel();
   PhysicsModel(const PhysicsModel&) = delete;

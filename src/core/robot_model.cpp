@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -93,8 +94,36 @@ MassElement massElement(const urdf::Link& link, const Eigen::Isometry3d& offset)
   return {in.mass, frame.translation(), frame.linear() * inertia * frame.linear().transpose()};
 }
 
+/// The convex hull of a mesh collision, scaled; errors name the link and the URI or path.
+void loadMesh(const urdf::Link& link, const urdf::Mesh& mesh, const MeshResolver& resolver,
+              CollisionGeometry& g) {
+  g.type = CollisionGeometry::Type::kMesh;
+  g.mesh_uri = mesh.filename;
+  g.size << mesh.scale.x, mesh.scale.y, mesh.scale.z;
+  if (!g.size.allFinite() || (g.size.array() == 0.0).any()) {
+    std::ostringstream s;
+    s << "mesh '" << mesh.filename << "': scale must be finite and non-zero, got "
+      << g.size.transpose();
+    throw ModelError(linkError(link.name, s.str()));
+  }
+  std::string path;
+  try {
+    path = resolveMeshUri(mesh.filename, resolver);
+  } catch (const ModelError& e) {
+    throw ModelError(linkError(link.name, e.what()));
+  }
+  try {
+    g.vertices = loadMeshHull(path);
+  } catch (const ModelError& e) {
+    const std::string from =
+        path == mesh.filename ? "" : " (resolved from '" + mesh.filename + "')";
+    throw ModelError(linkError(link.name, e.what() + from));
+  }
+  for (auto& v : g.vertices) v = v.cwiseProduct(g.size);
+}
+
 CollisionGeometry collisionGeometry(const urdf::Link& link, const urdf::Collision& collision,
-                                    const Eigen::Isometry3d& offset) {
+                                    const Eigen::Isometry3d& offset, const MeshResolver& resolver) {
   CollisionGeometry g;
   g.origin = offset * toIsometry(collision.origin);
   if (!collision.geometry) throw ModelError(linkError(link.name, "collision without geometry"));
@@ -117,9 +146,11 @@ CollisionGeometry collisionGeometry(const urdf::Link& link, const urdf::Collisio
       g.size << sphere.radius, 0.0, 0.0;
       break;
     }
+    case urdf::Geometry::MESH:
+      loadMesh(link, static_cast<const urdf::Mesh&>(*collision.geometry), resolver, g);
+      return g;
     default:
-      throw ModelError(linkError(
-          link.name, "mesh collision shapes are not supported; use box, cylinder or sphere"));
+      throw ModelError(linkError(link.name, "unsupported collision geometry type"));
   }
   const int used = g.type == CollisionGeometry::Type::kBox        ? 3
                    : g.type == CollisionGeometry::Type::kCylinder ? 2
@@ -148,13 +179,19 @@ double lowestZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose) {
     }
     case CollisionGeometry::Type::kSphere:
       return centre - g.size(0);
+    case CollisionGeometry::Type::kMesh: {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const auto& v : g.vertices) lowest = std::min(lowest, (pose * v).z());
+      return lowest;
+    }
   }
   return centre;
 }
 
 class BodyBuilder {
  public:
-  explicit BodyBuilder(std::vector<BodyModel>& bodies) : bodies_(bodies) {}
+  BodyBuilder(std::vector<BodyModel>& bodies, const MeshResolver& resolver)
+      : bodies_(bodies), resolver_(resolver) {}
 
   /// Adds the body rooted at `link` and, recursively, all bodies below it.
   void addBody(const urdf::Link& link, int parent, const urdf::Joint* joint,
@@ -211,7 +248,8 @@ class BodyBuilder {
     body.links.push_back({link.name, offset});
     if (link.inertial) masses.push_back(massElement(link, offset));
     for (const auto& collision : link.collision_array) {
-      if (collision) body.collisions.push_back(collisionGeometry(link, *collision, offset));
+      if (collision)
+        body.collisions.push_back(collisionGeometry(link, *collision, offset, resolver_));
     }
     for (const auto& child : link.child_links) {
       const urdf::Joint& joint = *child->parent_joint;
@@ -261,11 +299,13 @@ class BodyBuilder {
   }
 
   std::vector<BodyModel>& bodies_;
+  const MeshResolver& resolver_;
 };
 
 }  // namespace
 
-std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& urdf_xml) {
+std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& urdf_xml,
+                                                             const MeshResolver& resolver) {
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseCapturingErrors(urdf_xml, errors);
   if (!urdf)
@@ -275,7 +315,7 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
 
   std::shared_ptr<RobotModel> model(new RobotModel());
   model->name_ = urdf->getName();
-  BodyBuilder(model->bodies_).addBody(*root, -1, nullptr, Eigen::Isometry3d::Identity());
+  BodyBuilder(model->bodies_, resolver).addBody(*root, -1, nullptr, Eigen::Isometry3d::Identity());
 
   // Pose of every body's link frame in the root link frame at zero joint angles.
   std::vector<Eigen::Isometry3d> poses;
@@ -290,12 +330,13 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
   return model;
 }
 
-std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path) {
+std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,
+                                                           const MeshResolver& resolver) {
   std::ifstream file(path);
   if (!file) throw ModelError("cannot read URDF file '" + path + "'");
   std::ostringstream text;
   text << file.rdbuf();
-  return fromUrdfString(text.str());
+  return fromUrdfString(text.str(), resolver);
 }
 
 int RobotModel::bodyOfJoint(const std::string& joint_name) const {

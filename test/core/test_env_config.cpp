@@ -49,6 +49,28 @@ TEST(EnvConfig, EveryInvalidFieldIsNamed) {
   }
 }
 
+TEST(EnvConfig, WheelAndCasterFieldsAreValidated) {
+  const std::vector<BadField> cases = {
+      {"wheel_velocity_limit = -1", [](EnvConfig& c) { c.wheel_velocity_limit = -1.0; }},
+      {"wheel_velocity_limit = nan", [](EnvConfig& c) { c.wheel_velocity_limit = std::nan(""); }},
+      {"caster_friction = -0.5", [](EnvConfig& c) { c.caster_friction = -0.5; }},
+      {"caster_friction = inf", [](EnvConfig& c) { c.caster_friction = INFINITY; }},
+      {"wheel_radius = -0.01", [](EnvConfig& c) { c.wheel_radius = -0.01; }},
+      {"wheel_separation = nan", [](EnvConfig& c) { c.wheel_separation = std::nan(""); }},
+  };
+  for (const auto& bad : cases) {
+    EnvConfig config;
+    bad.spoil(config);
+    try {
+      config.validate();
+      ADD_FAILURE() << "accepted: " << bad.expected;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(BatchedEnv(test::jetbot(), config), ConfigError) << bad.expected;
+  }
+}
+
 TEST(EnvConfig, MaxEpisodeLengthFollowsIsaacLab) {
   EnvConfig c;
   EXPECT_EQ(c.maxEpisodeLength(), 300);

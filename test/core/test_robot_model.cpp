@@ -92,7 +92,7 @@ TEST(RobotModel, MeshCollisionNamesTheLink) {
                "<geometry><cylinder radius=\"0.03\" length=\"0.025\"/></geometry>",
                "<collision>\n      <geometry><mesh "
                "filename=\"package://jetbot_rl/wheel.stl\"/></geometry>"),
-      "link 'left_wheel': mesh collision");
+      "link 'left_wheel': mesh 'package://jetbot_rl/wheel.stl'");  // and no resolver given
 }
 
 TEST(RobotModel, MissingInertialOnAMovingLinkNamesTheLink) {

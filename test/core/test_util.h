@@ -25,10 +25,54 @@ inline RobotModelConstPtr jetbot() {
   return model;
 }
 
+/// Resolves package://jetbot_rl/ into the source tree, as the ROS adapter's resolver would.
+inline std::string testResolver(const std::string& uri) {
+  const std::string prefix = "package://jetbot_rl/";
+  if (uri.compare(0, prefix.size(), prefix) != 0) return "";
+  return std::string(JETBOT_RL_SOURCE_DIR) + "/" + uri.substr(prefix.size());
+}
+
+inline std::string tribotUrdfText() {
+  std::ifstream file(TRIBOT_URDF);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+/// test/urdf/tribot.urdf: massless root, rotated wheel frames, no <limit>, box caster, mesh.
+inline RobotModelConstPtr tribot() {
+  static const RobotModelConstPtr model = RobotModel::fromUrdfFile(TRIBOT_URDF, testResolver);
+  return model;
+}
+
+/// `text` with its one occurrence of `from` replaced by `to` (a failure when absent).
+inline std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test fixture: '" << from << "' not found";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+/// Writes `text` to a file of that name in gtest's temporary folder; returns its path.
+inline std::string writeTempFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
 inline EnvConfig smallConfig(int num_envs, int threads = 1) {
   EnvConfig c;
   c.num_envs = num_envs;
   c.num_threads = threads;
+  return c;
+}
+
+/// The tribot's dofs, with the limits its URDF lacks given as parameters.
+inline EnvConfig tribotConfig(int num_envs, int threads = 1) {
+  EnvConfig c = smallConfig(num_envs, threads);
+  c.dof_names = {"wheel_left_joint", "wheel_right_joint"};
+  c.wheel_velocity_limit = 8.0;  // [rad/s]
+  c.effort_limit = 0.3;          // [N m]
   return c;
 }
 

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace jetbot_rl {
+
+/**
+ * Turns a mesh URI that is neither a plain path nor `file://` (e.g. `package://pkg/mesh.stl`) into
+ * a file path. Returns "" or throws when it cannot; the core stays ROS-free, so the ROS adapter
+ * passes one that resolves `package://`.
+ */
+using MeshResolver = std::function<std::string(const std::string& uri)>;
+
+/// File path of a URDF mesh URI: a plain path is used as is, `file://` is stripped, any other
+/// scheme goes through `resolver`. Throws ModelError naming the URI when it cannot be resolved.
+std::string resolveMeshUri(const std::string& uri, const MeshResolver& resolver);
+
+/**
+ * Vertices of the convex hull of every mesh in a file that assimp reads (STL, COLLADA, OBJ, ...),
+ * node transforms applied, in the file's units and axes [m] (a COLLADA `<unit>` is applied, its
+ * `<up_axis>` ignored, as RViz and Gazebo do). Throws ModelError naming the path when the file
+ * cannot be read or holds no vertices.
+ */
+std::vector<Eigen::Vector3d> loadMeshHull(const std::string& path);
+
+}  // namespace jetbot_rl

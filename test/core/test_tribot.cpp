@@ -1,0 +1,105 @@
+// The second robot (test/urdf/tribot.urdf) driven through the differential-drive kinematics, as
+// cmd_vel drives it: straight at r * omega, in place at 2 omega r / separation, parked still.
+#include <cmath>
+
+#include "jetbot_rl/diff_drive.h"
+#include "test_util.h"
+
+namespace jetbot_rl {
+namespace {
+
+using test::tribot;
+using test::tribotConfig;
+
+constexpr double kWheelRadius = 0.033;     // [m]
+constexpr double kWheelSeparation = 0.16;  // [m]
+
+struct Averages {
+  Eigen::Vector3d body_velocity = Eigen::Vector3d::Zero();
+  double yaw_rate = 0.0;
+};
+
+/// Drives `twist` through DiffDrive for `settle` steps, then averages the body-frame COM velocity
+/// and yaw rate over `measure` steps.
+Averages drive(BatchedEnv& env, const DiffDrive& kinematics, const PlanarTwist& twist, int settle,
+               int measure) {
+  const auto targets = kinematics.wheelTargets(twist);
+  const auto actions =
+      test::uniformActions(env, static_cast<float>(targets[0]), static_cast<float>(targets[1]));
+  for (int s = 0; s < settle; ++s) env.step(actions);
+  Averages avg;
+  for (int s = 0; s < measure; ++s) {
+    env.step(actions);
+    const RootState state = env.rootState(0);
+    avg.body_velocity += state.comLinearVelocityBody();
+    avg.yaw_rate += state.angular_velocity.z();
+  }
+  avg.body_velocity /= measure;
+  avg.yaw_rate /= measure;
+  return avg;
+}
+
+class Tribot : public ::testing::Test {
+ protected:
+  BatchedEnv env{tribot(), tribotConfig(1)};
+  DiffDrive kinematics = DiffDrive::fromEnv(env);
+};
+
+TEST_F(Tribot, DrivesStraightAtWheelSpeedTimesRadius) {
+  const double omega = 5.0;  // [rad/s] of the wheels
+  const double expected = omega * kWheelRadius;
+  const Averages avg = drive(env, kinematics, {expected, 0.0}, 120, 60);
+  EXPECT_NEAR(avg.body_velocity.x(), expected, 0.05 * expected);
+  EXPECT_NEAR(avg.body_velocity.y(), 0.0, 0.01);
+  EXPECT_NEAR(avg.yaw_rate, 0.0, 0.05);
+  // Odometry from the wheel speeds agrees.
+  const PlanarTwist odom = kinematics.bodyTwist({env.dofVelocity(0, 0), env.dofVelocity(0, 1)});
+  EXPECT_NEAR(odom.linear, expected, 0.01 * expected);
+}
+
+TEST_F(Tribot, DrivesBackwards) {
+  const Averages avg = drive(env, kinematics, {-5.0 * kWheelRadius, 0.0}, 120, 60);
+  EXPECT_NEAR(avg.body_velocity.x(), -5.0 * kWheelRadius, 0.05 * 5.0 * kWheelRadius);
+}
+
+TEST_F(Tribot, TurnsInPlaceAtTwiceWheelRimSpeedOverSeparation) {
+  const double omega = 5.0;                                               // [rad/s] of the wheels
+  const double expected = 2.0 * omega * kWheelRadius / kWheelSeparation;  // 2.06 rad/s, CCW
+  const auto targets = kinematics.wheelTargets({0.0, expected});
+  EXPECT_NEAR(targets[0], -omega, 1e-5);  // the separation is along the axis, tilted 0.0008 rad
+  EXPECT_NEAR(targets[1], omega, 1e-5);
+  const Averages avg = drive(env, kinematics, {0.0, expected}, 60, 60);
+  EXPECT_NEAR(avg.yaw_rate, expected, 0.10 * expected);
+}
+
+TEST_F(Tribot, KeepsTheCurvatureBeyondTheWheelLimit) {
+  const PlanarTwist wanted{1.0, 2.0};  // far beyond 8 rad/s: scaled down to a 0.5 m radius turn
+  const Averages avg = drive(env, kinematics, wanted, 120, 60);
+  const double speed = avg.body_velocity.x();
+  EXPECT_GT(speed, 0.1);
+  // The COM is 3 cm behind the axle: its forward speed is the axle's, its yaw rate the body's.
+  EXPECT_NEAR(avg.yaw_rate / speed, wanted.angular / wanted.linear, 0.1 * 2.0);
+}
+
+TEST_F(Tribot, ParkedStandsStill) {
+  drive(env, kinematics, {0.15, 1.0}, 60, 1);
+  const Averages parked = drive(env, kinematics, {0.0, 0.0}, 120, 60);
+  EXPECT_LT(parked.body_velocity.norm(), 1e-4);
+  EXPECT_LT(std::abs(parked.yaw_rate), 1e-3);
+}
+
+TEST(TribotVelocityTask, RandomTargetsForTwoEpisodesStaySane) {
+  BatchedEnv env(tribot(), tribotConfig(8));
+  double worst_joint_error = 0.0;
+  for (int s = 0; s < 2 * env.maxEpisodeLength(); ++s) {
+    const auto& r = env.step(test::randomActions(env.numEnvs(), s));
+    ASSERT_TRUE(r.divergences.empty()) << r.divergences[0].reason;
+    for (float reward : r.rewards) ASSERT_TRUE(std::isfinite(reward));
+    worst_joint_error = std::max(worst_joint_error, env.maxJointError(s % env.numEnvs()));
+  }
+  EXPECT_LT(worst_joint_error, 1e-3);
+  EXPECT_EQ(env.divergedCount(), 0u);
+}
+
+}  // namespace
+}  // namespace jetbot_rl
