@@ -51,7 +51,7 @@ add_library(jetbot_rl_ppo_ros
   src/ppo/ros/trainer_params.cpp
 )
 target_include_directories(jetbot_rl_ppo_ros PUBLIC include ${catkin_INCLUDE_DIRS})
-target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo ${catkin_LIBRARIES})
+target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo jetbot_rl_ros_bounded ${catkin_LIBRARIES})
 add_dependencies(jetbot_rl_ppo_ros ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
 add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)

@@ -35,6 +35,12 @@ void EnvDiagnostics::countRejection(const std::string& reason) {
   last_rejection_ = reason;
 }
 
+void EnvDiagnostics::countMalformed(const std::string& reason) {
+  ++malformed_;
+  last_malformed_ = reason;
+  countRejection(reason);
+}
+
 void EnvDiagnostics::noteDivergences(const std::vector<Divergence>& divergences,
                                      std::uint64_t total) {
   diverged_ = total;
@@ -70,6 +76,8 @@ void EnvDiagnostics::publish() {
   s.values.push_back(keyValue("step rate (steps/s)", rate_text));
   s.values.push_back(keyValue("rejected messages", std::to_string(rejections_)));
   s.values.push_back(keyValue("last rejection reason", last_rejection_));
+  s.values.push_back(keyValue("malformed messages", std::to_string(malformed_)));
+  s.values.push_back(keyValue("last malformed reason", last_malformed_));
   s.values.push_back(keyValue("diverged envs reset", std::to_string(diverged_)));
   s.values.push_back(keyValue("last divergence reason", last_divergence_));
   msg_.header.stamp = ros::Time::now();

@@ -26,12 +26,17 @@ class EnvDiagnostics {
   }
   /// Counts one rejected WheelTargets message or ~step call.
   void countRejection(const std::string& reason);
+  /// Counts one message or service request refused unread (its lengths exceed its bytes); it is
+  /// also a rejection.
+  void countMalformed(const std::string& reason);
   /// Records envs reset because they diverged; `total` is BatchedEnv::divergedCount().
   void noteDivergences(const std::vector<Divergence>& divergences, std::uint64_t total);
   /// Publishes the status with the step rate [steps/s, wall] since the previous publish.
   void publish();
   /// Rejected messages so far.
   std::uint64_t rejections() const { return rejections_; }
+  /// Messages and requests refused unread so far.
+  std::uint64_t malformed() const { return malformed_; }
 
  private:
   ros::Publisher pub_;
@@ -40,7 +45,8 @@ class EnvDiagnostics {
   std::uint64_t step_ = 0, steps_ = 0, steps_at_publish_ = 0;
   std::uint64_t rejections_ = 0, rejections_at_publish_ = 0;
   std::uint64_t diverged_ = 0, diverged_at_publish_ = 0;
-  std::string last_rejection_, last_divergence_;
+  std::uint64_t malformed_ = 0;
+  std::string last_rejection_, last_divergence_, last_malformed_;
   std::chrono::steady_clock::time_point last_publish_;
   diagnostic_msgs::DiagnosticArray msg_;
 };
