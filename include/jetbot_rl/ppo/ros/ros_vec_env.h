@@ -53,6 +53,8 @@ class RosVecEnv : public VecEnv {
     observer_ = std::move(observer);
   }
   const EnvSpec& spec() const { return spec_; }
+  /// Messages refused unread so far (array or string lengths exceeding their bytes).
+  std::uint64_t refusedMessages() const { return refused_; }
 
  private:
   void onSpec(const EnvSpec::ConstPtr& msg);
@@ -86,6 +88,7 @@ class RosVecEnv : public VecEnv {
   std::uint64_t observed_ = 0;  ///< Newest step passed to the observer.
   EnvStep::ConstPtr newest_;    ///< Newest EnvStep with step > step_.
   std::function<void(const EnvStep&)> observer_;
+  std::uint64_t refused_ = 0;
 };
 
 }  // namespace ppo
