@@ -199,7 +199,15 @@ class RawServiceClient(object):
                                % (service, self.header['error']))
 
     def call(self, payload):
+        self.send(payload)
+        return self.receive()
+
+    def send(self, payload):
+        """Sends a request without waiting for its answer (see receive())."""
         _send_frame(self.sock, payload)
+
+    def receive(self):
+        """The answer to the request sent: (ok, response bytes or error text)."""
         ok = _recv_exactly(self.sock, 1)[0]
         (length,) = struct.unpack('<I', _recv_exactly(self.sock, 4))
         body = _recv_exactly(self.sock, length)
@@ -219,10 +227,26 @@ def node_pid(node_name):
     return pid
 
 
-def peak_rss_kb(pid):
-    """Peak resident set [kB] of process `pid` (VmHWM)."""
+def _status_kb(pid, key):
     with open('/proc/%d/status' % pid) as f:
         for line in f:
-            if line.startswith('VmHWM:'):
+            if line.startswith(key + ':'):
                 return int(line.split()[1])
-    raise RuntimeError('no VmHWM for pid %d' % pid)
+    raise RuntimeError('no %s for pid %d' % (key, pid))
+
+
+def peak_rss_kb(pid):
+    """Peak resident set [kB] of process `pid` (VmHWM)."""
+    return _status_kb(pid, 'VmHWM')
+
+
+def start_peak_rss(pid):
+    """Resets the peak resident set of `pid` to its current one (Linux clear_refs 5), so that
+    a later peak_rss_kb() shows the peak since now even below an earlier peak; returns the
+    current resident set [kB], the baseline. Without the right to reset: the current peak."""
+    try:
+        with open('/proc/%d/clear_refs' % pid, 'w') as f:
+            f.write('5')
+        return _status_kb(pid, 'VmRSS')
+    except OSError:
+        return peak_rss_kb(pid)
