@@ -2,8 +2,8 @@
 """Hand-made TCPROS bytes whose array and string lengths lie, sent to jetbot_env through its topic
 (a fake publisher registered with the master) and its services (a raw client), for every array
 and string field: each is refused unread and counted in /diagnostics, the node's peak resident set
-grows by less than 50 MB, a normal ~step right after is answered within 0.5 s and the state goes
-on as if nothing had arrived. Also: a rospy subscriber (the Python learner side) fed lying EnvSteps
+grows by less than 50 MB, a normal ~step sent while the lie is in flight is answered within 0.5 s
+and the state goes on as if nothing had arrived. Also: a rospy subscriber (the Python learner side) fed lying EnvSteps
 drops them without growing."""
 import os
 import sys
@@ -75,7 +75,8 @@ class TestHostileBytes(unittest.TestCase):
             'reset': RawServiceClient(NODE + '/reset', Reset),
             'set_command': RawServiceClient(NODE + '/set_command', SetCommand),
         }
-        wait_for(lambda: fake.connected(NODE) > 0, what='jetbot_env to connect to the fake publisher')
+        wait_for(lambda: fake.connected(NODE) > 0,
+                 what='jetbot_env to connect to the fake publisher')
 
         def reset_request():
             return ResetRequest(env_ids=[0, 1], seed=3)

@@ -19,7 +19,7 @@ namespace jetbot_rl {
  * Walks the serialized bytes of a roscpp message through the message's own generated
  * `Serializer<M>::allInOne`, checking every array and string length against the bytes actually
  * left, without allocating anything (roscpp's deserializer resizes a vector to the length it reads
- * before looking at the bytes: a 30-byte message claiming 2^31 floats costs 8 GB).
+ * before looking at the bytes: a few bytes claiming 2^31 floats cost 8 GB).
  *
  * Rules: scalars, ros::Time/Duration and fixed-size messages need their size; a string needs its
  * length; an array of fixed-size elements needs `length x element size` (at least `length` bytes
