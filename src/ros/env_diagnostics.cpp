@@ -59,6 +59,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("last rejection reason", c.last_rejection));
   s.values.push_back(keyValue("diverged envs reset", std::to_string(c.diverged)));
   s.values.push_back(keyValue("last divergence reason", c.last_divergence));
+  s.values.push_back(keyValue("malformed messages", std::to_string(c.malformed)));
+  s.values.push_back(keyValue("last malformed reason", c.last_malformed));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

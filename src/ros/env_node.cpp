@@ -4,6 +4,8 @@
 #include <ros/transport_hints.h>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/bounded_service.h"
+#include "jetbot_rl/ros/bounded_subscription.h"
 #include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/msg_conversion.h"
 #include "jetbot_rl/ros/sim_clock.h"
@@ -41,11 +43,28 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
 
   ros::NodeHandle inline_pnh(pnh_);
   inline_pnh.setCallbackQueue(&inline_queue_);
-  targets_sub_ = inline_pnh.subscribe("wheel_targets", kQueueSize, &EnvNode::onWheelTargets, this,
-                                      ros::TransportHints().tcpNoDelay());
-  step_srv_ = inline_pnh.advertiseService("step", &EnvNode::onStep, this);
-  reset_srv_ = inline_pnh.advertiseService("reset", &EnvNode::onReset, this);
-  set_command_srv_ = inline_pnh.advertiseService("set_command", &EnvNode::onSetCommand, this);
+  // Anyone can send bytes: a message or request whose array or string lengths exceed its bytes
+  // is refused before roscpp allocates for it, and counted.
+  const auto refused = [this](const std::string& what) -> RefusalHandler {
+    return [this, what](const std::string& reason) {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      server_.countMalformed(what + " refused unread: " + reason);
+    };
+  };
+  targets_sub_ = subscribeBounded<WheelTargets>(
+      inline_pnh, "wheel_targets", kQueueSize,
+      [this](const WheelTargets::ConstPtr& msg) { onWheelTargets(msg); }, refused("wheel_targets"),
+      ros::TransportHints().tcpNoDelay());
+  step_srv_ = advertiseServiceBounded<Step>(
+      inline_pnh, "step", [this](Step::Request& q, Step::Response& r) { return onStep(q, r); },
+      refused("step"));
+  reset_srv_ = advertiseServiceBounded<Reset>(
+      inline_pnh, "reset", [this](Reset::Request& q, Reset::Response& r) { return onReset(q, r); },
+      refused("reset"));
+  set_command_srv_ = advertiseServiceBounded<SetCommand>(
+      inline_pnh, "set_command",
+      [this](SetCommand::Request& q, SetCommand::Response& r) { return onSetCommand(q, r); },
+      refused("set_command"));
   if (params_.mode == EnvMode::kRealtime) {
     const double period = env_->controlDt() / params_.real_time_factor;
     realtime_timer_ =

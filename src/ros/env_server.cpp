@@ -150,6 +150,15 @@ void EnvServer::stepWith(const float* targets, std::size_t count) {
   updateState();
 }
 
+void EnvServer::countMalformed(const std::string& reason) {
+  ++counters_.malformed;
+  counters_.last_malformed = reason;
+  ++counters_.rejections;
+  counters_.last_rejection = reason;
+  ROS_WARN_THROTTLE(1.0, "%s (%llu malformed so far)", reason.c_str(),
+                    static_cast<unsigned long long>(counters_.malformed));
+}
+
 void EnvServer::reject(const std::string& reason) {
   ++counters_.rejections;
   counters_.last_rejection = reason;

@@ -7,6 +7,8 @@
 #include <chrono>
 
 #include "jetbot_rl/Reset.h"
+#include "jetbot_rl/ros/bounded_service.h"
+#include "jetbot_rl/ros/bounded_subscription.h"
 #include "jetbot_rl/ros/msg_conversion.h"
 
 namespace jetbot_rl {
@@ -29,9 +31,18 @@ RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
                      const std::atomic<bool>* stop)
     : env_ns_(env_ns), lockstep_(lockstep), timeout_(timeout), stop_(stop) {
   nh_.setCallbackQueue(&queue_);
-  spec_sub_ = nh_.subscribe(env_ns_ + "/spec", 1, &RosVecEnv::onSpec, this);
-  step_sub_ = nh_.subscribe(env_ns_ + "/env_step", kQueueSize, &RosVecEnv::onEnvStep, this,
-                            ros::TransportHints().tcpNoDelay());
+  // Anyone can publish on these topics: a message whose lengths exceed its bytes is dropped
+  // unread (roscpp would allocate what it claims), counted and logged.
+  const auto refused = [this](const std::string& reason) {
+    ++refused_;
+    ROS_WARN_THROTTLE(5.0, "%s: refused unread: %s (%llu so far)", env_ns_.c_str(), reason.c_str(),
+                      static_cast<unsigned long long>(refused_));
+  };
+  spec_sub_ = subscribeBounded<EnvSpec>(
+      nh_, env_ns_ + "/spec", 1, [this](const EnvSpec::ConstPtr& m) { onSpec(m); }, refused);
+  step_sub_ = subscribeBounded<EnvStep>(
+      nh_, env_ns_ + "/env_step", kQueueSize, [this](const EnvStep::ConstPtr& m) { onEnvStep(m); },
+      refused, ros::TransportHints().tcpNoDelay());
   // The connect callback only wakes waitFor() (it runs on queue_), whose predicate reads
   // getNumSubscribers().
   targets_pub_ = nh_.advertise<WheelTargets>(
@@ -99,9 +110,8 @@ const StepResult& RosVecEnv::reset(std::int64_t seed,
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
   for (;;) {
     accepting_ = false;
-    if (!reset_client_.call(srv)) {
-      throw Error("call of " + reset_client_.getService() + " failed");
-    }
+    std::string reason;
+    if (!callBounded(reset_client_, srv, reason)) throw Error(reason);
     if (!srv.response.success) {
       throw Error(reset_client_.getService() + " refused: " + srv.response.message);
     }

@@ -22,6 +22,8 @@ struct EnvCounters {
   std::string last_rejection;    ///< Reason of the last one.
   std::uint64_t diverged = 0;    ///< Envs reset because their physics diverged.
   std::string last_divergence;   ///< The core's reason for the last one.
+  std::uint64_t malformed = 0;   ///< Messages and requests refused unread (lying lengths).
+  std::string last_malformed;    ///< Reason of the last one.
 };
 
 /**
@@ -48,6 +50,9 @@ class EnvServer {
   bool onReset(const Reset::Request& req, Reset::Response& res);
   /// ~set_command: changes the task's command (no new state).
   void onSetCommand(const SetCommand::Request& req, SetCommand::Response& res);
+  /// Counts a message or request refused before it was read (its lengths exceed its bytes); it
+  /// is a rejection too.
+  void countMalformed(const std::string& reason);
   /// Realtime: one control step with the newest valid targets received at most `action_timeout`
   /// before `now`, else 0 rad/s (brakes).
   void onTick(SteadyTime now);

@@ -54,6 +54,8 @@ class RosVecEnv : public VecEnv {
   }
   /// The node's namespace, as given.
   const std::string& name() const { return env_ns_; }
+  /// Messages refused unread so far (array or string lengths exceeding their bytes).
+  std::uint64_t refusedMessages() const { return refused_; }
 
  private:
   void onSpec(const EnvSpec::ConstPtr& msg);
@@ -86,6 +88,7 @@ class RosVecEnv : public VecEnv {
   std::uint64_t observed_ = 0;  ///< Newest step passed to the observer.
   EnvStep::ConstPtr newest_;    ///< Newest EnvStep with step > step_.
   std::function<void(const EnvStep&)> observer_;
+  std::uint64_t refused_ = 0;
 };
 
 }  // namespace jetbot_rl

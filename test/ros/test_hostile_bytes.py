@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""Hand-made TCPROS bytes whose array and string lengths lie, sent to jetbot_env through its topic
+(a fake publisher registered with the master) and its services (a raw client), for every array
+and string field: each is refused unread and counted in /diagnostics, the node's peak resident set
+grows by less than 50 MB, a normal ~step sent while the lie is in flight is answered within 0.5 s
+and the state goes on as if nothing had arrived. Also: a rospy subscriber (the Python learner side) fed lying EnvSteps
+drops them without growing."""
+import os
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+from env_client import NODE, EventList, EnvClient, notify, wait_for
+from jetbot_rl.msg import EnvStep, WheelTargets
+from jetbot_rl.srv import Reset, ResetRequest, SetCommand, SetCommandRequest, Step, StepRequest
+from raw_tcpros import (FakePublisher, RawServiceClient, lying_length, node_pid, peak_rss_kb,
+                        serialize, start_peak_rss)
+
+GOOD = [5.0, 4.0, -3.0, 6.0]  # 2 envs x 2 wheels [rad/s]
+MAX_RSS_GROWTH_KB = 50 * 1024
+MAX_ANSWER_S = 0.5
+
+
+def say(text):
+    """Figures for the test output (rostest keeps the test's stdout)."""
+    sys.stdout.write(text + '\n')
+    sys.stdout.flush()
+
+
+def targets(step, frame_id='base'):
+    msg = WheelTargets()
+    msg.header.frame_id = frame_id
+    msg.step = step
+    msg.velocities = list(GOOD)
+    return msg
+
+
+def append_char(field):
+    """grow() for a string field given as a path of attribute names."""
+    def grow(msg):
+        *parents, name = field.split('.')
+        for p in parents:
+            msg = getattr(msg, p)
+        setattr(msg, name, getattr(msg, name) + 'x')
+    return grow
+
+
+def append_item(field, item):
+    def grow(msg):
+        *parents, name = field.split('.')
+        for p in parents:
+            msg = getattr(msg, p)
+        setattr(msg, name, list(getattr(msg, name)) + [item])
+    return grow
+
+
+def lies():
+    """Lying lengths to try; None: one element more than the bytes left."""
+    return list(rospy.get_param('~lies', [2 ** 31, 2 ** 32 - 1])) + [None]
+
+
+class TestHostileBytes(unittest.TestCase):
+    def test_env_node_refuses_lying_lengths(self):
+        env = EnvClient()
+        pid = node_pid(NODE)
+        state = env.reset_srv(env_ids=[], seed=-1).state
+        for _ in range(3):
+            state = env.step_topic(state.step, GOOD)
+        fake = FakePublisher(NODE + '/wheel_targets', WheelTargets, on_connect=notify)
+        raw = {
+            'step': RawServiceClient(NODE + '/step', Step),
+            'reset': RawServiceClient(NODE + '/reset', Reset),
+            'set_command': RawServiceClient(NODE + '/set_command', SetCommand),
+        }
+        wait_for(lambda: fake.connected(NODE) > 0,
+                 what='jetbot_env to connect to the fake publisher')
+
+        def reset_request():
+            return ResetRequest(env_ids=[0, 1], seed=3)
+
+        # (channel, field as the reason names it, element size [bytes], grow, sample request)
+        cases = [
+            ('wheel_targets', 'header.frame_id', 1, append_char('header.frame_id'), None),
+            ('wheel_targets', 'velocities', 4, append_item('velocities', 1.0), None),
+            ('step', 'actions.header.frame_id', 1, append_char('actions.header.frame_id'), None),
+            ('step', 'actions.velocities', 4, append_item('actions.velocities', 1.0), None),
+            ('reset', 'env_ids', 4, append_item('env_ids', 0), reset_request),
+        ]
+        attacks = [(c, lie) for c in cases for lie in lies()]
+        # SetCommand has no array or string: a request cut short is refused the same way.
+        attacks.append((('set_command', 'hold', 1, None,
+                         lambda: SetCommandRequest(env_id=0, x=1.0, y=0.0, hold=True)), 'cut'))
+
+        figures = []
+        malformed = 0
+        try:
+            for (channel, field, size, grow, sample), lie in attacks:
+                s = state.step
+                if sample is None:  # the targets (or ~step request) for the current step
+                    sample = (lambda: StepRequest(actions=targets(s))) if channel == 'step' \
+                        else (lambda: targets(s))
+                if lie == 'cut':
+                    payload, length = serialize(sample())[:-1], 'cut'
+                else:
+                    payload, length = lying_length(sample(), grow, size, lie)
+                what = '%s %s length %s' % (channel, field, length)
+                rss_before = start_peak_rss(pid)
+                # The lie, then at once a normal ~step from another connection: it must not wait
+                # for the node to chew on the lie.
+                if channel == 'wheel_targets':
+                    fake.send(payload)
+                else:
+                    raw[channel].send(payload)
+                started = time.monotonic()
+                res = env.step_service(s, GOOD)
+                answer_s = time.monotonic() - started
+                if channel != 'wheel_targets':
+                    ok, error = raw[channel].receive()
+                    self.assertFalse(ok, what + ' was answered as valid')
+                    self.assertTrue(error.startswith(field + ': '), '%s: %s' % (what, error))
+                malformed += 1
+                status = env.wait_diagnostics(
+                    lambda d: int(d.get('malformed messages', -1)) >= malformed,
+                    'diagnostics counting %d malformed messages' % malformed)
+                growth_kb = peak_rss_kb(pid) - rss_before  # the lie has been handled
+                figures.append((what, growth_kb, answer_s))
+                say('%-50s peak RSS growth %7d kB, normal ~step answered in %6.1f ms'
+                    % (what, growth_kb, answer_s * 1e3))
+                self.assertLess(growth_kb, MAX_RSS_GROWTH_KB, what)
+                self.assertLess(answer_s, MAX_ANSWER_S, what)
+                # the lie changed nothing: the step counter and the episodes went on from s
+                self.assertTrue(res.success, '%s: %s' % (what, res.message))
+                self.assertEqual(res.state.step, s + 1, what)
+                self.assertEqual(list(res.state.episode_steps),
+                                 [e + 1 for e in state.episode_steps], what + ' reset envs')
+                state = res.state
+                self.assertEqual(int(status['malformed messages']), malformed, what)
+                self.assertTrue(status['last malformed reason'].startswith(
+                    '%s refused unread: %s: ' % (channel, field)), status['last malformed reason'])
+                self.assertGreaterEqual(int(status['rejected messages']), malformed)
+        finally:
+            fake.close()
+            for client in raw.values():
+                client.close()
+            if figures:
+                say('%d lying messages: largest peak RSS growth %d kB, slowest normal ~step '
+                    '%.1f ms' % (len(figures), max(f[1] for f in figures),
+                                 max(f[2] for f in figures) * 1e3))
+
+    def test_rospy_subscriber_drops_lying_env_step(self):
+        """rospy's generated deserializers slice the received bytes: a lying EnvStep costs no
+        memory. rospy logs the error and drops the connection it came on for good (its reconnect
+        reads the handshake from a buffer still holding the lie); the others carry on."""
+        topic = '/hostile_bytes/env_step'
+        me = rospy.get_name()
+        received = EventList()
+        sub = rospy.Subscriber(topic, EnvStep, received.append)
+        honest = FakePublisher(topic, EnvStep, caller_id='/raw_honest_publisher',
+                               on_connect=notify)
+
+        def sample(step):
+            msg = EnvStep(step=step, num_envs=2, obs_dim=3, observations=[1.0] * 6,
+                          rewards=[0.5, 0.5], terminated=[0, 1], truncated=[1, 0],
+                          episode_steps=[3, 0], reset_env_ids=[1], final_observations=[2.0] * 3)
+            msg.header.frame_id = 'world'
+            return msg
+        fields = [('header.frame_id', 1, append_char('header.frame_id')),
+                  ('observations', 4, append_item('observations', 0.0)),
+                  ('rewards', 4, append_item('rewards', 0.0)),
+                  ('terminated', 1, append_item('terminated', 0)),
+                  ('truncated', 1, append_item('truncated', 0)),
+                  ('episode_steps', 4, append_item('episode_steps', 0)),
+                  ('reset_env_ids', 4, append_item('reset_env_ids', 0)),
+                  ('final_observations', 4, append_item('final_observations', 0.0))]
+        wait_for(lambda: honest.connected(me) > 0, what='our subscriber to connect')
+        rss_before = start_peak_rss(os.getpid())
+        step = 0
+        try:
+            for field, size, grow in fields:
+                for lie in lies():
+                    payload, length = lying_length(sample(0), grow, size, lie)
+                    what = '%s length %s' % (field, length)
+                    hostile = FakePublisher(topic, EnvStep, caller_id='/raw_hostile_publisher',
+                                            on_connect=notify)
+                    try:
+                        wait_for(lambda: hostile.connected(me) > 0,
+                                 what='our subscriber to connect to the hostile publisher')
+                        hostile.send(payload)
+                        self.assertTrue(hostile.wait_until_dropped(me, 30.0),
+                                        'rospy kept the connection after ' + what)
+                    finally:
+                        hostile.close()
+                    step += 1
+                    honest.send(serialize(sample(step)))
+                    wait_for(lambda: received and received[-1].step == step,
+                             what='the honest EnvStep after ' + what)
+            growth_kb = peak_rss_kb(os.getpid()) - rss_before
+            say('rospy subscriber: %d lying EnvSteps dropped, peak RSS growth %d kB'
+                % (step, growth_kb))
+            self.assertLess(growth_kb, MAX_RSS_GROWTH_KB)
+            self.assertEqual([m.step for m in received], list(range(1, step + 1)))
+        finally:
+            sub.unregister()
+            honest.close()
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_hostile_bytes')
+    rostest.rosrun('jetbot_rl', 'test_hostile_bytes', TestHostileBytes)
