@@ -14,6 +14,7 @@ add_library(jetbot_rl_core
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
   src/core/mesh_loader.cpp
+  src/core/multi_vec_env.cpp
   src/core/physics_model.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp
@@ -62,6 +63,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_diff_drive.cpp
     test/core/test_urdf_cases.cpp
     test/core/test_tribot.cpp
+    test/core/test_multi_vec_env.cpp
   )
   target_link_libraries(test_core jetbot_rl_core)
   target_include_directories(test_core PRIVATE src/core)

@@ -2,6 +2,16 @@
 
 namespace jetbot_rl {
 
+void readParam(const ros::NodeHandle& pnh, const std::string& name,
+               std::vector<std::string>& value) {
+  std::string single;
+  if (pnh.getParam(name, single)) {
+    value = {single};
+    return;
+  }
+  readParam<std::vector<std::string>>(pnh, name, value);
+}
+
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::int64_t& value) {
   int v = static_cast<int>(value);
   readParam(pnh, name, v);

@@ -29,6 +29,9 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
   throwInvalid(name, raw, std::string("must be ") + paramTypeName(value));
 }
 
+/// A list of names; a single name stands for a list of one.
+void readParam(const ros::NodeHandle& pnh, const std::string& name,
+               std::vector<std::string>& value);
 /// 64-bit integers are 32-bit integers on the parameter server; negative for unsigned: invalid.
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::int64_t& value);
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::uint64_t& value);

@@ -12,6 +12,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "jetbot_rl/multi_vec_env.h"
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
@@ -26,7 +27,9 @@ namespace {
 /// Private parameters of jetbot_policy_node.
 struct PolicyParams {
   std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
-  std::string env = "jetbot_env";     ///< The jetbot_env node (relative: in the node's namespace).
+  /// The jetbot_env nodes to drive, as one batch (one name or a list; relative names resolve in
+  /// the node's namespace); node k is reset with reset_seed + k x 2^32.
+  std::vector<std::string> envs{"jetbot_env"};
   EnvMode mode = EnvMode::kRealtime;  ///< The env's mode.
   int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
   int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
@@ -39,7 +42,7 @@ struct PolicyParams {
 template <typename C, typename V>
 IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
   v("checkpoint", c.checkpoint, AnyValue{});
-  v("env", c.env, AnyValue{});
+  v("envs", c.envs, NameList{});
   v("mode", c.mode, AnyValue{});
   v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
   v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));
@@ -50,6 +53,7 @@ namespace ppo {
 namespace {
 
 PolicyParams loadParams(const ros::NodeHandle& pnh) {
+  if (pnh.hasParam("env")) throwInvalid("env", "(set)", "was renamed envs (one name or a list)");
   PolicyParams p;
   readFields(pnh, p);
   validateFields(p);
@@ -86,45 +90,54 @@ int runPolicyNode() {
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;
   try {
-    RosVecEnv env(params.env, params.mode == EnvMode::kLockstep, params.step_timeout, &stop);
-    const BatchSpec& info = env.spec();
+    // One RosVecEnv per node, each with an observer of every EnvStep it receives (realtime
+    // mode may deliver several per step): the episode returns are counted from them.
+    std::int64_t episodes = 0;
+    std::vector<float> actions;  // the targets last published
+    std::vector<std::unique_ptr<VecEnv>> parts;
+    std::vector<std::unique_ptr<EpisodeTracker>> trackers;
+    for (const std::string& name : params.envs) {
+      auto part = std::make_unique<RosVecEnv>(name, params.mode == EnvMode::kLockstep,
+                                              params.step_timeout, &stop);
+      trackers.push_back(std::make_unique<EpisodeTracker>(part->spec().num_envs));
+      part->setObserver([&, tracker = trackers.back().get(), name](const EnvStep& msg) {
+        StepResult rewards_only;
+        rewards_only.rewards = msg.rewards;
+        rewards_only.reset_env_ids = msg.reset_env_ids;
+        const std::vector<double>& ended = tracker->add(rewards_only);
+        for (double r : ended) {
+          std_msgs::Float32 out;
+          out.data = static_cast<float>(r);
+          return_pub.publish(out);
+        }
+        if (ended.empty()) return;
+        episodes += static_cast<std::int64_t>(ended.size());
+        ROS_INFO(
+            "%s step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far); wheel "
+            "targets of env 0: [%.2f, %.2f] rad/s",
+            name.c_str(), static_cast<unsigned long long>(msg.step), ended.size(),
+            std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
+            static_cast<long long>(episodes), actions.size() > 1 ? actions[0] : 0.0f,
+            actions.size() > 1 ? actions[1] : 0.0f);
+      });
+      parts.push_back(std::move(part));
+    }
+    std::unique_ptr<VecEnv> env =
+        parts.size() == 1 ? std::move(parts[0])
+                          : std::make_unique<MultiVecEnv>(std::move(parts), params.envs);
+    const BatchSpec& info = env->spec();
     if (info.obs_dim != policy->obsDim()) {
       throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +
                         " does not fit the policy's " + std::to_string(policy->obsDim()));
     }
     policy->setActionLimits(info.action_low, info.action_high);
 
-    EpisodeTracker tracker(info.num_envs);
-    std::vector<float> actions;  // the targets last published
-    StepResult rewards_only;
-    std::int64_t episodes = 0;
-    env.setObserver([&](const EnvStep& msg) {
-      rewards_only.rewards = msg.rewards;
-      rewards_only.reset_env_ids = msg.reset_env_ids;
-      const std::vector<double>& ended = tracker.add(rewards_only);
-      for (double r : ended) {
-        std_msgs::Float32 out;
-        out.data = static_cast<float>(r);
-        return_pub.publish(out);
-      }
-      if (!ended.empty()) {
-        episodes += static_cast<std::int64_t>(ended.size());
-        ROS_INFO(
-            "step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far); wheel "
-            "targets of env 0: [%.2f, %.2f] rad/s",
-            static_cast<unsigned long long>(msg.step), ended.size(),
-            std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
-            static_cast<long long>(episodes), actions.size() > 1 ? actions[0] : 0.0f,
-            actions.size() > 1 ? actions[1] : 0.0f);
-      }
-    });
-
-    const StepResult* batch = &env.reset(params.reset_seed);
-    ROS_INFO("driving %d env(s) of %s with the mean action (%s mode)", info.num_envs,
-             params.env.c_str(), enumName(params.mode).c_str());
+    const StepResult* batch = &env->reset(params.reset_seed);
+    ROS_INFO("driving %d env(s) with the mean action (%s mode)", info.num_envs,
+             enumName(params.mode).c_str());
     for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
       policy->act(batch->observations, info.num_envs, actions);
-      batch = &env.step(actions);
+      batch = &env->step(actions);
     }
     ROS_INFO("drove %d steps; %lld episodes ended", params.steps, static_cast<long long>(episodes));
   } catch (const Interrupted&) {

@@ -13,8 +13,8 @@
 #include "jetbot_rl/ppo/ros/stop_signal.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/node_params.h"
-#include "jetbot_rl/ros/ros_vec_env.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -46,12 +46,10 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
   return msg;
 }
 
-/// The env the trainer trains on: an env node, or one built in this process from ~env_config.
+/// The env the trainer trains on: env nodes, or one built in this process from ~env_config.
 std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& pnh,
                                 const std::atomic<bool>& stop) {
-  if (!params.env_in_process) {
-    return std::make_unique<RosVecEnv>(params.env, /*lockstep=*/true, params.step_timeout, &stop);
-  }
+  if (!params.env_in_process) return connectEnvs(params.envs, true, params.step_timeout, &stop);
   const ros::NodeHandle env_pnh(pnh, "env_config");
   const NodeParams env_params = loadNodeParams(env_pnh);
   ROS_INFO_STREAM("in-process env, parameters of " << env_pnh.getNamespace() << ":\n"
@@ -89,9 +87,15 @@ int runTrainerNode() {
   try {
     const std::unique_ptr<VecEnv> env = makeEnv(params, pnh, stop);
     const BatchSpec& spec = env->spec();
+    std::ostringstream where;
+    if (params.env_in_process) {
+      where << "in this process";
+    } else {
+      writeValue(where, params.envs);
+    }
     ROS_INFO("environment %s: %d envs, task %s, obs_dim %d, action_dim %d, control step %.4f s",
-             params.env_in_process ? "in this process" : params.env.c_str(), spec.num_envs,
-             spec.task.c_str(), spec.obs_dim, spec.action_dim, spec.control_dt);
+             where.str().c_str(), spec.num_envs, spec.task.c_str(), spec.obs_dim, spec.action_dim,
+             spec.control_dt);
 
     RunnerOptions options = params.run;
     options.extra_config = "# trainer\n" + fieldsToYaml(params) + describeSpec(spec);
@@ -106,6 +110,7 @@ int runTrainerNode() {
     const TrainingSummary summary = runner.learn();
     ROS_INFO_STREAM("final figures:\n" << describeSummary(summary));
     if (!summary.error.empty()) code = 1;
+    if (code == 0 && params.end_launch) endParentLaunch(stop);
   } catch (const Interrupted& e) {
     ROS_WARN("stopped before training started: %s", e.what());
   } catch (const ConfigError& e) {

@@ -35,11 +35,11 @@ std::string defaultRunRoot() {
 TrainerParams loadTrainerParams(const ros::NodeHandle& pnh, PpoConfig& ppo) {
   namespace fs = std::filesystem;
   TrainerParams p;
+  if (pnh.hasParam("env")) throwInvalid("env", "(set)", "was renamed envs (one name or a list)");
   readFields(pnh, ppo);
   readFields(pnh, p);
   validate(ppo);
   validateFields(p);
-  if (p.env.empty()) throwInvalid("env", "''", "must name the jetbot_env node, e.g. /jetbot_env");
 
   std::string& resume = p.run.resume;
   std::string& run_dir = p.run.run_dir;

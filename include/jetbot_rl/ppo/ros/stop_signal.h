@@ -9,5 +9,11 @@ namespace ppo {
 /// instead of dying mid-step). Use with ros::init_options::NoSigintHandler.
 const std::atomic<bool>& installStopSignalHandlers();
 
+/// When this process was started by roslaunch, ends that launch as Ctrl-C would (SIGINT to it)
+/// and waits up to 10 s for roslaunch's own SIGINT to set `stop`: a node that roslaunch sees
+/// exit on its own first is announced, if required, as "REQUIRED process has died". Returns
+/// false (and does nothing) when the parent is not roslaunch.
+bool endParentLaunch(const std::atomic<bool>& stop);
+
 }  // namespace ppo
 }  // namespace jetbot_rl

@@ -13,22 +13,28 @@ namespace ppo {
 
 /// Private parameters of jetbot_ppo_trainer besides the PPO hyper-parameters.
 struct TrainerParams {
-  RunnerOptions run;               ///< iterations, run_dir, resume, save_interval, ...
-  std::string env = "jetbot_env";  ///< The jetbot_env node (relative: in the node's namespace).
+  RunnerOptions run;  ///< iterations, run_dir, resume, save_interval, ...
+  /// The jetbot_env nodes whose envs form the batch, in order (relative names resolve in the
+  /// node's namespace); one name or a list. Node k is reset with seed + k x 2^32.
+  std::vector<std::string> envs{"jetbot_env"};
   /// Build the env in this process (LocalVecEnv) from the parameters under ~env_config (those of
-  /// jetbot_env_node) and robot_description, instead of talking to an env node.
+  /// jetbot_env_node) and robot_description, instead of talking to env nodes.
   bool env_in_process = false;
-  double step_timeout = 10.0;  ///< Give up when the env does not answer within this [s, wall].
+  double step_timeout = 10.0;  ///< Give up when an env does not answer within this [s, wall].
   int torch_threads = 1;       ///< libtorch intra-op threads (1: deterministic, leaves a core).
+  /// When the run has ended well (completed or interrupted), end the roslaunch that started
+  /// this node cleanly (SIGINT to it) instead of leaving it to notice a required node's exit.
+  bool end_launch = false;
 };
 
 template <typename C, typename V>
 IfConfig<C, TrainerParams> visitFields(C& c, V&& v) {
   visitFields(c.run, v);
-  v("env", c.env, AnyValue{});
+  v("envs", c.envs, NameList{});
   v("env_in_process", c.env_in_process, AnyValue{});
   v("step_timeout", c.step_timeout, positive("s, wall"));
   v("torch_threads", c.torch_threads, inRange(1, 256));
+  v("end_launch", c.end_launch, AnyValue{});
 }
 
 /// Reads the private parameters from `pnh` (defaults for absent ones) into `ppo` and the

@@ -1,0 +1,18 @@
+#include "jetbot_rl/ros/connect_envs.h"
+
+#include "jetbot_rl/multi_vec_env.h"
+#include "jetbot_rl/ros/ros_vec_env.h"
+
+namespace jetbot_rl {
+
+std::unique_ptr<VecEnv> connectEnvs(const std::vector<std::string>& names, bool lockstep,
+                                    double timeout, const std::atomic<bool>* stop) {
+  if (names.size() == 1) return std::make_unique<RosVecEnv>(names[0], lockstep, timeout, stop);
+  std::vector<std::unique_ptr<VecEnv>> parts;
+  for (const std::string& name : names) {
+    parts.push_back(std::make_unique<RosVecEnv>(name, lockstep, timeout, stop));
+  }
+  return std::make_unique<MultiVecEnv>(std::move(parts), names);
+}
+
+}  // namespace jetbot_rl
