@@ -1,6 +1,18 @@
 #include "jetbot_rl/ros/param_reader.h"
 
+#include <ros/names.h>
+
 namespace jetbot_rl {
+
+void GraphNames::check(const std::string& name, const std::vector<std::string>& names) const {
+  NameList{}.check(name, names);
+  for (const std::string& graph_name : names) {
+    std::string why;
+    if (!ros::names::validate(graph_name, why)) {
+      throwInvalid(name, "'" + graph_name + "'", "is not a valid ROS name: " + why);
+    }
+  }
+}
 
 void readParam(const ros::NodeHandle& pnh, const std::string& name,
                std::vector<std::string>& value) {

@@ -36,6 +36,10 @@ class TestRefuseStartPpo(unittest.TestCase):
     def test_hidden_dims_wrong_type(self):
         self.refuses('jetbot_ppo_trainer', {'actor_hidden_dims': 'wide'}, 'actor_hidden_dims')
 
+    def test_env_node_name_invalid(self):
+        self.refuses('jetbot_ppo_trainer', {'envs': '[a, b]'}, 'envs', '[a, b]',
+                     'not a valid ROS name')
+
     def test_iterations_zero(self):
         self.refuses('jetbot_ppo_trainer', {'iterations': 0}, 'iterations = 0')
 

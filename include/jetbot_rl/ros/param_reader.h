@@ -44,6 +44,12 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, E& value) {
   value = parseEnum<E>(name, text);
 }
 
+/// A non-empty list of distinct, valid ROS graph names (e.g. env nodes).
+struct GraphNames {
+  const char* unit = "";
+  void check(const std::string& name, const std::vector<std::string>& names) const;
+};
+
 /// Reads every field of `config` (see config_fields.h) present under `pnh`; does not validate.
 template <typename C>
 void readFields(const ros::NodeHandle& pnh, C& config) {

@@ -42,7 +42,7 @@ struct PolicyParams {
 template <typename C, typename V>
 IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
   v("checkpoint", c.checkpoint, AnyValue{});
-  v("envs", c.envs, NameList{});
+  v("envs", c.envs, GraphNames{});
   v("mode", c.mode, AnyValue{});
   v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
   v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));

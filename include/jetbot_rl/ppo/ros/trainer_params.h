@@ -5,6 +5,7 @@
 #include <string>
 
 #include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner.h"
 
@@ -30,7 +31,7 @@ struct TrainerParams {
 template <typename C, typename V>
 IfConfig<C, TrainerParams> visitFields(C& c, V&& v) {
   visitFields(c.run, v);
-  v("envs", c.envs, NameList{});
+  v("envs", c.envs, GraphNames{});
   v("env_in_process", c.env_in_process, AnyValue{});
   v("step_timeout", c.step_timeout, positive("s, wall"));
   v("torch_threads", c.torch_threads, inRange(1, 256));
