@@ -6,33 +6,14 @@
 namespace jetbot_rl {
 namespace {
 
+using test::Averages;
+using test::drive;
 using test::jetbot;
 using test::smallConfig;
 using test::uniformActions;
 
 constexpr double kWheelRadius = 0.03;        // [m]
 constexpr double kWheelSeparation = 0.1125;  // [m]
-
-struct Averages {
-  Eigen::Vector3d body_velocity = Eigen::Vector3d::Zero();
-  double yaw_rate = 0.0;
-};
-
-/// Drives for `settle` steps, then averages the body-frame velocity and yaw rate over `measure`.
-Averages drive(BatchedEnv& env, float left, float right, int settle, int measure) {
-  const auto actions = uniformActions(env, left, right);
-  for (int s = 0; s < settle; ++s) env.step(actions);
-  Averages avg;
-  for (int s = 0; s < measure; ++s) {
-    env.step(actions);
-    const RootState state = env.rootState(0);
-    avg.body_velocity += state.comLinearVelocityBody();
-    avg.yaw_rate += state.angular_velocity.z();
-  }
-  avg.body_velocity /= measure;
-  avg.yaw_rate /= measure;
-  return avg;
-}
 
 TEST(Kinematics, StraightDrivingReachesWheelSpeedTimesRadius) {
   BatchedEnv env(jetbot(), smallConfig(1));

@@ -14,29 +14,14 @@ using test::tribotConfig;
 constexpr double kWheelRadius = 0.033;     // [m]
 constexpr double kWheelSeparation = 0.16;  // [m]
 
-struct Averages {
-  Eigen::Vector3d body_velocity = Eigen::Vector3d::Zero();
-  double yaw_rate = 0.0;
-};
+using test::Averages;
 
-/// Drives `twist` through DiffDrive for `settle` steps, then averages the body-frame COM velocity
-/// and yaw rate over `measure` steps.
+/// Drives `twist` through DiffDrive for `settle` steps, then averages over `measure` steps.
 Averages drive(BatchedEnv& env, const DiffDrive& kinematics, const PlanarTwist& twist, int settle,
                int measure) {
   const auto targets = kinematics.wheelTargets(twist);
-  const auto actions =
-      test::uniformActions(env, static_cast<float>(targets[0]), static_cast<float>(targets[1]));
-  for (int s = 0; s < settle; ++s) env.step(actions);
-  Averages avg;
-  for (int s = 0; s < measure; ++s) {
-    env.step(actions);
-    const RootState state = env.rootState(0);
-    avg.body_velocity += state.comLinearVelocityBody();
-    avg.yaw_rate += state.angular_velocity.z();
-  }
-  avg.body_velocity /= measure;
-  avg.yaw_rate /= measure;
-  return avg;
+  return test::drive(env, static_cast<float>(targets[0]), static_cast<float>(targets[1]), settle,
+                     measure);
 }
 
 class Tribot : public ::testing::Test {

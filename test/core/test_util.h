@@ -86,6 +86,29 @@ inline std::vector<float> uniformActions(const BatchedEnv& env, float left, floa
   return a;
 }
 
+/// Body-frame COM velocity [m/s] and yaw rate [rad/s] of env 0, averaged.
+struct Averages {
+  Eigen::Vector3d body_velocity = Eigen::Vector3d::Zero();
+  double yaw_rate = 0.0;
+};
+
+/// Drives env 0 with (left, right) targets [rad/s] for `settle` steps, then averages its
+/// body-frame velocity and yaw rate over `measure` steps.
+inline Averages drive(BatchedEnv& env, float left, float right, int settle, int measure) {
+  const auto actions = uniformActions(env, left, right);
+  for (int s = 0; s < settle; ++s) env.step(actions);
+  Averages avg;
+  for (int s = 0; s < measure; ++s) {
+    env.step(actions);
+    const RootState state = env.rootState(0);
+    avg.body_velocity += state.comLinearVelocityBody();
+    avg.yaw_rate += state.angular_velocity.z();
+  }
+  avg.body_velocity /= measure;
+  avg.yaw_rate /= measure;
+  return avg;
+}
+
 /// Reproducible pseudo-random targets in [-25, 25] rad/s (some beyond the limit) for step `step`.
 inline std::vector<float> randomActions(int num_envs, int step, unsigned salt = 0) {
   std::vector<float> a(static_cast<size_t>(num_envs) * 2);
