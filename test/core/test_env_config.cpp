@@ -15,7 +15,20 @@ struct BadField {
 TEST(EnvConfig, DefaultsAreValid) { EXPECT_NO_THROW(EnvConfig().validate()); }
 
 /// Each case's config is refused by validate() and by the env, naming the field and value.
-void expectRefused(const std::vector<BadField>& cases) { expectRefused(cases); }
+void expectRefused(const std::vector<BadField>& cases) {
+  for (const auto& bad : cases) {
+    EnvConfig config;
+    bad.spoil(config);
+    try {
+      config.validate();
+      ADD_FAILURE() << "accepted: " << bad.expected;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos) << e.what();
+    }
+    // The environment itself refuses it too.
+    EXPECT_THROW(BatchedEnv(test::jetbot(), config), ConfigError) << bad.expected;
+  }
+}
 
 TEST(EnvConfig, EveryInvalidFieldIsNamed) {
   const std::vector<BadField> cases = {
@@ -38,18 +51,7 @@ TEST(EnvConfig, EveryInvalidFieldIsNamed) {
       {"effort_limit = -1", [](EnvConfig& c) { c.effort_limit = -1.0; }},
       {"solver_iterations = 0", [](EnvConfig& c) { c.solver_iterations = 0; }},
   };
-  for (const auto& bad : cases) {
-    EnvConfig config;
-    bad.spoil(config);
-    try {
-      config.validate();
-      ADD_FAILURE() << "accepted: " << bad.expected;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos) << e.what();
-    }
-    // The environment itself refuses it too.
-    EXPECT_THROW(BatchedEnv(test::jetbot(), config), ConfigError) << bad.expected;
-  }
+  expectRefused(cases);
 }
 
 TEST(EnvConfig, WheelAndCasterFieldsAreValidated) {
