@@ -1,21 +1,12 @@
 #include "jetbot_rl/ppo/ros/stop_signal.h"
 
-#include <csignal>
+#include "jetbot_rl/ros/stop_signal.h"
 
 namespace jetbot_rl {
 namespace ppo {
-namespace {
-
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) { g_stop.store(true); }
-
-}  // namespace
 
 const std::atomic<bool>& installStopSignalHandlers() {
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
-  return g_stop;
+  return jetbot_rl::installStopSignalHandlers();
 }
 
 }  // namespace ppo
