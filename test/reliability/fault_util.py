@@ -61,14 +61,6 @@ def rss_kb(pid):
     raise RuntimeError('no VmRSS for pid %d' % pid)
 
 
-def alive(pid):
-    try:
-        os.kill(pid, 0)
-        return True
-    except ProcessLookupError:
-        return False
-
-
 class DiagnosticsRecorder(object):
     """Records every /diagnostics status of env node `node` (e.g. /jetbot_env) as a dict of its
     values plus 'stamp' [s] (wall time: the node is the clock source)."""
