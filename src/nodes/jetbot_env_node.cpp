@@ -4,6 +4,7 @@
 #include "jetbot_rl/ros/env_node.h"
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "jetbot_env");
+  // SIGINT and SIGTERM are handled by the node: it sends its last markers before exiting.
+  ros::init(argc, argv, "jetbot_env", ros::init_options::NoSigintHandler);
   return jetbot_rl::runEnvNode();
 }

@@ -1,5 +1,6 @@
 #include "jetbot_rl/ros/env_node.h"
 
+#include <ros/callback_queue.h>
 #include <ros/console.h>
 #include <ros/transport_hints.h>
 
@@ -8,7 +9,9 @@
 #include "jetbot_rl/ros/bounded_subscription.h"
 #include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/msg_conversion.h"
+#include "jetbot_rl/ros/publication_flush.h"
 #include "jetbot_rl/ros/sim_clock.h"
+#include "jetbot_rl/ros/stop_signal.h"
 #include "jetbot_rl/ros/tf_publisher.h"
 #include "jetbot_rl/task_factory.h"
 
@@ -17,6 +20,10 @@ namespace {
 
 // A lockstep learner has one message in flight.
 constexpr std::uint32_t kQueueSize = 16;
+// How often the spinner looks at the stop flag [s]; how long the last markers may take to be
+// written [s]: SIGINT and SIGTERM end the node within their sum and a little.
+constexpr double kStopCheck = 0.1;
+constexpr double kFlushTimeout = 0.5;
 
 }  // namespace
 
@@ -88,7 +95,30 @@ std::uint64_t EnvNode::step() const {
   return env_->state().step;
 }
 
+void EnvNode::shutdown(double flush_timeout) {
+  realtime_timer_.stop();
+  diagnostics_timer_.stop();
+  targets_sub_.shutdown();
+  step_srv_.shutdown();
+  reset_srv_.shutdown();
+  set_command_srv_.shutdown();
+  {
+    // After any call in flight; a later one (already past roscpp) publishes nothing.
+    std::lock_guard<std::mutex> state_lock(state_mutex_);
+    std::lock_guard<std::mutex> publish_lock(publish_mutex_);
+    finished_ = true;
+    for (auto& output : outputs_) output->finish();
+  }
+  if (!flushPublications(flush_timeout) && ros::ok()) {
+    ROS_WARN(
+        "%s: the last messages were not all written within %.1f s (a subscriber that reads "
+        "nothing?)",
+        pnh_.getNamespace().c_str(), flush_timeout);
+  }
+}
+
 void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
+  if (finished_) return;
   const EnvStep::ConstPtr& msg = server_.state();
   for (auto& output : outputs_) output->capture(*env_, msg, reset);
   std::lock_guard<std::mutex> publish_lock(publish_mutex_);
@@ -134,6 +164,7 @@ void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
 }
 
 int runEnvNode() {
+  const std::atomic<bool>& stop = installStopSignalHandlers();
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   NodeParams params;
@@ -168,7 +199,12 @@ int runEnvNode() {
     return 1;
   }
   EnvNode node(nh, pnh, params, std::move(env));
-  ros::spin();  // timers; topics and services run in roscpp's network thread (inline_queue_)
+  // Timers run here; topics and services in roscpp's network thread (inline_queue_).
+  ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
+  while (ros::ok() && !stop.load()) queue.callAvailable(ros::WallDuration(kStopCheck));
+  if (stop.load()) ROS_INFO("%s: stopped by a signal", pnh.getNamespace().c_str());
+  node.shutdown(kFlushTimeout);
+  ros::shutdown();
   return 0;
 }
 

@@ -115,7 +115,7 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
   }
 }
 
-EnvMarkerPublisher::~EnvMarkerPublisher() {
+void EnvMarkerPublisher::finish() {
   if (enabled_) deleteAll();
 }
 

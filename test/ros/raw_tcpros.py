@@ -250,3 +250,59 @@ def start_peak_rss(pid):
         return _status_kb(pid, 'VmRSS')
     except OSError:
         return peak_rss_kb(pid)
+
+
+class StalledSubscriber(object):
+    """A subscriber of `topic` (type `msg_class`) that connects straight to the TCPROS server of
+    publisher node `node`, sends its connection header and never reads anything: the publisher's
+    socket to it fills up and stays full. `rcvbuf` [bytes] shrinks our receive buffer, so that it
+    fills sooner."""
+
+    def __init__(self, topic, msg_class, node, caller_id='/raw_stalled_subscriber', rcvbuf=None):
+        from xmlrpc.client import ServerProxy
+        uri = rosgraph.Master(caller_id).lookupNode(node)
+        code, msg, protocol = ServerProxy(uri).requestTopic(caller_id, topic, [['TCPROS']])
+        if code != 1:
+            raise RuntimeError('requestTopic %s of %s failed: %s' % (topic, node, msg))
+        _, host, port = protocol
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        if rcvbuf:
+            self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, rcvbuf)
+        self.sock.connect((host, port))
+        self.publisher_port = port
+        rosgraph.network.write_ros_handshake_header(self.sock, {
+            'callerid': caller_id,
+            'topic': topic,
+            'type': msg_class._type,
+            'md5sum': msg_class._md5sum,
+            'tcp_nodelay': '1',
+        })
+
+    def unread_bytes(self):
+        """Bytes waiting in our receive buffer (FIONREAD)."""
+        import fcntl
+        import termios
+        count = bytearray(4)
+        fcntl.ioctl(self.sock.fileno(), termios.FIONREAD, count)
+        return struct.unpack('<i', bytes(count))[0]
+
+    def unsent_bytes(self):
+        """Bytes the publisher's socket to us holds unsent (its kernel send queue, from
+        /proc/net/tcp; the publisher must run on this machine)."""
+        ours = self.sock.getsockname()[1]
+        for table in ('/proc/net/tcp', '/proc/net/tcp6'):
+            try:
+                with open(table) as f:
+                    lines = f.readlines()[1:]
+            except OSError:
+                continue
+            for line in lines:
+                fields = line.split()
+                local = int(fields[1].rsplit(':', 1)[1], 16)
+                remote = int(fields[2].rsplit(':', 1)[1], 16)
+                if (local, remote) == (self.publisher_port, ours):
+                    return int(fields[4].split(':')[0], 16)  # tx_queue
+        raise RuntimeError('no socket of the publisher to port %d' % ours)
+
+    def close(self):
+        self.sock.close()

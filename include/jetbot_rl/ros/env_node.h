@@ -36,6 +36,10 @@ class EnvNode {
 
   /// EnvStep.step of the current state.
   std::uint64_t step() const;
+  /// Ends serving: stops the timers, topics and services, publishes what the outputs send at the
+  /// end (DELETEALL markers) and waits up to `flush_timeout` [s, wall] until it is written to the
+  /// subscribers. Call before ros::shutdown(); the node publishes nothing afterwards.
+  void shutdown(double flush_timeout);
   const BatchedEnv& env() const { return *env_; }
 
  private:
@@ -51,7 +55,8 @@ class EnvNode {
   NodeParams params_;
   std::unique_ptr<BatchedEnv> env_;
   EnvServer server_;
-  mutable std::mutex state_mutex_;  // env_ and server_
+  mutable std::mutex state_mutex_;  // env_, server_ and finished_
+  bool finished_ = false;           // shutdown(): nothing more is published
   std::mutex publish_mutex_;        // outputs_: keeps states in order
 
   ros::NodeHandle nh_, pnh_;
@@ -64,9 +69,10 @@ class EnvNode {
   EnvDiagnostics diagnostics_;
 };
 
-/// Runs jetbot_env_node after ros::init(): loads and echoes the parameters and the robot, builds
-/// the env, then spins. Returns the process exit code; a bad parameter or robot is ROS_FATAL and
-/// returns 1.
+/// Runs jetbot_env_node after ros::init() (with ros::init_options::NoSigintHandler): loads and
+/// echoes the parameters and the robot, builds the env, then spins until SIGINT or SIGTERM (or
+/// ROS shuts down), sends the last markers and shuts ROS down. Returns the process exit code: 0,
+/// or 1 after ROS_FATAL for a bad parameter or robot.
 int runEnvNode();
 
 }  // namespace jetbot_rl

@@ -13,19 +13,20 @@ namespace jetbot_rl {
  * the chassis as a box, an arrow along the robot's forward direction and one per direction the
  * task draws (Task::arrowNames: the command task's command, the walkthrough's second arrow);
  * coloured per env. Sent at most `rate` Hz of simulation time (with the tf batches). When
- * disabled, and when the node ends, it publishes DELETEALL so that RViz drops stale markers.
+ * disabled, and at finish() (the node's end), it publishes DELETEALL so that RViz drops stale
+ * markers.
  */
 class EnvMarkerPublisher : public StateOutput {
  public:
   /// `envs`: envs with markers (clamped to the batch); `enabled`: the `markers` parameter.
   EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs, double rate,
                      bool enabled);
-  ~EnvMarkerPublisher() override;
   EnvMarkerPublisher(const EnvMarkerPublisher&) = delete;
   EnvMarkerPublisher& operator=(const EnvMarkerPublisher&) = delete;
 
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
+  void finish() override;
 
  private:
   void deleteAll();

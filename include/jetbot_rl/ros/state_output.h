@@ -23,6 +23,9 @@ class StateOutput {
   virtual void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) = 0;
   /// Publishes what the last capture() took, if anything.
   virtual void send() = 0;
+  /// Publishes what the node's end needs (e.g. DELETEALL markers); called once, before the
+  /// node's publications are flushed and ROS shuts down.
+  virtual void finish() {}
 };
 
 /// ~env_step: every state, as the EnvStep message itself (shared, never copied).

@@ -10,20 +10,13 @@
 #include <string>
 #include <thread>
 
+#include "jetbot_rl/ros/stop_signal.h"
+
 namespace jetbot_rl {
 namespace ppo {
-namespace {
-
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) { g_stop.store(true); }
-
-}  // namespace
 
 const std::atomic<bool>& installStopSignalHandlers() {
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
-  return g_stop;
+  return jetbot_rl::installStopSignalHandlers();
 }
 
 bool endParentLaunch(const std::atomic<bool>& stop) {

@@ -109,7 +109,11 @@ int runTrainerNode() {
 
     const TrainingSummary summary = runner.learn();
     ROS_INFO_STREAM("final figures:\n" << describeSummary(summary));
-    if (!summary.error.empty()) code = 1;
+    if (!summary.error.empty()) {
+      ROS_FATAL("%s: training failed: %s (the last completed iteration is saved in %s)",
+                pnh.getNamespace().c_str(), summary.error.c_str(), options.run_dir.c_str());
+      code = 1;
+    }
     if (code == 0 && params.end_launch) endParentLaunch(stop);
   } catch (const Interrupted& e) {
     ROS_WARN("stopped before training started: %s", e.what());
