@@ -29,7 +29,10 @@ std::string seconds(double s) {
 
 RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
                      const std::atomic<bool>* stop)
-    : env_ns_(env_ns), lockstep_(lockstep), timeout_(timeout), stop_(stop) {
+    : env_ns_(ros::NodeHandle().resolveName(env_ns)),
+      lockstep_(lockstep),
+      timeout_(timeout),
+      stop_(stop) {
   nh_.setCallbackQueue(&queue_);
   // Anyone can publish on these topics: a message whose lengths exceed its bytes is dropped
   // unread (roscpp would allocate what it claims), counted and logged.
@@ -157,8 +160,7 @@ const StepResult& RosVecEnv::stepWait() {
     // connected (our subscriber count may come from another node, e.g. rostopic echo): resend
     // them when no answer came within kResendAfter. A duplicate that arrives after the env
     // stepped is rejected by it as stale, so no step is ever applied twice.
-    const std::string what = "EnvStep " + std::to_string(expected) + " from " + env_ns_ +
-                             " (a rejected WheelTargets? see /diagnostics)";
+    const std::string what = "EnvStep " + std::to_string(expected) + " from " + env_ns_;
     const auto deadline =
         std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
     for (;;) {
@@ -167,7 +169,13 @@ const StepResult& RosVecEnv::stepWait() {
       if (waitUntil([this] { return newest_ != nullptr; }, std::min(left, kResendAfter), what)) {
         break;
       }
-      if (left <= kResendAfter) throw Error("no " + what + " within " + seconds(timeout_));
+      if (left <= kResendAfter) {
+        // A node that died leaves no publisher behind; a live one rejected the targets.
+        throw Error("no " + what + " within " + seconds(timeout_) +
+                    (step_sub_.getNumPublishers() == 0
+                         ? ": the node no longer publishes " + step_sub_.getTopic() + " (dead?)"
+                         : ": were the targets rejected? see its /diagnostics"));
+      }
       ROS_WARN_THROTTLE(5.0,
                         "no EnvStep %llu after %.1f s: sending the targets for step %llu again",
                         static_cast<unsigned long long>(expected), kResendAfter,

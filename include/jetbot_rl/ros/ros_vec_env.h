@@ -52,7 +52,7 @@ class RosVecEnv : public VecEnv {
   void setObserver(std::function<void(const EnvStep&)> observer) {
     observer_ = std::move(observer);
   }
-  /// The node's namespace, as given.
+  /// The node's name, resolved (e.g. /jetbot_env).
   const std::string& name() const { return env_ns_; }
   /// Messages refused unread so far (array or string lengths exceeding their bytes).
   std::uint64_t refusedMessages() const { return refused_; }
