@@ -12,6 +12,7 @@ add_library(jetbot_rl_ppo
   src/ppo/iteration_stats.cpp
   src/ppo/obs_normalizer.cpp
   src/ppo/policy.cpp
+  src/ppo/policy_export.cpp
   src/ppo/ppo.cpp
   src/ppo/ppo_config.cpp
   src/ppo/ppo_losses.cpp

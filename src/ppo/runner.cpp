@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/progress_csv.h"
 
 namespace jetbot_rl {
@@ -89,6 +90,19 @@ void OnPolicyRunner::save(const std::string& path, double elapsed_s, double best
   meta.config = config_;
   meta.elapsed_s = elapsed_s;
   saveCheckpoint(path, *ppo_, meta);
+}
+
+void OnPolicyRunner::exportBest(const std::string& best, const std::string& path,
+                                const TrainingLogger& logger) const {
+  if (!std::filesystem::is_regular_file(best)) return;
+  try {
+    Policy policy(best);
+    policy.setActionLimits(env_.spec().action_low, env_.spec().action_high);
+    policy.exportTorchScript(path, env_.spec());
+    logger.log("exported the best policy as TorchScript: " + path);
+  } catch (const Error& e) {
+    logger.log(std::string("could not export the policy: ") + e.what());
+  }
 }
 
 TrainingSummary OnPolicyRunner::learn() {
@@ -198,6 +212,7 @@ TrainingSummary OnPolicyRunner::learn() {
   summary.mean_env_steps_per_s =
       session_s > 0 ? (iteration_ - first_iteration) * steps_per_iteration / session_s : 0.0;
   std::ofstream(run_dir / "summary.yaml") << describeSummary(summary) << "\n";
+  exportBest(best, (run_dir / "exported" / "policy.pt").string(), logger);
   return summary;
 }
 

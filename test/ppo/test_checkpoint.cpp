@@ -1,7 +1,10 @@
 // Checkpoint round trips: same outputs after reload; normaliser, optimiser and metadata restored.
 #include <gtest/gtest.h>
+#include <torch/script.h>
 #include <torch/torch.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -179,6 +182,52 @@ TEST_F(CheckpointTest, PolicyActsWithTheScaledClippedMean) {
   }
   EXPECT_THROW(policy.setActionLimits({-1.0f}, {1.0f}), ConfigError);
   EXPECT_THROW(policy.act({1.0f}, 2, out), InputError);
+}
+
+TEST_F(CheckpointTest, TheExportedTorchScriptPolicyActsAsTheCheckpoint) {
+  Policy policy(path);
+  policy.setActionLimits({-20.0f, -10.0f}, {20.0f, 30.0f});
+  BatchSpec spec = testSpec();
+  spec.observation_names = {"a", "b", "c"};
+  const std::string exported = tempPath("exported/policy.pt");
+  policy.exportTorchScript(exported, spec);
+
+  torch::manual_seed(4);
+  const torch::Tensor obs = 4.0 * torch::randn({16, kObs});
+  const std::vector<float> flat(obs.data_ptr<float>(), obs.data_ptr<float>() + obs.numel());
+  std::vector<float> expected;
+  policy.act(flat, 16, expected);
+  torch::jit::Module module = torch::jit::load(exported);
+  const torch::Tensor out = module.forward({obs}).toTensor().contiguous();
+  ASSERT_EQ(out.numel(), 32);
+  for (int i = 0; i < 32; ++i) EXPECT_NEAR(out.data_ptr<float>()[i], expected[i], 1e-6) << i;
+  // Some actions are clipped at the limits and some are not: both paths are compared.
+  const auto [lo, hi] = std::minmax_element(expected.begin(), expected.end());
+  EXPECT_LT(*lo, 0.0f);
+  EXPECT_GT(*hi, 0.0f);
+
+  // PyTorch loads it without this package and computes the same actions; the metadata travels.
+  const std::string script = tempPath("check_export.py");
+  std::ofstream(script) << "import torch\n"
+                           "extra = {'meta.yaml': ''}\n"
+                           "m = torch.jit.load('"
+                        << exported
+                        << "', _extra_files=extra)\n"
+                           "obs = torch.tensor([[0.5, -1.0, 2.0]])\n"
+                           "print(' '.join('%.6f' % v for v in m(obs)[0].tolist()))\n"
+                           "print(extra['meta.yaml'].decode().splitlines()[1])\n";
+  const std::string out_file = tempPath("check_export.out");
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + script + " > " + out_file).c_str()), 0);
+  std::ifstream result(out_file);
+  double left = 0, right = 0;
+  std::string meta_line;
+  result >> left >> right;
+  std::getline(result >> std::ws, meta_line);
+  std::vector<float> one;
+  policy.act({0.5f, -1.0f, 2.0f}, 1, one);
+  EXPECT_NEAR(left, one[0], 1e-5);
+  EXPECT_NEAR(right, one[1], 1e-5);
+  EXPECT_EQ(meta_line, "task: ");
 }
 
 TEST_F(CheckpointTest, ErrorsNameTheFile) {

@@ -22,6 +22,11 @@ class ActionScaler {
   /// The same, flattened row-major into `out` (B x A floats, WheelTargets order).
   void toEnv(const torch::Tensor& actions, std::vector<float>& out) const;
 
+  /// Middle and half width of each dimension's [low, high] (float tensors [A]).
+  const torch::Tensor& center() const { return center_; }
+  const torch::Tensor& halfRange() const { return half_range_; }
+  bool tanh() const { return tanh_; }
+
  private:
   torch::Tensor center_, half_range_;
   bool tanh_;

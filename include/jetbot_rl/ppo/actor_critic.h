@@ -48,6 +48,8 @@ class ActorCriticImpl : public torch::nn::Module {
   /// Current policy std per action dimension [normalised action units].
   torch::Tensor actionStd() const;
 
+  /// The policy MLP (Linear and activation layers): obs -> action mean.
+  const torch::nn::Sequential& actor() const { return actor_; }
   int obsDim() const { return obs_dim_; }
   int actionDim() const { return action_dim_; }
 

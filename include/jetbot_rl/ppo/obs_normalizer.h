@@ -24,6 +24,8 @@ class ObsNormalizerImpl : public torch::nn::Module {
   /// Observations folded in so far.
   double count() const;
   bool enabled() const { return enabled_; }
+  double epsilon() const { return epsilon_; }
+  double clip() const { return clip_; }
 
  private:
   bool enabled_;

@@ -8,6 +8,7 @@
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
+#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -23,6 +24,13 @@ class Policy {
   /// Deterministic actions for `num_envs` observations (num_envs x obs_dim, row-major) into
   /// `out` (num_envs x action_dim, env units, e.g. rad/s).
   void act(const std::vector<float>& observations, int num_envs, std::vector<float>& out);
+
+  /// Writes the policy as a TorchScript module (the observation normaliser, the mean action and
+  /// the squashing and scaling to the action limits inside) that libtorch or PyTorch load without
+  /// this package: forward(obs [B, obs_dim] float32) -> actions [B, action_dim] (env units).
+  /// `spec` gives the names and control step, stored in the file's extra file "meta.yaml".
+  /// Needs setActionLimits(); throws Error naming the file when it cannot be written.
+  void exportTorchScript(const std::string& path, const BatchSpec& spec) const;
 
   const CheckpointMeta& meta() const { return meta_; }
   int obsDim() const { return meta_.obs_dim; }

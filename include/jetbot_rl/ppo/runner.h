@@ -73,6 +73,9 @@ class OnPolicyRunner {
   std::int64_t iteration() const { return iteration_; }
 
  private:
+  /// Writes checkpoint `best` as a TorchScript policy at `path` (logged; an error is logged too).
+  void exportBest(const std::string& best, const std::string& path,
+                  const TrainingLogger& logger) const;
   /// Saves the state after the last completed update; `elapsed_s` = training time so far.
   void save(const std::string& path, double elapsed_s, double best_reward);
 
