@@ -36,6 +36,16 @@ add_executable(jetbot_rl_bench src/nodes/bench_main.cpp)
 target_compile_definitions(jetbot_rl_bench PRIVATE JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
 target_link_libraries(jetbot_rl_bench jetbot_rl_core)
 
+# MuJoCo counterpart of jetbot_rl_bench, for the comparison of scripts/bench16.sh (README,
+# "Performance"); off by default: it needs libmujoco-dev, which the package does not depend on.
+option(JETBOT_RL_MUJOCO_BENCH "Build mujoco_bench (needs libmujoco-dev)" OFF)
+if(JETBOT_RL_MUJOCO_BENCH)
+  find_package(mujoco REQUIRED)
+  add_executable(mujoco_bench bench/mujoco_bench.cpp)
+  target_link_libraries(mujoco_bench mujoco::mujoco Threads::Threads)
+  install(TARGETS mujoco_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endif()
+
 add_executable(jetbot_rl_demo src/nodes/demo_main.cpp)
 target_compile_definitions(jetbot_rl_demo PRIVATE JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
 target_link_libraries(jetbot_rl_demo jetbot_rl_core)

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -117,10 +118,18 @@ class BatchedEnv {
   BodyTwist rootTwist(int env) const;
 
  private:
+  /// The envs of a worker's block not yet taken in the current step: [front, back) packed into
+  /// one word (front in the low half), so that the owner (front) and helpers (back) claim envs
+  /// with one compare-and-swap. One cache line each.
+  struct alignas(64) Block {
+    std::atomic<std::uint64_t> range{0};
+  };
+
   void checkEnv(int env) const;
-  void stepRange(int begin, int end);
+  void stepWorker(int worker);
+  /// Steps env `env` with the stepping thread's scratch.
+  void stepEnv(int env, WorkerContext& context);
   void resetEnv(int env);
-  int workerOf(int env) const;
   int firstEnvOf(int worker) const;
 
   RobotModelConstPtr robot_;
@@ -130,6 +139,7 @@ class BatchedEnv {
   std::unique_ptr<PhysicsModel> physics_;
   std::unique_ptr<ThreadPool> pool_;
   std::vector<std::unique_ptr<WorkerContext>> contexts_;
+  std::unique_ptr<Block[]> blocks_;  // per worker
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<Rng> rngs_;
   std::vector<float> action_low_, action_high_;

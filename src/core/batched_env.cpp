@@ -11,6 +11,29 @@
 
 namespace jetbot_rl {
 
+namespace {
+
+constexpr std::uint64_t pack(int front, int back) {
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(back)) << 32 |
+         static_cast<std::uint32_t>(front);
+}
+
+/// Takes the first (or, from the back, the last) env of a block's unstepped range; -1 when empty.
+int claim(std::atomic<std::uint64_t>& range, bool from_back) {
+  std::uint64_t r = range.load(std::memory_order_relaxed);
+  for (;;) {
+    const int front = static_cast<int>(r & 0xffffffffu);
+    const int back = static_cast<int>(r >> 32);
+    if (front >= back) return -1;
+    const std::uint64_t rest = from_back ? pack(front, back - 1) : pack(front + 1, back);
+    if (range.compare_exchange_weak(r, rest, std::memory_order_relaxed)) {
+      return from_back ? back - 1 : front;
+    }
+  }
+}
+
+}  // namespace
+
 BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
                        std::unique_ptr<Task> task)
     : robot_(std::move(robot)), config_(config), task_(std::move(task)) {
@@ -23,11 +46,17 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   const int n = config_.num_envs;
   const int workers = std::min(config_.resolvedThreads(), n);
   pool_ = std::make_unique<ThreadPool>(workers);
-  for (int w = 0; w < workers; ++w) contexts_.push_back(std::make_unique<WorkerContext>());
-  worlds_.reserve(n);
-  for (int e = 0; e < n; ++e) {
-    worlds_.push_back(std::make_unique<EnvWorld>(*physics_, *contexts_[workerOf(e)]));
-  }
+  blocks_ = std::make_unique<Block[]>(workers);
+  contexts_.resize(workers);
+  worlds_.resize(n);
+  // Each thread builds its scratch and its block's worlds, in parallel, so that their memory comes
+  // from its own allocator arena and is first touched by the thread that steps it.
+  pool_->run(workers, [this](int w) {
+    contexts_[w] = std::make_unique<WorkerContext>();
+    for (int e = firstEnvOf(w); e < firstEnvOf(w + 1); ++e) {
+      worlds_[e] = std::make_unique<EnvWorld>(*physics_, *contexts_[w]);
+    }
+  });
   for (const auto& dof : physics_->dofs()) {
     action_low_.push_back(static_cast<float>(-dof.velocity_limit));
     action_high_.push_back(static_cast<float>(dof.velocity_limit));
@@ -61,16 +90,9 @@ BatchedEnv::~BatchedEnv() = default;
 
 int BatchedEnv::numThreads() const { return pool_->size(); }
 
-// Envs are split into contiguous blocks, one per worker; a world uses its worker's scratch only.
+// Envs are split into contiguous blocks, one per worker.
 int BatchedEnv::firstEnvOf(int worker) const {
   return static_cast<int>(static_cast<long long>(worker) * config_.num_envs / pool_->size());
-}
-
-int BatchedEnv::workerOf(int env) const {
-  int w = static_cast<int>(static_cast<long long>(env) * pool_->size() / config_.num_envs);
-  while (firstEnvOf(w + 1) <= env) ++w;
-  while (firstEnvOf(w) > env) --w;
-  return w;
 }
 
 const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
@@ -95,7 +117,10 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
     targets_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
   }
 
-  pool_->run(pool_->size(), [this](int w) { stepRange(firstEnvOf(w), firstEnvOf(w + 1)); });
+  for (int w = 0; w < pool_->size(); ++w) {
+    blocks_[w].range.store(pack(firstEnvOf(w), firstEnvOf(w + 1)), std::memory_order_relaxed);
+  }
+  pool_->run(pool_->size(), [this](int w) { stepWorker(w); });
   ++result_.step;
 
   result_.reset_env_ids.clear();
@@ -114,36 +139,49 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   return result_;
 }
 
-void BatchedEnv::stepRange(int begin, int end) {
+// Worker w steps its own block front to back, then takes envs from the back of the others'
+// blocks: a thread that was held up (a descheduled core, slower envs) no longer holds the whole
+// step up, and a helper never works next to the block's owner. An env's result does not depend
+// on the thread that steps it: the thread lends it its solver, which keeps nothing between worlds.
+void BatchedEnv::stepWorker(int w) {
+  WorkerContext& context = *contexts_[w];
+  for (int e; (e = claim(blocks_[w].range, false)) >= 0;) stepEnv(e, context);
+  const int workers = pool_->size();
+  for (int k = 1; k < workers; ++k) {
+    auto& range = blocks_[(w + k) % workers].range;
+    for (int e; (e = claim(range, true)) >= 0;) stepEnv(e, context);
+  }
+}
+
+void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   const int a = actionDim();
   const int last_step = config_.maxEpisodeLength() - 1;
-  for (int e = begin; e < end; ++e) {
-    EnvWorld& world = *worlds_[e];
-    world.setTargets(&targets_[static_cast<std::size_t>(e) * a]);
-    for (int k = 0; k < config_.decimation; ++k) world.step(config_.physics_dt);
-    ++result_.episode_steps[e];
+  EnvWorld& world = *worlds_[e];
+  world.useContext(context);
+  world.setTargets(&targets_[static_cast<std::size_t>(e) * a]);
+  for (int k = 0; k < config_.decimation; ++k) world.step(config_.physics_dt);
+  ++result_.episode_steps[e];
 
-    // Isaac Lab order: dones, then rewards, then reset, then observations.
-    RootState state = world.rootState();
-    diverged_[e] = world.divergence();
-    const bool diverged = !diverged_[e].empty();
-    if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
-    const bool terminated = !diverged && task_->terminated(e, state);
-    const bool truncated =
-        diverged || result_.episode_steps[e] >= static_cast<std::uint32_t>(last_step);
-    result_.terminated[e] = terminated;
-    result_.truncated[e] = truncated;
-    result_.rewards[e] = diverged ? 0.0f : task_->reward(e, state);
-    ended_[e] = terminated || truncated;
-    if (ended_[e]) {
-      float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
-      task_->observe(e, state, final_obs);
-      if (diverged) std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
-      resetEnv(e);
-      state = world.rootState();
-    }
-    task_->observe(e, state, &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+  // Isaac Lab order: dones, then rewards, then reset, then observations.
+  RootState state = world.rootState();
+  diverged_[e] = world.divergence();
+  const bool diverged = !diverged_[e].empty();
+  if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
+  const bool terminated = !diverged && task_->terminated(e, state);
+  const bool truncated =
+      diverged || result_.episode_steps[e] >= static_cast<std::uint32_t>(last_step);
+  result_.terminated[e] = terminated;
+  result_.truncated[e] = truncated;
+  result_.rewards[e] = diverged ? 0.0f : task_->reward(e, state);
+  ended_[e] = terminated || truncated;
+  if (ended_[e]) {
+    float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
+    task_->observe(e, state, final_obs);
+    if (diverged) std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
+    resetEnv(e);
+    state = world.rootState();
   }
+  task_->observe(e, state, &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
 }
 
 void BatchedEnv::resetEnv(int env) {

@@ -23,10 +23,11 @@ btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.
 
 EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
     : model_(model),
-      dispatcher_(new LeanDispatcher(&context.collision_configuration)),
+      context_(&context),
+      dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
       broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1)),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
-                                          &context.collision_configuration)),
+                                          model.collisionConfiguration())),
       ground_(new btCollisionObject()),
       targets_(model.dofs().size(), 0.0f) {
   world_->setGravity(btVector3(0, 0, kGravity));
@@ -120,6 +121,12 @@ void EnvWorld::reset() {
     }
   }
   std::fill(targets_.begin(), targets_.end(), 0.0f);
+}
+
+void EnvWorld::useContext(WorkerContext& context) {
+  if (&context == context_) return;
+  world_->setMultiBodyConstraintSolver(&context.solver);
+  context_ = &context;
 }
 
 void EnvWorld::setTargets(const float* targets) {

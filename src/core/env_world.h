@@ -18,10 +18,10 @@
 
 namespace jetbot_rl {
 
-/// Scratch shared by the worlds one thread steps: Bullet's pools and solver are not thread-safe,
-/// and carry no state from one world's step to the next.
-struct WorkerContext {
-  btDefaultCollisionConfiguration collision_configuration;
+/// Scratch of one stepping thread, lent to whichever world it steps (EnvWorld::useContext): the
+/// solver is not thread-safe and carries no state from one world's step to the next. Aligned so
+/// that two threads' solvers, written on every iteration, never share a cache line.
+struct alignas(64) WorkerContext {
   btMultiBodyConstraintSolver solver;
 };
 
@@ -40,6 +40,8 @@ class EnvWorld {
 
   /// Puts the robot at its rest pose with zero velocity and forgets contacts.
   void reset();
+  /// Makes the next step()s use `context`'s solver (the stepping thread's own).
+  void useContext(WorkerContext& context);
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
   void setTargets(const float* targets);
   /// Applies the velocity drive and advances physics by dt [s].
@@ -74,6 +76,7 @@ class EnvWorld {
   void syncColliders();
 
   const PhysicsModel& model_;
+  WorkerContext* context_;
   std::unique_ptr<LeanDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btMultiBodyDynamicsWorld> world_;

@@ -1,7 +1,5 @@
 #include "lean_dispatcher.h"
 
-#include <LinearMath/btPoolAllocator.h>
-
 #include <new>
 
 namespace jetbot_rl {
@@ -68,9 +66,7 @@ btPersistentManifold* LeanDispatcher::getNewManifold(const btCollisionObject* bo
             body1->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold));
   const btScalar processing =
       btMin(body0->getContactProcessingThreshold(), body1->getContactProcessingThreshold());
-  btPoolAllocator* pool = configuration_->getPersistentManifoldPool();
-  void* memory = pool->getFreeCount() ? pool->allocate(sizeof(btPersistentManifold))
-                                      : btAlignedAlloc(sizeof(btPersistentManifold), 16);
+  void* memory = btAlignedAlloc(sizeof(btPersistentManifold), 16);
   auto* manifold = new (memory) btPersistentManifold(body0, body1, 0, breaking, processing);
   manifold->m_index1a = manifolds_.size();
   manifolds_.push_back(manifold);
@@ -84,12 +80,7 @@ void LeanDispatcher::releaseManifold(btPersistentManifold* manifold) {
   manifolds_[index]->m_index1a = index;
   manifolds_.pop_back();
   manifold->~btPersistentManifold();
-  btPoolAllocator* pool = configuration_->getPersistentManifoldPool();
-  if (pool->validPtr(manifold)) {
-    pool->freeMemory(manifold);
-  } else {
-    btAlignedFree(manifold);
-  }
+  btAlignedFree(manifold);
 }
 
 bool LeanDispatcher::needsCollision(const btCollisionObject* body0,
@@ -111,18 +102,9 @@ void LeanDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs,
 }
 
 void* LeanDispatcher::allocateCollisionAlgorithm(int size) {
-  btPoolAllocator* pool = configuration_->getCollisionAlgorithmPool();
-  return pool->getFreeCount() ? pool->allocate(size)
-                              : btAlignedAlloc(static_cast<size_t>(size), 16);
+  return btAlignedAlloc(static_cast<size_t>(size), 16);
 }
 
-void LeanDispatcher::freeCollisionAlgorithm(void* ptr) {
-  btPoolAllocator* pool = configuration_->getCollisionAlgorithmPool();
-  if (pool->validPtr(ptr)) {
-    pool->freeMemory(ptr);
-  } else {
-    btAlignedFree(ptr);
-  }
-}
+void LeanDispatcher::freeCollisionAlgorithm(void* ptr) { btAlignedFree(ptr); }
 
 }  // namespace jetbot_rl

@@ -8,9 +8,11 @@ namespace jetbot_rl {
  * A btDispatcher for one small world that keeps only that world's contact manifolds.
  *
  * btCollisionDispatcher carries two 36 x 36 tables of algorithm factories (21 KiB), which would be
- * most of an env's memory; this one asks the (per-thread, shared) collision configuration for the
- * factory instead, and otherwise behaves like btCollisionDispatcher for discrete collision
- * detection: same manifold thresholds, pools and near-callback.
+ * most of an env's memory; this one asks the collision configuration (shared by every env, only
+ * read) for the factory instead, and otherwise behaves like btCollisionDispatcher for discrete
+ * collision detection: same manifold thresholds and near-callback. Manifolds and algorithms are
+ * the env's own allocations, not taken from the configuration's pools, so that any thread may
+ * step the env and its contacts lie with its other data.
  */
 class LeanDispatcher : public btDispatcher {
  public:

@@ -18,6 +18,14 @@ btTransform toBullet(const Eigen::Isometry3d& t) {
 
 btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 
+/// The factories only: LeanDispatcher takes no memory from the configuration's pools.
+btDefaultCollisionConstructionInfo tinyPools() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = 1;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = 1;
+  return info;
+}
+
 std::string jointError(const std::string& joint, const std::string& what) {
   return "joint '" + joint + "': " + what;
 }
@@ -27,6 +35,7 @@ std::string jointError(const std::string& joint, const std::string& what) {
 PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
     : robot_(std::move(robot)),
       ground_(new btStaticPlaneShape(btVector3(0, 0, 1), 0)),
+      collision_configuration_(new btDefaultCollisionConfiguration(tinyPools())),
       drive_gain_(config.drive_gain),
       solver_iterations_(config.solver_iterations) {
   const auto& models = robot_->bodies();

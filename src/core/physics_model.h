@@ -65,6 +65,11 @@ class PhysicsModel {
   const std::vector<Joint>& joints() const { return joints_; }
   const std::vector<Dof>& dofs() const { return dofs_; }
   const btCollisionShape* groundShape() const { return ground_.get(); }
+  /// Bullet's table of collision algorithm factories, shared by every env and only read (no
+  /// pools are used: each env allocates its own manifolds and algorithms).
+  btCollisionConfiguration* collisionConfiguration() const {
+    return collision_configuration_.get();
+  }
   double driveGain() const { return drive_gain_; }
   int solverIterations() const { return solver_iterations_; }
 
@@ -74,6 +79,7 @@ class PhysicsModel {
   RobotModelConstPtr robot_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::unique_ptr<btCollisionShape> ground_;
+  std::unique_ptr<btDefaultCollisionConfiguration> collision_configuration_;
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;
   std::vector<Dof> dofs_;
