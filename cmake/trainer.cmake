@@ -49,6 +49,7 @@ endif()
 # ---- ROS client of jetbot_env and the two nodes ----
 add_library(jetbot_rl_ppo_ros
   src/ppo/ros/policy_node.cpp
+  src/ppo/ros/robot_mode.cpp
   src/ppo/ros/stop_signal.cpp
   src/ppo/ros/trainer_node.cpp
   src/ppo/ros/trainer_params.cpp

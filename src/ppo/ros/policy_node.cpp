@@ -15,6 +15,7 @@
 #include "jetbot_rl/multi_vec_env.h"
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ros/robot_mode.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
 #include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/param_reader.h"
@@ -34,6 +35,7 @@ struct PolicyParams {
   int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
   int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
   double step_timeout = 10.0;         ///< [s, wall]
+  bool robot = false;  ///< Robot mode: odometry in, cmd_vel out (RobotModeParams), no env node.
 };
 
 }  // namespace
@@ -47,6 +49,7 @@ IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
   v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
   v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));
   v("step_timeout", c.step_timeout, positive("s, wall"));
+  v("robot", c.robot, AnyValue{});
 }
 
 namespace ppo {
@@ -86,6 +89,11 @@ int runPolicyNode() {
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
+  if (params.robot) {
+    const int code = runRobotMode(pnh, *policy, stop);
+    ros::shutdown();
+    return code;
+  }
 
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;

@@ -1,0 +1,181 @@
+#include "jetbot_rl/ppo/ros/robot_mode.h"
+
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/Vector3.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/ros/param_reader.h"
+#include "jetbot_rl/ros/publication_flush.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+constexpr double kStockWheelRadius = 0.0603 / 2;  // [m] dusty-nv/jetbot_ros motors.py
+constexpr double kStockWheelSeparation = 0.1016;  // [m]
+
+/// Wheel targets -> Twist kinematics: parameters, else robot_description, else the stock Jetbot.
+DiffDrive makeKinematics(const RobotModeParams& p) {
+  std::string urdf;
+  if ((p.wheel_radius <= 0.0 || p.wheel_separation <= 0.0) &&
+      ros::NodeHandle().getParam("robot_description", urdf)) {
+    const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
+    return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf), p.dof_names, limits,
+                                p.wheel_radius, p.wheel_separation);
+  }
+  const double r = p.wheel_radius > 0.0 ? p.wheel_radius : kStockWheelRadius;
+  const double s = p.wheel_separation > 0.0 ? p.wheel_separation : kStockWheelSeparation;
+  return DiffDrive(r, s, {p.dof_names.at(0), 0, 1.0, p.wheel_velocity_limit},
+                   {p.dof_names.at(1), 1, 1.0, p.wheel_velocity_limit});
+}
+
+bool finite(const nav_msgs::Odometry& m) {
+  const auto& p = m.pose.pose.position;
+  const auto& q = m.pose.pose.orientation;
+  const auto& v = m.twist.twist.linear;
+  const auto& w = m.twist.twist.angular;
+  for (double x : {p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
+    if (!std::isfinite(x)) return false;
+  }
+  return q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-12;
+}
+
+/// The robot mode's state: the newest odometry and command, the task that observes them.
+class RobotDriver {
+ public:
+  RobotDriver(ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p)
+      : params_(p), policy_(policy), kinematics_(makeKinematics(p)), task_(makeTask(p.task)) {
+    task_->resize(1);
+    if (static_cast<int>(task_->observationNames().size()) != policy_.obsDim()) {
+      throw ConfigError("task '" + task_->name() + "' observes " +
+                        std::to_string(task_->observationNames().size()) +
+                        " values; the policy takes " + std::to_string(policy_.obsDim()));
+    }
+    policy_.setActionLimits(std::vector<float>(2, -static_cast<float>(p.wheel_velocity_limit)),
+                            std::vector<float>(2, static_cast<float>(p.wheel_velocity_limit)));
+    ros::NodeHandle nh;
+    cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.cmd_vel_topic, 10);
+    odom_sub_ = nh.subscribe(p.odom_topic, 10, &RobotDriver::onOdom, this,
+                             ros::TransportHints().tcpNoDelay());
+    if (task_->commandDim() == 2) {
+      command_sub_ = (p.command_topic.rfind('~', 0) == 0 ? pnh : nh)
+                         .subscribe(p.command_topic.rfind('~', 0) == 0 ? p.command_topic.substr(1)
+                                                                       : p.command_topic,
+                                    10, &RobotDriver::onCommand, this);
+    }
+    timer_ =
+        nh.createWallTimer(ros::WallDuration(1.0 / p.control_rate), &RobotDriver::onTick, this);
+    ROS_INFO("robot mode: %s -> policy (task %s) -> %s at %.1f Hz; %s",
+             odom_sub_.getTopic().c_str(), task_->name().c_str(), cmd_vel_pub_.getTopic().c_str(),
+             p.control_rate, kinematics_.describe().c_str());
+  }
+
+  /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
+  void stop() {
+    timer_.stop();
+    cmd_vel_pub_.publish(geometry_msgs::Twist());
+    flushPublications(0.5);
+  }
+
+ private:
+  void onOdom(const nav_msgs::Odometry::ConstPtr& msg) {
+    if (!finite(*msg)) {
+      ++dropped_;
+      ROS_WARN_THROTTLE(1.0, "dropped odometry with non-finite values (%llu so far)",
+                        static_cast<unsigned long long>(dropped_));
+      return;
+    }
+    odom_ = msg;
+    odom_time_ = std::chrono::steady_clock::now();
+  }
+
+  void onCommand(const geometry_msgs::Vector3::ConstPtr& msg) {
+    try {
+      task_->setCommand(0, {msg->x, msg->y}, /*hold=*/true);
+    } catch (const InputError& e) {
+      ROS_WARN_THROTTLE(1.0, "command ignored: %s", e.what());
+    }
+  }
+
+  void onTick(const ros::WallTimerEvent&) {
+    geometry_msgs::Twist twist;  // zero: stop
+    const auto age = std::chrono::steady_clock::now() - odom_time_;
+    if (!odom_ || age > std::chrono::duration<double>(params_.odom_timeout)) {
+      ROS_WARN_THROTTLE(2.0, "no odometry on %s for over %.2f s: stopping the robot",
+                        odom_sub_.getTopic().c_str(), params_.odom_timeout);
+    } else {
+      // The task's observation of the odometry: pose in the odom frame, twist in the child frame
+      // (rotated into the odom frame, where RootState keeps its velocities).
+      const auto& pose = odom_->pose.pose;
+      const auto& v = odom_->twist.twist;
+      RootState state;
+      state.position = {pose.position.x, pose.position.y, pose.position.z};
+      state.orientation = Eigen::Quaterniond(pose.orientation.w, pose.orientation.x,
+                                             pose.orientation.y, pose.orientation.z)
+                              .normalized();
+      state.com_linear_velocity =
+          state.orientation * Eigen::Vector3d(v.linear.x, v.linear.y, v.linear.z);
+      state.angular_velocity =
+          state.orientation * Eigen::Vector3d(v.angular.x, v.angular.y, v.angular.z);
+      obs_.resize(static_cast<std::size_t>(policy_.obsDim()));
+      task_->observe(0, state, obs_.data());
+      policy_.act(obs_, 1, actions_);
+      const PlanarTwist body = kinematics_.bodyTwist({actions_[0], actions_[1]});
+      twist.linear.x = body.linear;
+      twist.angular.z = body.angular;
+    }
+    cmd_vel_pub_.publish(twist);
+  }
+
+  RobotModeParams params_;
+  Policy& policy_;
+  DiffDrive kinematics_;
+  std::unique_ptr<Task> task_;
+  ros::Publisher cmd_vel_pub_;
+  ros::Subscriber odom_sub_, command_sub_;
+  ros::WallTimer timer_;
+  nav_msgs::Odometry::ConstPtr odom_;
+  std::chrono::steady_clock::time_point odom_time_;
+  std::uint64_t dropped_ = 0;
+  std::vector<float> obs_, actions_;
+};
+
+}  // namespace
+
+int runRobotMode(ros::NodeHandle& pnh, Policy& policy, const std::atomic<bool>& stop) {
+  RobotModeParams params;
+  try {
+    readFields(pnh, params);
+    validateFields(params);
+    if (params.dof_names.size() != 2) {
+      throwInvalid("dof_names", params.dof_names.size(), "must name the two wheel joints");
+    }
+  } catch (const Error& e) {
+    ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
+    return 1;
+  }
+  ROS_INFO_STREAM("robot mode parameters of " << pnh.getNamespace() << ":\n"
+                                              << describeFields(params));
+  try {
+    RobotDriver driver(pnh, policy, params);
+    ros::AsyncSpinner spinner(1);
+    spinner.start();
+    // The signal handler only sets `stop`, which nothing can wait on: checked every 50 ms.
+    while (!stop.load() && ros::ok()) ros::WallDuration(0.05).sleep();
+    spinner.stop();
+    driver.stop();
+  } catch (const Error& e) {
+    ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace ppo
+}  // namespace jetbot_rl
