@@ -111,9 +111,8 @@ class TestVecEnv(unittest.TestCase):
     def test_same_step_auto_reset_at_time_out(self):
         env = self.env
         env.reset(seed=0)
-        # env 1 drives backwards: the final observations must land in the right rows
-        actions = forward()
-        actions[1] = -DRIVE
+        # each env at its own speed: the final observations must land in the right rows
+        actions = forward() * np.array([[-1.0], [1.0], [0.5]], dtype=np.float32)
         for t in range(1, 299):
             obs, rewards, terminations, truncations, infos = env.step(actions)
             self.assertNotIn('final_obs', infos, 'step %d' % t)
@@ -126,9 +125,10 @@ class TestVecEnv(unittest.TestCase):
         np.testing.assert_array_equal(infos['_final_obs'], [True] * NUM_ENVS)
         final = infos['final_obs']
         self.assertEqual((final.shape, final.dtype), ((NUM_ENVS, 3), np.float32))
-        # the final observation: still driving at 0.3 m/s (env 1 backwards), and the reward of
-        # the last step is its norm; the returned observation is the new episode's (at rest)
-        np.testing.assert_allclose(final[:, 0], [0.3, -0.3, 0.3], atol=0.01)
+        # the final observation: still driving (env 0 backwards, env 2 at half speed), and the
+        # reward of the last step is its norm; the returned observation is the new episode's
+        # (at rest)
+        np.testing.assert_allclose(final[:, 0], [-0.3, 0.3, 0.15], atol=0.01)
         np.testing.assert_allclose(final, last_obs, atol=1e-3)
         np.testing.assert_allclose(rewards, np.linalg.norm(final, axis=1), rtol=1e-5)
         np.testing.assert_allclose(obs, np.zeros((NUM_ENVS, 3)), atol=1e-6)
@@ -151,8 +151,7 @@ class TestVecEnv(unittest.TestCase):
         obs = venv.reset()
         self.assertEqual((obs.shape, obs.dtype), ((NUM_ENVS, 3), np.float32))
         self.assertEqual(venv.reset_infos, [{}] * NUM_ENVS)
-        actions = forward()
-        actions[2] = -DRIVE
+        actions = forward() * np.array([[0.5], [1.0], [-1.0]], dtype=np.float32)
         for t in range(1, 299):
             obs, rewards, dones, infos = venv.step(actions)
             self.assertEqual(infos, [{'TimeLimit.truncated': False}] * NUM_ENVS, 'step %d' % t)
@@ -167,7 +166,7 @@ class TestVecEnv(unittest.TestCase):
             self.assertIs(info['TimeLimit.truncated'], True)
             terminal = info['terminal_observation']
             self.assertEqual((terminal.shape, terminal.dtype), ((3,), np.float32))
-            self.assertAlmostEqual(float(terminal[0]), -0.3 if i == 2 else 0.3, delta=0.01)
+            self.assertAlmostEqual(float(terminal[0]), [0.15, 0.3, -0.3][i], delta=0.01)
             self.assertAlmostEqual(float(rewards[i]), float(np.linalg.norm(terminal)), places=5)
         np.testing.assert_allclose(obs, np.zeros((NUM_ENVS, 3)), atol=1e-6)
         with self.assertRaises(RuntimeError):
