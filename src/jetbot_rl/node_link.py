@@ -144,13 +144,17 @@ class NodeLink(object):
         self._reset_srv = rospy.ServiceProxy(self.name + '/reset', Reset)
         self._step_srv = rospy.ServiceProxy(self.name + '/step', Step)
         self._command_srv = rospy.ServiceProxy(self.name + '/set_command', SetCommand)
-        self._wait(lambda: self._pub.get_num_connections() > 0, self.timeout,
-                   'subscription of the node to %s/wheel_targets' % self.name)
         try:
-            rospy.wait_for_service(self.name + '/reset', self.timeout)
-        except rospy.ROSException:
-            raise TimeoutError('%s: service %s/reset did not appear within %.1f s'
-                               % (self.name, self.name, self.timeout))
+            self._wait(lambda: self._pub.get_num_connections() > 0, self.timeout,
+                       'subscription of the node to %s/wheel_targets' % self.name)
+            try:
+                rospy.wait_for_service(self.name + '/reset', self.timeout)
+            except rospy.ROSException:
+                raise TimeoutError('%s: service %s/reset did not appear within %.1f s'
+                                   % (self.name, self.name, self.timeout))
+        except BaseException:
+            self.close()
+            raise
 
     # ---- set-up ----
 
