@@ -293,6 +293,11 @@ class NodeLink(object):
                     lambda i: '%s did not answer step %d within %.1f s (its ~step service '
                     'hangs)' % (self.name, self._step, self.timeout))[0]
             except (rospy.ServiceException, rospy.ROSException, OSError) as e:
+                if not sent:  # the EnvStep waiting for us is someone else's: never take it
+                    raise EnvRejectedError(
+                        self.name, 'it stepped to EnvStep %d before our targets for step %d went '
+                        'out (its ~step service: %s)' % (self._answer.step, self._step, e),
+                        'is another client stepping %s? reset() re-synchronises' % self.name)
                 unreachable = ' (its ~step service: %s)' % e
                 msg = self._take_answer(min(deadline, time.monotonic() + RESEND_AFTER))
                 continue
