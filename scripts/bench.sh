@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # Runs the core benchmark (jetbot_rl_bench) and the end-to-end lockstep benchmark
 # (jetbot_rl_ros_bench against a jetbot_env node) for N = 1, 100, 1024, 10000 and 1 and 2 threads,
-# and the memory per env at N = 10,000; prints a table. Needs a built workspace:
+# and the memory per env at N = 10,000; prints a table. Against the same node, right after the C++
+# client, python_bench.py measures the Python client (JetbotVecEnv): a second table. Needs a built
+# workspace:
 #   source ~/jetbot_rl_ws/devel/setup.bash && rosrun jetbot_rl bench.sh [N ...]
-# The env node runs as for training (no /clock, no tf). Uses its own ROS master on port 11399.
+# The env node runs as for training (no /clock, no tf). Uses its own ROS master on port
+# $JETBOT_RL_BENCH_PORT (default 11399).
 set -euo pipefail
 
 sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(1 100 1024 10000)
-export ROS_MASTER_URI=http://localhost:11399
+port=${JETBOT_RL_BENCH_PORT:-11399}
+export ROS_MASTER_URI=http://localhost:$port
 bench_dir=$(mktemp -d)
-roscore -p 11399 > "$bench_dir/roscore.log" 2>&1 &
+roscore -p "$port" > "$bench_dir/roscore.log" 2>&1 &
 roscore_pid=$!
 launch_pid=""
 cleanup() {
@@ -28,6 +32,7 @@ steps_for() {  # enough steps for about a second of work at each size
 field() { grep -o "$1=[0-9.]*" | tail -n 1 | cut -d= -f2; }
 
 rows=()
+py_rows=()
 for n in "${sizes[@]}"; do
   steps=$(steps_for "$n")
   for t in 1 2; do
@@ -36,6 +41,7 @@ for n in "${sizes[@]}"; do
       tf_envs:=0 output:=log > "$bench_dir/env.log" 2>&1 &
     launch_pid=$!
     out=$(rosrun jetbot_rl jetbot_rl_ros_bench --envs "$n" --steps "$steps")
+    py_out=$(rosrun jetbot_rl python_bench.py --envs "$n" --steps "$steps")
     kill -INT "$launch_pid"
     wait "$launch_pid" 2> /dev/null || true
     launch_pid=""
@@ -46,6 +52,11 @@ for n in "${sizes[@]}"; do
     rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
       "$core" "$e2e" "$same_run_core" "$(awk "BEGIN { print $e2e / $same_run_core }")" "$p50" "$p50_srv")")
     echo "${rows[-1]}"
+    py=$(echo "$py_out" | field env_steps_per_s)
+    py_p50=$(echo "$py_out" | grep '^python' | field p50)
+    py_rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
+      "$e2e" "$py" "$(awk "BEGIN { print $py / $e2e }")" "$p50" "$py_p50")")
+    echo "${py_rows[-1]}"
   done
 done
 
@@ -58,5 +69,9 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 echo "| N | threads | core env steps/s | end-to-end env steps/s | core, same run | e2e/core | topic round trip p50 [us] | ~step p50 [us] |"
 echo "|---|---|---|---|---|---|---|---|"
 printf '%s\n' "${rows[@]}"
+echo
+echo "| N | threads | C++ client env steps/s | Python client env steps/s | Python/C++ | C++ round trip p50 [us] | Python round trip p50 [us] |"
+echo "|---|---|---|---|---|---|---|"
+printf '%s\n' "${py_rows[@]}"
 echo
 echo "memory: $(awk "BEGIN { printf \"%.1f\", ($large - $small) / 9000 }") KiB per env (resident set growth from 1,000 to 10,000 envs)"

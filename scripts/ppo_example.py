@@ -1,0 +1,228 @@
+#!/usr/bin/python3
+"""PPO in one file (CleanRL's style) that teaches the Jetbot velocity task through JetbotVecEnv.
+
+Train against a running jetbot_env node in lockstep mode (100 envs), save, then play the policy:
+    roslaunch jetbot_rl jetbot_env.launch publish_clock:=false tf_envs:=0
+    rosrun jetbot_rl ppo_example.py --save /tmp/jetbot_ppo.pt
+    rosrun jetbot_rl ppo_example.py --play /tmp/jetbot_ppo.pt
+
+The choices of jetbot_ppo_trainer (config/ppo.yaml, rsl_rl's PPO): Gaussian policy with a learned
+state-independent std, samples clipped to [-1, 1] and scaled onto the action bounds from ~spec
+(+-20 rad/s); separate [32, 32] ELU actor and critic; running observation normalisation;
+16 steps per env per iteration, 5 epochs of 4 minibatches, adaptive-KL learning rate; time-outs
+bootstrapped with V(final observation); each env's first episode cut at a staggered step.
+"""
+import argparse
+import time
+
+import numpy as np
+import torch
+import torch.nn as nn
+
+from jetbot_rl import JetbotVecEnv
+
+
+def parse_args():
+    p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    p.add_argument('--node', default='/jetbot_env', help='env node (default /jetbot_env)')
+    p.add_argument('--seed', type=int, default=0, help='torch seed and env reset seed')
+    p.add_argument('--iterations', type=int, default=60)
+    p.add_argument('--num-steps', type=int, default=16, help='steps per env per iteration')
+    p.add_argument('--target', type=float, default=0.54, help='reported: reward/step reached')
+    p.add_argument('--save', default='jetbot_ppo.pt', help='where training saves the policy')
+    p.add_argument('--play', metavar='POLICY', help='play a saved policy instead of training')
+    p.add_argument('--play-steps', type=int, default=600, help='steps to play')
+    return p.parse_args()
+
+
+# PPO hyper-parameters (config/ppo.yaml)
+EPOCHS, MINIBATCHES, GAMMA, LAM, CLIP, VALUE_COEF, ENTROPY_COEF = 5, 4, 0.99, 0.95, 0.2, 1.0, 0.005
+LR, DESIRED_KL, MIN_LR, MAX_LR, MAX_GRAD_NORM = 1e-3, 0.01, 1e-5, 1e-2, 1.0
+
+
+def mlp(n_in, n_out):
+    return nn.Sequential(nn.Linear(n_in, 32), nn.ELU(), nn.Linear(32, 32), nn.ELU(),
+                         nn.Linear(32, n_out))
+
+
+class Agent(nn.Module):
+    def __init__(self, obs_dim, action_dim):
+        super().__init__()
+        self.actor, self.critic = mlp(obs_dim, action_dim), mlp(obs_dim, 1)
+        self.log_std = nn.Parameter(torch.zeros(action_dim))  # std 1 = the action limit
+        # running observation statistics, saved with the policy
+        self.register_buffer('obs_mean', torch.zeros(obs_dim, dtype=torch.float64))
+        self.register_buffer('obs_var', torch.ones(obs_dim, dtype=torch.float64))
+        self.register_buffer('obs_count', torch.zeros((), dtype=torch.float64))
+
+    def update_normalizer(self, obs):  # merges the batch's mean and variance (Chan et al.)
+        x, c = obs.double(), self.obs_count
+        n, delta = x.shape[0], x.mean(0) - self.obs_mean
+        total = c + n
+        self.obs_var.copy_((self.obs_var * c + x.var(0, unbiased=False) * n
+                            + delta ** 2 * c * n / total) / total)
+        self.obs_mean.add_(delta * n / total)
+        self.obs_count.fill_(total)
+
+    def normalize(self, obs):  # rsl_rl's (obs - mean) / (std + 0.01), clipped to +-10
+        std = self.obs_var.sqrt() + 0.01
+        return ((obs - self.obs_mean.float()) / std.float()).clamp(-10.0, 10.0)
+
+    def dist(self, obs_n):
+        mean = self.actor(obs_n)
+        return torch.distributions.Normal(mean, self.log_std.exp().expand_as(mean))
+
+    def value(self, obs_n):
+        return self.critic(obs_n).squeeze(-1)
+
+
+def to_env(agent_actions, low, high):
+    """Gaussian samples -> clipped to [-1, 1] -> the env's [low, high] [rad/s]."""
+    return (low + (high - low) * (agent_actions.clamp(-1.0, 1.0) + 1.0) / 2.0).numpy()
+
+
+def train(args):
+    torch.manual_seed(args.seed)
+    env = JetbotVecEnv(args.node)
+    n, steps, obs_dim, act_dim = env.num_envs, args.num_steps, env.obs_dim, env.action_dim
+    low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
+    agent = Agent(obs_dim, act_dim)
+    optimizer = torch.optim.Adam(agent.parameters(), lr=LR)
+    lr = LR
+    buf_obs, buf_act = torch.zeros(steps, n, obs_dim), torch.zeros(steps, n, act_dim)
+    buf_mean = torch.zeros(steps, n, act_dim)
+    buf_logp, buf_val, buf_rew = (torch.zeros(steps, n) for _ in range(3))
+    buf_end = torch.zeros(steps, n, dtype=torch.bool)  # the episode ended after this step
+    buf_boot = torch.zeros(steps, n)  # its value after the end: V(final obs) for a time-out, 0 else
+    # Staggering: env i's first episode is cut after i x 299 / n steps (a bootstrapped time-out),
+    # so that episodes end at different steps from then on.
+    cut_at = np.arange(n) * (env.max_episode_length - 1) // n
+    env_steps, target_at, start = 0, None, time.monotonic()
+    obs, _ = env.reset(seed=args.seed)
+    for iteration in range(1, args.iterations + 1):
+        t0 = time.monotonic()
+        for t in range(steps):
+            o = torch.from_numpy(obs)
+            agent.update_normalizer(o)
+            o_n = agent.normalize(o)
+            with torch.no_grad():
+                d = agent.dist(o_n)
+                a = d.sample()
+                buf_logp[t], buf_mean[t] = d.log_prob(a).sum(-1), d.mean
+                buf_val[t] = agent.value(o_n)
+            buf_obs[t], buf_act[t] = o_n, a
+            obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
+            buf_rew[t] = torch.from_numpy(reward)
+            boot = np.zeros(n, dtype=np.float32)
+            timed_out = truncated & ~terminated
+            cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
+            with torch.no_grad():
+                if timed_out.any():
+                    v = agent.value(agent.normalize(torch.from_numpy(infos['final_obs'])))
+                    boot[timed_out] = v.numpy()[timed_out]
+                if cut.any():
+                    boot[cut] = agent.value(agent.normalize(torch.from_numpy(obs))).numpy()[cut]
+            if cut.any():
+                obs, _ = env.reset(options={'reset_mask': cut})
+            buf_end[t] = torch.from_numpy(terminated | truncated | cut)
+            buf_boot[t] = torch.from_numpy(boot)
+        env_steps += steps * n
+
+        # GAE; an ended episode's next value is its bootstrap value, and nothing flows across it
+        with torch.no_grad():
+            next_value = agent.value(agent.normalize(torch.from_numpy(obs)))
+        advantages, gae = torch.zeros(steps, n), torch.zeros(n)
+        for t in reversed(range(steps)):
+            nxt = next_value if t == steps - 1 else buf_val[t + 1]
+            nxt = torch.where(buf_end[t], buf_boot[t], nxt)
+            delta = buf_rew[t] + GAMMA * nxt - buf_val[t]
+            gae = delta + GAMMA * LAM * (~buf_end[t]).float() * gae
+            advantages[t] = gae
+        returns = advantages + buf_val
+        advantages = (advantages - advantages.mean()) / (advantages.std() + 1e-8)
+
+        b_obs, b_act, b_mean = (x.flatten(0, 1) for x in (buf_obs, buf_act, buf_mean))
+        b_logp, b_val, b_adv, b_ret = (x.flatten() for x in (buf_logp, buf_val, advantages,
+                                                             returns))
+        old_std = agent.log_std.exp().detach()
+        for _ in range(EPOCHS):
+            for idx in torch.randperm(steps * n).chunk(MINIBATCHES):
+                d = agent.dist(b_obs[idx])
+                with torch.no_grad():  # KL(old || new) drives the learning rate (rsl_rl)
+                    kl = (torch.log(d.stddev / old_std) + (old_std ** 2 + (b_mean[idx] - d.mean)
+                          ** 2) / (2 * d.stddev ** 2) - 0.5).sum(-1).mean().item()
+                if kl > 2 * DESIRED_KL:
+                    lr = max(MIN_LR, lr / 1.5)
+                elif 0 < kl < DESIRED_KL / 2:
+                    lr = min(MAX_LR, lr * 1.5)
+                for group in optimizer.param_groups:
+                    group['lr'] = lr
+                ratio = torch.exp(d.log_prob(b_act[idx]).sum(-1) - b_logp[idx])
+                adv = b_adv[idx]
+                surrogate = torch.max(-adv * ratio, -adv * ratio.clamp(1 - CLIP, 1 + CLIP)).mean()
+                value = agent.value(b_obs[idx])
+                clipped = b_val[idx] + (value - b_val[idx]).clamp(-CLIP, CLIP)
+                value_loss = torch.max((value - b_ret[idx]) ** 2,
+                                       (clipped - b_ret[idx]) ** 2).mean()
+                entropy = d.entropy().sum(-1).mean()
+                loss = surrogate + VALUE_COEF * value_loss - ENTROPY_COEF * entropy
+                optimizer.zero_grad()
+                loss.backward()
+                nn.utils.clip_grad_norm_(agent.parameters(), MAX_GRAD_NORM)
+                optimizer.step()
+
+        reward_per_step = buf_rew.mean().item()
+        elapsed = time.monotonic() - start
+        if target_at is None and reward_per_step >= args.target:
+            target_at = (iteration, env_steps, elapsed)
+        print('iteration %d/%d | env steps %d | reward/step %.4f | %.0f env steps/s | elapsed '
+              '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step,
+                          steps * n / (time.monotonic() - t0), elapsed), flush=True)
+    torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim}, args.save)
+    env.close()
+    print('saved %s' % args.save)
+    print('final_mean_reward_per_step=%.4f' % reward_per_step)
+    print('env_steps=%d elapsed_s=%.1f mean_env_steps_per_s=%.0f'
+          % (env_steps, elapsed, env_steps / elapsed))
+    if target_at:
+        print('target_reached_at_iteration=%d target_reached_at_env_steps=%d '
+              'target_reached_at_elapsed_s=%.1f' % target_at)
+    else:
+        print('target_reached_at_iteration=never')
+
+
+def play(args):
+    """Drives every env with the policy's mean action; prints the reward and episode returns."""
+    saved = torch.load(args.play)
+    agent = Agent(saved['obs_dim'], saved['action_dim'])
+    agent.load_state_dict(saved['model'])
+    env = JetbotVecEnv(args.node)
+    low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
+    obs, _ = env.reset(seed=args.seed)
+    episode_return, returns, rewards, at_limit = np.zeros(env.num_envs), [], 0.0, 0
+    for _ in range(args.play_steps):
+        with torch.no_grad():
+            targets = to_env(agent.actor(agent.normalize(torch.from_numpy(obs))), low, high)
+        saturated = np.all(np.abs(np.abs(targets) - high.numpy()) < 0.02 * high.numpy(), axis=1)
+        at_limit += int(np.sum(saturated & (np.sign(targets[:, 0]) == np.sign(targets[:, 1]))))
+        obs, reward, terminated, truncated, _ = env.step(targets)
+        rewards += reward.sum()
+        episode_return += reward
+        ended = terminated | truncated
+        returns.extend(episode_return[ended].tolist())
+        episode_return[ended] = 0.0
+    env.close()
+    steps = args.play_steps * env.num_envs
+    print('play_mean_reward_per_step=%.4f' % (rewards / steps))
+    print('play_fraction_both_wheels_at_limit=%.4f' % (at_limit / steps))
+    print('play_mean_episode_return=%s (%d episodes)'
+          % ('%.2f' % np.mean(returns) if returns else 'nan', len(returns)))
+
+
+if __name__ == '__main__':
+    torch.set_num_threads(1)  # reproducible, and leaves the other core to the env
+    arguments = parse_args()
+    if arguments.play:
+        play(arguments)
+    else:
+        train(arguments)

@@ -1,0 +1,302 @@
+"""JetbotVecEnv: one or several jetbot_env nodes (lockstep mode) as one gymnasium-style vector env.
+
+    from jetbot_rl import JetbotVecEnv
+    with JetbotVecEnv("/jetbot_env") as env:
+        obs, infos = env.reset(seed=0)
+        obs, rewards, terminations, truncations, infos = env.step(env.action_space.sample())
+
+The node resets an env that ends within the same step (gymnasium's same-step auto-reset):
+the returned observation is the new episode's first, the last one is in infos["final_obs"].
+"""
+import numbers
+import time
+
+import numpy as np
+import rospy
+
+from jetbot_rl.node_link import EnvRejectedError, NodeLink, call_bounded
+from jetbot_rl.spaces import make_box
+
+try:  # optional: subclass gymnasium's VectorEnv and name its auto-reset mode when installed
+    from gymnasium.vector import VectorEnv as _Base
+    try:
+        from gymnasium.vector import AutoresetMode as _AutoresetMode
+        SAME_STEP = _AutoresetMode.SAME_STEP
+    except ImportError:  # gymnasium 1.0 has no AutoresetMode
+        SAME_STEP = 'SameStep'
+except ImportError:
+    _Base = object
+    SAME_STEP = 'SameStep'  # the value of gymnasium.vector.AutoresetMode.SAME_STEP
+
+#: reset(seed=s) reseeds node k (in list order) with s + k * NODE_SEED_STRIDE.
+NODE_SEED_STRIDE = 2 ** 32
+#: ~spec fields every node of one JetbotVecEnv must agree on (num_envs may differ).
+SHARED_SPEC_FIELDS = ('obs_dim', 'action_dim', 'task', 'observation_names', 'action_names',
+                      'action_low', 'action_high', 'control_dt', 'max_episode_length')
+_INT64_MAX = 2 ** 63 - 1
+
+
+class JetbotVecEnv(_Base):
+    """jetbot_env nodes in lockstep mode as one vector env of `num_envs` envs (gymnasium 1.x API).
+
+    `nodes`: a node name (e.g. "/jetbot_env", the env node's name, not a topic) or a list of
+    them; relative names resolve in this process's namespace. With several nodes the batch is
+    their envs in list order; every step goes out to all nodes before any answer is awaited.
+    `timeout` [s, wall]: how long a node may take to appear or to answer.
+    Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
+    """
+
+    metadata = {'autoreset_mode': SAME_STEP}
+    render_mode = None
+
+    def __init__(self, nodes='/jetbot_env', timeout=10.0):
+        self.closed = True  # until every node is connected
+        self._links = []
+        names = [nodes] if isinstance(nodes, str) else list(nodes)
+        if not names or not all(isinstance(n, str) and n for n in names):
+            raise ValueError('JetbotVecEnv: nodes must be a node name or a non-empty list of '
+                             'them, got %r' % (nodes,))
+        if (isinstance(timeout, bool) or not isinstance(timeout, numbers.Real)
+                or not np.isfinite(timeout) or timeout <= 0):
+            raise ValueError('JetbotVecEnv: timeout must be > 0 s, got %r' % (timeout,))
+        if not rospy.core.is_initialized():
+            rospy.init_node('jetbot_vec_env', anonymous=True, disable_signals=True)
+        try:
+            for name in names:
+                link = NodeLink(name, timeout)
+                if any(link.name == other.name for other in self._links):
+                    raise ValueError('JetbotVecEnv: node %s is listed twice' % link.name)
+                self._links.append(link)
+                self._check_same_spec(self._links[0], link)
+        except BaseException:
+            for link in self._links:
+                link.close()
+            raise
+        self.timeout = float(timeout)
+        self.closed = False
+        self._needs_reset = True  # no current state: until a reset succeeds
+        first = self._links[0].spec
+        self.specs = [link.spec for link in self._links]
+        self.nodes = [link.name for link in self._links]
+        self.node_num_envs = [link.num_envs for link in self._links]
+        self.num_envs = sum(self.node_num_envs)
+        self._offsets = np.cumsum([0] + self.node_num_envs)
+        self.obs_dim = int(first.obs_dim)
+        self.action_dim = int(first.action_dim)
+        self.task = first.task
+        self.observation_names = list(first.observation_names)
+        self.action_names = list(first.action_names)
+        self.action_low = np.array(first.action_low, dtype=np.float32)
+        self.action_high = np.array(first.action_high, dtype=np.float32)
+        self.control_dt = float(first.control_dt)
+        self.max_episode_length = int(first.max_episode_length)
+        n = self.num_envs
+        self.single_observation_space = make_box(-np.inf, np.inf, (self.obs_dim,))
+        self.single_action_space = make_box(self.action_low, self.action_high, (self.action_dim,))
+        self.observation_space = make_box(-np.inf, np.inf, (n, self.obs_dim))
+        self.action_space = make_box(np.tile(self.action_low, (n, 1)),
+                                     np.tile(self.action_high, (n, 1)), (n, self.action_dim))
+        self._all_envs = np.ones(n, dtype=bool)
+
+    @staticmethod
+    def _check_same_spec(first, link):
+        for field in SHARED_SPEC_FIELDS:
+            a, b = getattr(first.spec, field), getattr(link.spec, field)
+            if isinstance(a, (list, tuple)):
+                a, b = list(a), list(b)
+            if a != b:
+                raise ValueError('JetbotVecEnv: %s has spec field %s = %r, but %s has %r: all '
+                                 'nodes of one JetbotVecEnv must agree'
+                                 % (link.name, field, b, first.name, a))
+
+    # ---- the gymnasium VectorEnv API ----
+
+    def reset(self, seed=None, options=None):
+        """Resets every env (or those in options["reset_mask"]) and returns (obs, infos).
+
+        `seed`: None keeps the envs' random streams; an int >= 0 reseeds them, node k of the list
+        with seed + k * 2**32 (one node: exactly `seed`). `options`: None or
+        {"reset_mask": bool array (num_envs,)} to reset only those envs (the others keep their
+        state; needs a full reset after an interrupted step). Also re-synchronises after an
+        interrupted, timed-out or rejected step.
+        """
+        self._check_open()
+        seeds = self._node_seeds(seed)
+        mask = self._reset_mask(options)
+        if mask is not None and self._needs_reset:
+            raise RuntimeError('JetbotVecEnv: no current state (after an interrupted, timed-out '
+                               'or rejected step, or before the first reset): call reset() '
+                               'without reset_mask first')
+        todo = []  # (link, env_ids, seed)
+        for k, link in enumerate(self._links):
+            if mask is None:
+                todo.append((link, [], seeds[k]))
+            else:
+                ids = np.flatnonzero(mask[self._offsets[k]:self._offsets[k + 1]])
+                if ids.size:  # an empty list would mean all envs
+                    todo.append((link, ids.astype(np.uint32).tolist(), seeds[k]))
+        self._needs_reset = True
+        # A node whose reset state has not arrived on ~env_step within a second (the
+        # subscription still connecting) is reset again, as RosVecEnv does.
+        deadline = time.monotonic() + self.timeout
+        while todo:
+            # (+1 s: a node whose service is unreachable is reported by reset_call itself)
+            states = call_bounded(
+                [lambda t=t: t[0].reset_call(t[1], t[2]) for t in todo], self.timeout + 1.0,
+                lambda i: '%s did not answer ~reset within %.1f s' % (todo[i][0].name,
+                                                                      self.timeout))
+            todo = [t for t, state in zip(todo, states) if not t[0].adopt_reset(state)]
+            if todo and time.monotonic() > deadline:
+                raise TimeoutError('%s: the state of ~reset did not arrive on %s/env_step '
+                                   'within %.1f s' % (todo[0][0].name, todo[0][0].name,
+                                                      self.timeout))
+        self._needs_reset = False
+        batches = [link.state for link in self._links]
+        obs = np.concatenate([b.obs for b in batches])
+        return obs, self._episode_infos(batches)
+
+    def step(self, actions):
+        """One control step of every env with `actions` [rad/s], shape (num_envs, action_dim);
+        returns (obs, rewards, terminations, truncations, infos), see the class doc and README."""
+        self._check_open()
+        a = self._check_actions(actions)
+        if self._needs_reset:
+            raise RuntimeError('JetbotVecEnv: no current state of %s (after an interrupted, '
+                               'timed-out or rejected step, or before the first reset): call '
+                               'reset() to re-synchronise' % ', '.join(self.nodes))
+        self._needs_reset = True  # until every answer is in
+        links, offsets = self._links, self._offsets
+        if len(links) == 1:
+            sent = [links[0].send(a.reshape(-1))]
+        else:  # all targets out before any answer is awaited: the nodes step concurrently
+            sent = [link.send(a[offsets[k]:offsets[k + 1]].reshape(-1))
+                    for k, link in enumerate(links)]
+        batches = [link.wait(s) for link, s in zip(links, sent)]
+        self._needs_reset = False
+
+        obs = np.concatenate([b.obs for b in batches])
+        rewards = np.concatenate([b.rewards for b in batches])
+        terminations = np.concatenate([b.terminated for b in batches])
+        truncations = np.concatenate([b.truncated for b in batches])
+        infos = self._episode_infos(batches)
+        ended = [b.reset_env_ids.astype(np.int64) + offsets[k]
+                 for k, b in enumerate(batches) if b.reset_env_ids.size]
+        if ended:
+            ids = np.concatenate(ended)
+            final_obs = np.zeros((self.num_envs, self.obs_dim), dtype=np.float32)
+            final_obs[ids] = np.concatenate([b.final_obs for b in batches])
+            final_mask = np.zeros(self.num_envs, dtype=bool)
+            final_mask[ids] = True
+            infos['final_obs'] = final_obs
+            infos['_final_obs'] = final_mask
+        return obs, rewards, terminations, truncations, infos
+
+    def close(self, **kwargs):
+        """Unregisters from every node (idempotent); the nodes keep running."""
+        if self.closed:
+            return
+        self.closed = True
+        for link in self._links:
+            link.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # at interpreter exit rospy may be gone already
+            pass
+
+    def __repr__(self):
+        return 'JetbotVecEnv(%r, num_envs=%d)' % (getattr(self, 'nodes', []),
+                                                  getattr(self, 'num_envs', 0))
+
+    # ---- the command task ----
+
+    def set_command(self, env, x, y, hold=False):
+        """Task `command`: sets env `env`'s command to the unit vector along (x, y) in its ground
+        plane, observed from the next step (the node's ~set_command). `hold`: keep it across the
+        env's resets. ValueError for a bad env or value; EnvRejectedError with the node's reason
+        (e.g. another task)."""
+        self._check_open()
+        link, local = self._locate_env(env, 'set_command: env')
+        for label, v in (('x', x), ('y', y)):
+            if isinstance(v, bool) or not isinstance(v, numbers.Real) or not np.isfinite(v):
+                raise ValueError('set_command: %s = %r for env %d (%s env %d) is not a finite '
+                                 'number' % (label, v, env, link.name, local))
+        link.set_command(local, float(x), float(y), bool(hold))
+
+    # ---- helpers ----
+
+    def _check_open(self):
+        if self.closed:
+            raise RuntimeError('JetbotVecEnv of %s is closed' % ', '.join(self.nodes))
+
+    def _node_seeds(self, seed):
+        if seed is None:
+            return [-1] * len(self._links)
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+            raise ValueError('reset: seed must be None or an int >= 0, got %r' % (seed,))
+        seeds = [int(seed) + k * NODE_SEED_STRIDE for k in range(len(self._links))]
+        if seeds[-1] > _INT64_MAX:
+            raise ValueError('reset: seed %d too large: node %s would get %d > 2**63 - 1'
+                             % (seed, self.nodes[-1], seeds[-1]))
+        return seeds
+
+    def _reset_mask(self, options):
+        if options is None:
+            return None
+        if not isinstance(options, dict) or set(options) - {'reset_mask'}:
+            raise ValueError("reset: options must be None or {'reset_mask': bool array of shape "
+                             "(%d,)}, got %r" % (self.num_envs, options))
+        if 'reset_mask' not in options:
+            return None
+        mask = np.asarray(options['reset_mask'])
+        if mask.dtype != np.bool_ or mask.shape != (self.num_envs,):
+            raise ValueError("reset: options['reset_mask'] must be a bool array of shape (%d,), "
+                             "got dtype %s shape %s" % (self.num_envs, mask.dtype, mask.shape))
+        return mask
+
+    def _check_actions(self, actions):
+        try:
+            if isinstance(actions, np.ndarray) and actions.dtype == np.float32:
+                a = actions
+            else:
+                with np.errstate(over='ignore', invalid='ignore'):  # reported below
+                    a = np.asarray(actions, dtype=np.float32)
+        except (TypeError, ValueError) as e:
+            raise ValueError('step: actions for %s are not numbers: %s'
+                             % (', '.join(self.nodes), e))
+        if a.shape != (self.num_envs, self.action_dim):
+            raise ValueError('step: actions have shape %s, expected (num_envs, action_dim) = '
+                             '(%d, %d) for %s' % (a.shape, self.num_envs, self.action_dim,
+                                                  ', '.join(self.nodes)))
+        finite = np.isfinite(a)
+        if not finite.all():
+            env, dim = (int(i) for i in np.argwhere(~finite)[0])
+            link, local = self._locate_env(env, 'env')
+            raise ValueError('step: actions[%d, %d] = %r (env %d: %s env %d, %s) is not a '
+                             'finite float32; nothing was sent'
+                             % (env, dim, np.asarray(actions)[env, dim].item(), env, link.name,
+                                local, self.action_names[dim]))
+        return np.ascontiguousarray(a)
+
+    def _locate_env(self, env, what):
+        if (isinstance(env, bool) or not isinstance(env, numbers.Integral)
+                or not 0 <= env < self.num_envs):
+            raise ValueError('%s = %r is not in [0, %d)' % (what, env, self.num_envs))
+        k = int(np.searchsorted(self._offsets, env, side='right')) - 1
+        return self._links[k], int(env - self._offsets[k])
+
+    def _episode_infos(self, batches):
+        steps = np.concatenate([b.episode_steps for b in batches]).astype(np.int64)
+        return {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
+
+
+__all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',
+           'SAME_STEP']
