@@ -28,11 +28,12 @@ std::string seconds(double s) {
 }  // namespace
 
 RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
-                     const std::atomic<bool>* stop)
-    : env_ns_(ros::NodeHandle().resolveName(env_ns)),
+                     const std::atomic<bool>* stop, const ros::NodeHandle& parent)
+    : env_ns_(parent.resolveName(env_ns)),
       lockstep_(lockstep),
       timeout_(timeout),
-      stop_(stop) {
+      stop_(stop),
+      nh_(parent) {
   nh_.setCallbackQueue(&queue_);
   // Anyone can publish on these topics: a message whose lengths exceed its bytes is dropped
   // unread (roscpp would allocate what it claims), counted and logged.
@@ -144,10 +145,11 @@ const StepResult& RosVecEnv::reset(std::int64_t seed,
 void RosVecEnv::stepAsync(const std::vector<float>& actions) {
   if (!accepting_) throw Error("RosVecEnv::stepAsync before reset");
   if (sent_) throw Error("RosVecEnv::stepAsync twice without stepWait");
-  targets_.header.stamp = ros::Time::now();
-  targets_.step = step_;
-  targets_.velocities = actions;
-  targets_pub_.publish(targets_);
+  targets_ = boost::make_shared<WheelTargets>();
+  targets_->header.stamp = ros::Time::now();
+  targets_->step = step_;
+  targets_->velocities = actions;
+  targets_pub_.publish(WheelTargets::ConstPtr(targets_));
   sent_ = true;
 }
 
@@ -180,7 +182,7 @@ const StepResult& RosVecEnv::stepWait() {
                         "no EnvStep %llu after %.1f s: sending the targets for step %llu again",
                         static_cast<unsigned long long>(expected), kResendAfter,
                         static_cast<unsigned long long>(step_));
-      targets_pub_.publish(targets_);
+      targets_pub_.publish(WheelTargets::ConstPtr(targets_));
     }
     if (newest_->step != expected) {
       throw Error("expected EnvStep " + std::to_string(expected) + ", got " +

@@ -31,10 +31,11 @@ namespace jetbot_rl {
  */
 class RosVecEnv : public VecEnv {
  public:
-  /// Connects to the env node `env_ns` (e.g. /jetbot_env) and waits for its spec; throws Error
-  /// after `timeout` [s] or Interrupted.
-  RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
-            const std::atomic<bool>* stop);
+  /// Connects to the env node `env_ns` (e.g. /jetbot_env; a relative name resolves in
+  /// `parent`'s namespace) and waits for its spec; throws Error after `timeout` [s] or
+  /// Interrupted.
+  RosVecEnv(const std::string& env_ns, bool lockstep, double timeout, const std::atomic<bool>* stop,
+            const ros::NodeHandle& parent = ros::NodeHandle());
 
   const BatchSpec& spec() const override { return spec_; }
   /// Calls ~reset (all envs, `seed` >= 0 reseeds, `episode_steps` staggered starts) and waits
@@ -80,7 +81,7 @@ class RosVecEnv : public VecEnv {
   std::string spec_error_;  ///< Why a received EnvSpec was refused.
   BatchSpec spec_;
   StepResult result_;
-  WheelTargets targets_;
+  WheelTargets::Ptr targets_;   ///< A new message per step: in-process subscribers share it.
   bool sent_ = false;           ///< stepAsync() awaits its stepWait().
   std::uint64_t step_ = 0;      ///< EnvStep.step of result_.
   bool accepting_ = false;      ///< After a reset: EnvSteps newer than step_ are taken.

@@ -73,7 +73,12 @@ PolicyParams loadParams(const ros::NodeHandle& pnh) {
 
 int runPolicyNode() {
   const std::atomic<bool>& stop = installStopSignalHandlers();
-  ros::NodeHandle pnh("~");
+  const int code = runPolicy(ros::NodeHandle(), ros::NodeHandle("~"), stop);
+  ros::shutdown();
+  return code;
+}
+
+int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop) {
   torch::set_num_threads(1);
   PolicyParams params;
   std::unique_ptr<Policy> policy;
@@ -82,18 +87,13 @@ int runPolicyNode() {
     policy = std::make_unique<Policy>(params.checkpoint);
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
-    ros::shutdown();
     return 1;
   }
   ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
-  if (params.robot) {
-    const int code = runRobotMode(pnh, *policy, stop);
-    ros::shutdown();
-    return code;
-  }
+  if (params.robot) return runRobotMode(nh, pnh, *policy, stop);
 
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;
@@ -106,7 +106,7 @@ int runPolicyNode() {
     std::vector<std::unique_ptr<EpisodeTracker>> trackers;
     for (const std::string& name : params.envs) {
       auto part = std::make_unique<RosVecEnv>(name, params.mode == EnvMode::kLockstep,
-                                              params.step_timeout, &stop);
+                                              params.step_timeout, &stop, nh);
       trackers.push_back(std::make_unique<EpisodeTracker>(part->spec().num_envs));
       part->setObserver([&, tracker = trackers.back().get(), name](const EnvStep& msg) {
         StepResult rewards_only;
@@ -154,7 +154,6 @@ int runPolicyNode() {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     code = 1;
   }
-  ros::shutdown();
   return code;
 }
 

@@ -21,10 +21,10 @@ constexpr double kStockWheelRadius = 0.0603 / 2;  // [m] dusty-nv/jetbot_ros mot
 constexpr double kStockWheelSeparation = 0.1016;  // [m]
 
 /// Wheel targets -> Twist kinematics: parameters, else robot_description, else the stock Jetbot.
-DiffDrive makeKinematics(const RobotModeParams& p) {
+DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p) {
   std::string urdf;
   if ((p.wheel_radius <= 0.0 || p.wheel_separation <= 0.0) &&
-      ros::NodeHandle().getParam("robot_description", urdf)) {
+      nh.getParam("robot_description", urdf)) {
     const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
     return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf), p.dof_names, limits,
                                 p.wheel_radius, p.wheel_separation);
@@ -49,8 +49,8 @@ bool finite(const nav_msgs::Odometry& m) {
 /// The robot mode's state: the newest odometry and command, the task that observes them.
 class RobotDriver {
  public:
-  RobotDriver(ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p)
-      : params_(p), policy_(policy), kinematics_(makeKinematics(p)), task_(makeTask(p.task)) {
+  RobotDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p)
+      : params_(p), policy_(policy), kinematics_(makeKinematics(nh, p)), task_(makeTask(p.task)) {
     task_->resize(1);
     if (static_cast<int>(task_->observationNames().size()) != policy_.obsDim()) {
       throw ConfigError("task '" + task_->name() + "' observes " +
@@ -59,7 +59,6 @@ class RobotDriver {
     }
     policy_.setActionLimits(std::vector<float>(2, -static_cast<float>(p.wheel_velocity_limit)),
                             std::vector<float>(2, static_cast<float>(p.wheel_velocity_limit)));
-    ros::NodeHandle nh;
     cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.cmd_vel_topic, 10);
     odom_sub_ = nh.subscribe(p.odom_topic, 10, &RobotDriver::onOdom, this,
                              ros::TransportHints().tcpNoDelay());
@@ -148,7 +147,8 @@ class RobotDriver {
 
 }  // namespace
 
-int runRobotMode(ros::NodeHandle& pnh, Policy& policy, const std::atomic<bool>& stop) {
+int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
+                 const std::atomic<bool>& stop) {
   RobotModeParams params;
   try {
     readFields(pnh, params);
@@ -163,7 +163,7 @@ int runRobotMode(ros::NodeHandle& pnh, Policy& policy, const std::atomic<bool>& 
   ROS_INFO_STREAM("robot mode parameters of " << pnh.getNamespace() << ":\n"
                                               << describeFields(params));
   try {
-    RobotDriver driver(pnh, policy, params);
+    RobotDriver driver(nh, pnh, policy, params);
     ros::AsyncSpinner spinner(1);
     spinner.start();
     // The signal handler only sets `stop`, which nothing can wait on: checked every 50 ms.

@@ -47,15 +47,17 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
 }
 
 /// The env the trainer trains on: env nodes, or one built in this process from ~env_config.
-std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& pnh,
-                                const std::atomic<bool>& stop) {
-  if (!params.env_in_process) return connectEnvs(params.envs, true, params.step_timeout, &stop);
+std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& nh,
+                                const ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
+  if (!params.env_in_process) {
+    return connectEnvs(params.envs, true, params.step_timeout, &stop, nh);
+  }
   const ros::NodeHandle env_pnh(pnh, "env_config");
   const NodeParams env_params = loadNodeParams(env_pnh);
   ROS_INFO_STREAM("in-process env, parameters of " << env_pnh.getNamespace() << ":\n"
                                                    << describeFields(env_params));
   std::string urdf;
-  if (!ros::NodeHandle().getParam("robot_description", urdf)) {
+  if (!nh.getParam("robot_description", urdf)) {
     throw ConfigError("robot_description is not set: load the robot's URDF into it");
   }
   return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
@@ -66,14 +68,18 @@ std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHand
 
 int runTrainerNode() {
   const std::atomic<bool>& stop = installStopSignalHandlers();
-  ros::NodeHandle pnh("~");
+  const int code = runTrainer(ros::NodeHandle(), ros::NodeHandle("~"), stop);
+  ros::shutdown();
+  return code;
+}
+
+int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop) {
   PpoConfig ppo;
   TrainerParams params;
   try {
     params = loadTrainerParams(pnh, ppo);
   } catch (const Error& e) {
     ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
-    ros::shutdown();
     return 1;
   }
   ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n"
@@ -85,7 +91,7 @@ int runTrainerNode() {
       pnh.advertise<std_msgs::Float32MultiArray>("training_stats", 10, /*latch=*/true);
   int code = 0;
   try {
-    const std::unique_ptr<VecEnv> env = makeEnv(params, pnh, stop);
+    const std::unique_ptr<VecEnv> env = makeEnv(params, nh, pnh, stop);
     const BatchSpec& spec = env->spec();
     std::ostringstream where;
     if (params.env_in_process) {
@@ -124,7 +130,6 @@ int runTrainerNode() {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     code = 1;
   }
-  ros::shutdown();
   return code;
 }
 

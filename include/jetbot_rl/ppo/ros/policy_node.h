@@ -1,5 +1,9 @@
 #pragma once
 
+#include <ros/node_handle.h>
+
+#include <atomic>
+
 namespace jetbot_rl {
 namespace ppo {
 
@@ -11,6 +15,10 @@ namespace ppo {
  * a bad parameter or checkpoint is ROS_FATAL and returns 1.
  */
 int runPolicyNode();
+
+/// The player on node handles `nh` (env names and topics resolve in its namespace) and `pnh`
+/// (its parameters), until done or `stop`. Returns the exit code; never shuts ROS down.
+int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop);
 
 }  // namespace ppo
 }  // namespace jetbot_rl

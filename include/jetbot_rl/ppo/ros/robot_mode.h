@@ -50,7 +50,8 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
 /// Runs the robot mode until `stop` or ROS shutdown: reads the parameters above under `pnh`,
 /// then at control_rate turns the newest odometry into the task's observation, acts with the
 /// policy's mean and publishes the wheel targets as a Twist. Returns the exit code.
-int runRobotMode(ros::NodeHandle& pnh, Policy& policy, const std::atomic<bool>& stop);
+int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
+                 const std::atomic<bool>& stop);
 
 }  // namespace ppo
 }  // namespace jetbot_rl

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <ros/node_handle.h>
+
+#include <atomic>
+
 namespace jetbot_rl {
 namespace ppo {
 
@@ -11,6 +15,11 @@ namespace ppo {
  * or a failed run.
  */
 int runTrainerNode();
+
+/// The trainer on node handles `nh` (its namespace: env names resolve in it) and `pnh` (its
+/// parameters), until done or `stop` (jetbot_ppo_trainer with signals, the nodelet with its
+/// unloading). Returns the exit code; never shuts ROS down.
+int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop);
 
 }  // namespace ppo
 }  // namespace jetbot_rl

@@ -5,9 +5,9 @@
 #include <string>
 
 #include "jetbot_rl/config_fields.h"
-#include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ros/param_reader.h"
 
 namespace jetbot_rl {
 namespace ppo {
