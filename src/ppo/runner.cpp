@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "jetbot_rl/ppo/policy.h"
@@ -153,6 +154,7 @@ TrainingSummary OnPolicyRunner::learn() {
                  "; raise iterations to continue");
     }
   }
+  std::optional<IterationStats> last;  // the final iteration's, reported at the very end
   try {
     const std::vector<std::uint32_t> starts =
         config_.stagger_episodes ? staggeredStarts(spec.num_envs, spec.max_episode_length)
@@ -193,7 +195,13 @@ TrainingSummary OnPolicyRunner::learn() {
       if (iteration_ % options_.save_interval == 0 || iteration_ == options_.iterations) {
         save(latest, elapsed_at_save, summary.best_reward);
       }
-      if (on_iteration_) on_iteration_(s);
+      // The last iteration's callback comes after summary.yaml and the export, so that whoever
+      // waits for it finds the run's files complete.
+      if (iteration_ < options_.iterations) {
+        if (on_iteration_) on_iteration_(s);
+      } else {
+        last = s;
+      }
     }
   } catch (const Interrupted& e) {
     summary.interrupted = true;
@@ -213,6 +221,7 @@ TrainingSummary OnPolicyRunner::learn() {
       session_s > 0 ? (iteration_ - first_iteration) * steps_per_iteration / session_s : 0.0;
   std::ofstream(run_dir / "summary.yaml") << describeSummary(summary) << "\n";
   exportBest(best, (run_dir / "exported" / "policy.pt").string(), logger);
+  if (last && on_iteration_) on_iteration_(*last);
   return summary;
 }
 

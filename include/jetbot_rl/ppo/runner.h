@@ -59,7 +59,8 @@ class OnPolicyRunner {
 
   /// Where progress lines and notes go (default: stdout).
   void setLogger(std::function<void(const std::string&)> sink) { sink_ = std::move(sink); }
-  /// Called after every iteration, after its CSV row and checkpoints are written.
+  /// Called after every iteration, after its CSV row and checkpoints are written; for the run's
+  /// last iteration after summary.yaml and exported/policy.pt too.
   void setIterationCallback(std::function<void(const IterationStats&)> cb) {
     on_iteration_ = std::move(cb);
   }
