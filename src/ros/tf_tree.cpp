@@ -7,7 +7,8 @@ namespace jetbot_rl {
 
 void toTransform(const Eigen::Isometry3d& pose, geometry_msgs::Transform& t) {
   const Eigen::Vector3d p = pose.translation();
-  const Eigen::Quaterniond q(pose.rotation());
+  // Bullet's single-precision rotations are orthonormal to 1e-7: normalised here to double
+  const Eigen::Quaterniond q = Eigen::Quaterniond(pose.rotation()).normalized();
   t.translation.x = p.x();
   t.translation.y = p.y();
   t.translation.z = p.z();
