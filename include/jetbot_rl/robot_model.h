@@ -29,6 +29,8 @@ struct AttachedLink {
   std::string name;
   /// Pose of this link in the body's link frame.
   Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+  /// The URDF parent link's name (of the joint above this link); empty for the robot's root.
+  std::string parent;
 };
 
 /// One rigid body of the robot: a moving URDF link with every fixed-joint descendant merged in.

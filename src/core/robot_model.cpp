@@ -245,7 +245,8 @@ class BodyBuilder {
   void collect(const urdf::Link& link, const Eigen::Isometry3d& offset, BodyModel& body,
                std::vector<MassElement>& masses,
                std::vector<std::pair<const urdf::Link*, const urdf::Joint*>>& moving_children) {
-    body.links.push_back({link.name, offset});
+    const auto parent = link.getParent();
+    body.links.push_back({link.name, offset, parent ? parent->name : std::string()});
     if (link.inertial) masses.push_back(massElement(link, offset));
     for (const auto& collision : link.collision_array) {
       if (collision)

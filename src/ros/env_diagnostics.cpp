@@ -37,7 +37,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   std::snprintf(rate_text, sizeof(rate_text), "%.1f", rate);
 
   diagnostic_msgs::DiagnosticStatus& s = msg_.status[0];
-  const bool new_rejections = c.rejections > previous_.rejections;
+  const bool new_rejections =
+      c.rejections > previous_.rejections || c.cmd_vel_rejections > previous_.cmd_vel_rejections;
   const bool new_divergences = c.diverged > previous_.diverged;
   s.level = (new_rejections || new_divergences) ? diagnostic_msgs::DiagnosticStatus::WARN
                                                 : diagnostic_msgs::DiagnosticStatus::OK;
@@ -61,6 +62,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("last divergence reason", c.last_divergence));
   s.values.push_back(keyValue("malformed messages", std::to_string(c.malformed)));
   s.values.push_back(keyValue("last malformed reason", c.last_malformed));
+  s.values.push_back(keyValue("rejected cmd_vel", std::to_string(c.cmd_vel_rejections)));
+  s.values.push_back(keyValue("last cmd_vel rejection reason", c.last_cmd_vel_rejection));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

@@ -9,7 +9,10 @@
 #include "jetbot_rl/ros/bounded_subscription.h"
 #include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/msg_conversion.h"
+#include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/publication_flush.h"
+#include "jetbot_rl/ros/robot_names.h"
+#include "jetbot_rl/ros/robot_state_output.h"
 #include "jetbot_rl/ros/sim_clock.h"
 #include "jetbot_rl/ros/stop_signal.h"
 #include "jetbot_rl/ros/tf_publisher.h"
@@ -28,7 +31,7 @@ constexpr double kFlushTimeout = 0.5;
 }  // namespace
 
 EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params,
-                 std::unique_ptr<BatchedEnv> env)
+                 std::unique_ptr<BatchedEnv> env, std::optional<DiffDrive> drive)
     : params_(params),
       env_(std::move(env)),
       server_(*env_, params.mode, params.action_timeout),
@@ -36,11 +39,25 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       pnh_(pnh),
       diagnostics_(nh_, pnh_.getNamespace().substr(1) + ": environment", enumName(params.mode),
                    env_->numEnvs()) {
+  const int robot_envs = robotEnvs(params_);
+  if (robot_envs > 0) {
+    if (!drive) throw ConfigError("robot_envs > 0 needs the robot's differential drive");
+    server_.enableCmdVel(*drive, robot_envs, params_.cmd_vel_timeout);
+  }
+  EnvSpec spec = toMsg(env_->spec());
+  if (drive) {
+    spec.wheel_radius = drive->wheelRadius();
+    spec.wheel_separation = drive->wheelSeparation();
+  }
   spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
-  spec_pub_.publish(toMsg(env_->spec()));
+  spec_pub_.publish(spec);
+  const RobotNames names(params_.env_prefix);
   outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_));
   if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
-  outputs_.push_back(std::make_unique<EnvTfPublisher>(params_.tf_envs, params_.tf_rate));
+  outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
+                                                      names, params_.publish_link_tf));
+  outputs_.push_back(
+      std::make_unique<RobotStateOutput>(nh_, *env_, robot_envs, params_.odom_rate, names));
   outputs_.push_back(std::make_unique<EnvMarkerPublisher>(pnh_, *env_, params_.tf_envs,
                                                           params_.tf_rate, params_.markers));
   {
@@ -72,6 +89,15 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       inline_pnh, "set_command",
       [this](SetCommand::Request& q, SetCommand::Response& r) { return onSetCommand(q, r); },
       refused("set_command"));
+  ros::NodeHandle inline_nh(nh_);  // the robot view's topics: in the node's namespace
+  inline_nh.setCallbackQueue(&inline_queue_);
+  for (int e = 0; e < robot_envs; ++e) {
+    const std::string topic = names.topic(e, "cmd_vel");
+    cmd_vel_subs_.push_back(subscribeBounded<geometry_msgs::Twist>(
+        inline_nh, topic, kQueueSize,
+        [this, e](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(e, msg); },
+        refused(topic)));
+  }
   if (params_.mode == EnvMode::kRealtime) {
     const double period = env_->controlDt() / params_.real_time_factor;
     realtime_timer_ =
@@ -99,6 +125,7 @@ void EnvNode::shutdown(double flush_timeout) {
   realtime_timer_.stop();
   diagnostics_timer_.stop();
   targets_sub_.shutdown();
+  for (auto& sub : cmd_vel_subs_) sub.shutdown();
   step_srv_.shutdown();
   reset_srv_.shutdown();
   set_command_srv_.shutdown();
@@ -120,8 +147,10 @@ void EnvNode::shutdown(double flush_timeout) {
 void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
   if (finished_) return;
   const EnvStep::ConstPtr& msg = server_.state();
-  for (auto& output : outputs_) output->capture(*env_, msg, reset);
+  // Taken before the capture: another thread's send() may still read what capture() overwrites
+  // (a ~reset call during realtime ticks).
   std::lock_guard<std::mutex> publish_lock(publish_mutex_);
+  for (auto& output : outputs_) output->capture(*env_, msg, reset);
   state_lock.unlock();
   for (auto& output : outputs_) output->send();
 }
@@ -129,6 +158,11 @@ void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
 void EnvNode::onWheelTargets(const WheelTargets::ConstPtr& msg) {
   std::unique_lock<std::mutex> lock(state_mutex_);
   if (server_.onWheelTargets(*msg, std::chrono::steady_clock::now())) publish(lock, false);
+}
+
+void EnvNode::onCmdVel(int env, const geometry_msgs::Twist::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  server_.onCmdVel(env, *msg, std::chrono::steady_clock::now());
 }
 
 bool EnvNode::onStep(Step::Request& req, Step::Response& res) {
@@ -185,7 +219,7 @@ int runEnvNode() {
   }
   std::unique_ptr<BatchedEnv> env;
   try {
-    RobotModelConstPtr robot = RobotModel::fromUrdfString(urdf);
+    RobotModelConstPtr robot = RobotModel::fromUrdfString(urdf, packageResolver());
     try {
       env = std::make_unique<BatchedEnv>(robot, params.env, makeTask(params.task));
     } catch (const ModelError& e) {
@@ -198,7 +232,21 @@ int runEnvNode() {
               e.what());
     return 1;
   }
-  EnvNode node(nh, pnh, params, std::move(env));
+  for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
+  // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
+  std::optional<DiffDrive> drive;
+  try {
+    drive = DiffDrive::fromEnv(*env);
+    ROS_INFO("differential drive: %s", drive->describe().c_str());
+  } catch (const Error& e) {
+    if (robotEnvs(params) > 0) {
+      ROS_FATAL("%s: robot_envs = %d needs a differential drive of %s: %s (or set robot_envs 0)",
+                pnh.getNamespace().c_str(), params.robot_envs, description_param.c_str(), e.what());
+      return 1;
+    }
+    ROS_INFO("no differential drive (robot_envs 0: not needed): %s", e.what());
+  }
+  EnvNode node(nh, pnh, params, std::move(env), drive);
   // Timers run here; topics and services in roscpp's network thread (inline_queue_).
   ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
   while (ros::ok() && !stop.load()) queue.callAvailable(ros::WallDuration(kStopCheck));

@@ -2,6 +2,8 @@
 
 #include <ros/console.h>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "jetbot_rl/errors.h"
@@ -16,6 +18,7 @@ EnvServer::EnvServer(BatchedEnv& env, EnvMode mode, double action_timeout)
   zero_targets_.assign(action_count, 0.0f);
   current_targets_.reserve(action_count);
   pending_targets_.reserve(action_count);
+  mixed_targets_.reserve(action_count);
   updateState();
 }
 
@@ -104,7 +107,7 @@ void EnvServer::onTick(SteadyTime now) {
     // A message older than the time-out would only brake: it is dropped unapplied.
     if (now - pending_time_ <= action_timeout_) {
       try {
-        stepWith(pending_targets_.data(), pending_targets_.size());
+        stepMixed(pending_targets_, now);
         current_targets_.swap(pending_targets_);
         current_time_ = pending_time_;
         has_current_ = true;
@@ -115,10 +118,65 @@ void EnvServer::onTick(SteadyTime now) {
     }
   }
   if (has_current_ && now - current_time_ <= action_timeout_) {
-    stepWith(current_targets_.data(), current_targets_.size());
+    stepMixed(current_targets_, now);
   } else {
-    stepWith(zero_targets_.data(), zero_targets_.size());  // no fresh targets: brake
+    stepMixed(zero_targets_, now);  // no fresh targets: brake
   }
+}
+
+void EnvServer::stepMixed(const std::vector<float>& targets, SteadyTime now) {
+  if (!cmd_vel_ || !cmd_vel_->anyFresh(now)) {
+    stepWith(targets.data(), targets.size());
+    return;
+  }
+  // A WheelTargets message is valid or not as a whole, even where cmd_vel overrides it: an
+  // invalid one goes to the core unmixed, which rejects it with its reason and steps nothing.
+  const bool valid =
+      targets.size() == zero_targets_.size() &&
+      std::all_of(targets.begin(), targets.end(), [](float v) { return std::isfinite(v); });
+  if (!valid) {
+    stepWith(targets.data(), targets.size());
+    return;
+  }
+  mixed_targets_.assign(targets.begin(), targets.end());
+  cmd_vel_->apply(now, mixed_targets_.data(), mixed_targets_.size());
+  stepWith(mixed_targets_.data(), mixed_targets_.size());
+}
+
+void EnvServer::enableCmdVel(const DiffDrive& drive, int envs, double timeout) {
+  if (env_.actionDim() != 2) {
+    throw ConfigError("cmd_vel needs a differential drive of 2 dofs, the env has " +
+                      std::to_string(env_.actionDim()));
+  }
+  cmd_vel_ = std::make_unique<CmdVelMixer>(drive, std::min(envs, env_.numEnvs()), timeout);
+}
+
+bool EnvServer::onCmdVel(int env, const geometry_msgs::Twist& msg, SteadyTime received) {
+  const std::string topic = "cmd_vel of env " + std::to_string(env);
+  if (mode_ == EnvMode::kLockstep) {
+    rejectCmdVel(topic +
+                 " rejected: lockstep mode steps only with WheelTargets (training); "
+                 "mode realtime drives by cmd_vel");
+    return false;
+  }
+  if (!cmd_vel_) {
+    rejectCmdVel(topic + " rejected: no robot envs (robot_envs 0)");
+    return false;
+  }
+  try {
+    cmd_vel_->set(env, msg, received);
+  } catch (const InputError& e) {
+    rejectCmdVel(topic + " rejected: " + e.what());
+    return false;
+  }
+  return true;
+}
+
+void EnvServer::rejectCmdVel(const std::string& reason) {
+  ++counters_.cmd_vel_rejections;
+  counters_.last_cmd_vel_rejection = reason;
+  ROS_WARN_THROTTLE(1.0, "%s (%llu cmd_vel rejected so far)", reason.c_str(),
+                    static_cast<unsigned long long>(counters_.cmd_vel_rejections));
 }
 
 bool EnvServer::tryLockstep(const WheelTargets& targets, std::string& reason) {

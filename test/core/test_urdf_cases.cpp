@@ -97,6 +97,11 @@ TEST(UrdfCases, MasslessRootIsMergedAndIsTheBaseFrame) {
   ASSERT_EQ(base.links.size(), 3u);
   EXPECT_EQ(base.links[1].name, "base_link");
   EXPECT_EQ(base.links[2].name, "caster_back_link");
+  // each link keeps its URDF parent (for tf): the tree, not the merged bodies
+  EXPECT_EQ(base.links[0].parent, "");
+  EXPECT_EQ(base.links[1].parent, "base_footprint");
+  EXPECT_EQ(base.links[2].parent, "base_link");
+  EXPECT_EQ(model->bodies()[1].links[0].parent, "base_link");
   EXPECT_NEAR(base.mass, 1.01, 1e-12);
   EXPECT_NEAR(base.links[1].offset.translation().z(), 0.010, 1e-12);
   // base_footprint is on the ground: the wheels and the caster reach down to it.

@@ -12,7 +12,10 @@ import rostest
 
 RUN_TIMEOUT = 60.0  # s, for one node start-up on a loaded machine
 
-URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot.urdf')).read()
+PACKAGE = rospkg.RosPack().get_path('jetbot_rl')
+URDF = open(os.path.join(PACKAGE, 'urdf', 'jetbot.urdf')).read()
+TRIBOT = open(os.path.join(PACKAGE, 'test', 'urdf', 'tribot.urdf')).read()
+TRIBOT_DOFS = ['wheel_left_joint', 'wheel_right_joint']
 
 
 class TestRefuseStart(unittest.TestCase):
@@ -84,6 +87,46 @@ class TestRefuseStart(unittest.TestCase):
     def test_publish_clock_not_bool(self):
         self.refuses([], 'publish_clock', 'bool', publish_clock='yes')
 
+    def test_odom_rate_zero(self):
+        self.refuses(['_odom_rate:=0.0'], 'odom_rate = 0')
+
+    def test_cmd_vel_timeout_negative(self):
+        self.refuses(['_cmd_vel_timeout:=-0.5'], 'cmd_vel_timeout = -0.5')
+
+    def test_robot_envs_negative(self):
+        self.refuses(['_robot_envs:=-1'], 'robot_envs = -1')
+
+    def test_env_prefix_dropped_with_two_robot_envs(self):
+        self.refuses(['_num_envs:=4', '_robot_envs:=2', '_env_prefix:=false'],
+                     'env_prefix = false', 'robot_envs 1, got 2')
+
+    # --- the robot view needs a differential drive ---
+    def test_robot_envs_without_a_differential_drive(self):
+        self.refuses(['_robot_envs:=1'], 'robot_envs = 1', 'differential drive', 'dof_names',
+                     dof_names=['left_wheel_joint'])
+
+    def test_no_differential_drive_without_robot_envs_starts(self):
+        self.starts(['_robot_envs:=0'], dof_names=['left_wheel_joint'])
+
+    # --- URDFs as robot makers publish them ---
+    def test_wheels_without_limit_need_the_parameter(self):
+        rospy.set_param('/robot_description', TRIBOT)
+        self.refuses(['_effort_limit:=0.3'], "joint 'wheel_left_joint'", 'wheel_velocity_limit',
+                     dof_names=TRIBOT_DOFS)
+
+    def test_unreadable_mesh_names_the_link_and_the_path(self):
+        rospy.set_param('/robot_description', TRIBOT.replace(
+            'package://jetbot_rl/test/urdf/meshes/chassis.stl',
+            'package://jetbot_rl/test/urdf/meshes/missing.stl'))
+        self.refuses(['_wheel_velocity_limit:=8.0', '_effort_limit:=0.3'], "link 'base_link'",
+                     os.path.join(PACKAGE, 'test/urdf/meshes/missing.stl'), dof_names=TRIBOT_DOFS)
+
+    def test_unknown_package_names_the_package(self):
+        rospy.set_param('/robot_description', TRIBOT.replace(
+            'package://jetbot_rl/', 'package://no_such_package_here/'))
+        self.refuses(['_wheel_velocity_limit:=8.0', '_effort_limit:=0.3'], "link 'base_link'",
+                     "package 'no_such_package_here'", dof_names=TRIBOT_DOFS)
+
     # --- robot_description ---
     def test_robot_description_missing(self):
         rospy.delete_param('/robot_description')
@@ -101,8 +144,14 @@ class TestRefuseStart(unittest.TestCase):
 
     # --- control: valid parameters start (the harness does not fail every start) ---
     def test_valid_parameters_start(self):
-        command = self.node_command('_num_envs:=2')
+        self.starts(['_num_envs:=2'])
+
+    def starts(self, args, **params):
+        """Runs the node with private params `args` and `params`: it must serve ~reset."""
+        command = self.node_command(*args)
         name = command[3][len('__name:='):]
+        for key, value in params.items():
+            rospy.set_param('/%s/%s' % (name, key), value)
         with tempfile.TemporaryFile(mode='w+') as output:
             proc = subprocess.Popen(command, stdout=output, stderr=subprocess.STDOUT)
             try:

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <geometry_msgs/Twist.h>
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 #include <ros/service_server.h>
@@ -8,9 +9,11 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/ros/env_diagnostics.h"
 #include "jetbot_rl/ros/env_server.h"
 #include "jetbot_rl/ros/inline_callback_queue.h"
@@ -20,7 +23,8 @@
 namespace jetbot_rl {
 
 /**
- * The jetbot_env node: an EnvServer (the lockstep/realtime logic) on topics and services.
+ * The jetbot_env node: an EnvServer (the lockstep/realtime logic) on topics and services, and
+ * the robot view of the first robot_envs envs (cmd_vel, odom, joint_states, tf).
  *
  * Topic and service callbacks run at once in roscpp's network thread (InlineCallbackQueue: a
  * lockstep round trip wakes no spinner), timers on the spinner. A call changes the state under
@@ -30,9 +34,10 @@ namespace jetbot_rl {
  */
 class EnvNode {
  public:
-  /// Serves `env` (built by the caller from the same params) under `pnh`.
+  /// Serves `env` (built by the caller from the same params) under `pnh`; `drive`: the robot's
+  /// cmd_vel kinematics, needed when params.robot_envs > 0 (else ConfigError).
   EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params,
-          std::unique_ptr<BatchedEnv> env);
+          std::unique_ptr<BatchedEnv> env, std::optional<DiffDrive> drive = std::nullopt);
 
   /// EnvStep.step of the current state.
   std::uint64_t step() const;
@@ -44,6 +49,7 @@ class EnvNode {
 
  private:
   void onWheelTargets(const WheelTargets::ConstPtr& msg);
+  void onCmdVel(int env, const geometry_msgs::Twist::ConstPtr& msg);
   bool onStep(Step::Request& req, Step::Response& res);
   bool onReset(Reset::Request& req, Reset::Response& res);
   bool onSetCommand(SetCommand::Request& req, SetCommand::Response& res);
@@ -64,6 +70,7 @@ class EnvNode {
   ros::Publisher spec_pub_;
   std::vector<std::unique_ptr<StateOutput>> outputs_;
   ros::Subscriber targets_sub_;
+  std::vector<ros::Subscriber> cmd_vel_subs_;  // per robot env
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
   ros::WallTimer realtime_timer_, diagnostics_timer_;
   EnvDiagnostics diagnostics_;

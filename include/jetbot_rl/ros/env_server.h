@@ -1,7 +1,10 @@
 #pragma once
 
+#include <geometry_msgs/Twist.h>
+
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +14,7 @@
 #include "jetbot_rl/Step.h"
 #include "jetbot_rl/WheelTargets.h"
 #include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/ros/cmd_vel_mixer.h"
 #include "jetbot_rl/ros/node_params.h"
 
 namespace jetbot_rl {
@@ -24,14 +28,18 @@ struct EnvCounters {
   std::string last_divergence;   ///< The core's reason for the last one.
   std::uint64_t malformed = 0;   ///< Messages and requests refused unread (lying lengths).
   std::string last_malformed;    ///< Reason of the last one.
+
+  std::uint64_t cmd_vel_rejections = 0;  ///< Rejected cmd_vel (lockstep mode, non-finite).
+  std::string last_cmd_vel_rejection;    ///< Reason of the last one.
 };
 
 /**
  * The env node's logic on message types, without ROS I/O (no node handle, no master): the
  * lockstep gate (a WheelTargets or ~step call steps only when its step is the current one),
  * realtime ticks with the freshest valid targets (braking when they are older than
- * `action_timeout`), resets and commands, the rejection and divergence counters. Not
- * thread-safe: the node serialises the calls. After every change, state() is a new message.
+ * `action_timeout`), cmd_vel of the robot envs (realtime: a fresh one drives its env over
+ * WheelTargets), resets and commands, the rejection and divergence counters. Not thread-safe:
+ * the node serialises the calls. After every change, state() is a new message.
  */
 class EnvServer {
  public:
@@ -54,8 +62,17 @@ class EnvServer {
   /// is a rejection too.
   void countMalformed(const std::string& reason);
   /// Realtime: one control step with the newest valid targets received at most `action_timeout`
-  /// before `now`, else 0 rad/s (brakes).
+  /// before `now`, else 0 rad/s (brakes); an env with a cmd_vel at most `cmd_vel_timeout` old
+  /// follows that instead.
   void onTick(SteadyTime now);
+
+  /// Takes cmd_vel for envs 0..envs-1 (clamped to the batch), converted with `drive`; a command
+  /// drives its env for `timeout` [s, wall] after it was received.
+  void enableCmdVel(const DiffDrive& drive, int envs, double timeout);
+  /// A Twist on env `env`'s cmd_vel. Realtime: kept as that env's wheel targets for the next
+  /// ticks (true). Lockstep (training steps with WheelTargets only), no cmd_vel enabled, or a
+  /// NaN or infinite component: rejected and counted, the previous command stays (false).
+  bool onCmdVel(int env, const geometry_msgs::Twist& msg, SteadyTime received);
 
   /// The current state as published on ~env_step (a new object after every change).
   const EnvStep::ConstPtr& state() const { return state_; }
@@ -68,6 +85,9 @@ class EnvServer {
   bool tryLockstep(const WheelTargets& targets, std::string& reason);
   /// Steps the env with `count` targets [rad/s]; throws InputError and changes nothing if invalid.
   void stepWith(const float* targets, std::size_t count);
+  /// stepWith() `targets` with the fresh cmd_vel commands written over their envs' targets.
+  void stepMixed(const std::vector<float>& targets, SteadyTime now);
+  void rejectCmdVel(const std::string& reason);
   void reject(const std::string& reason);
   void updateState();
 
@@ -81,6 +101,9 @@ class EnvServer {
   std::vector<float> current_targets_, pending_targets_, zero_targets_;
   SteadyTime current_time_, pending_time_;
   bool has_current_ = false, has_pending_ = false;
+
+  std::unique_ptr<CmdVelMixer> cmd_vel_;  // null: no robot envs
+  std::vector<float> mixed_targets_;      // WheelTargets with the cmd_vel envs written over
 };
 
 }  // namespace jetbot_rl

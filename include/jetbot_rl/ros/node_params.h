@@ -2,6 +2,7 @@
 
 #include <ros/node_handle.h>
 
+#include <algorithm>
 #include <string>
 
 #include "jetbot_rl/config_fields.h"
@@ -33,7 +34,23 @@ struct NodeParams {
   int tf_envs = 4;                ///< Envs that get tf frames (clamped to num_envs).
   double tf_rate = 30.0;          ///< Largest tf (and marker) rate [Hz of simulation time].
   bool markers = true;            ///< Publish ~markers for the envs with tf.
+  /// Envs 0..robot_envs-1 get the robot view: cmd_vel in, odom and joint_states out, and tf
+  /// (clamped to num_envs).
+  int robot_envs = 1;
+  /// false: env 0's robot view topics and tf frames have no "env_0/" prefix (one robot env only).
+  bool env_prefix = true;
+  double cmd_vel_timeout = 0.5;  ///< Realtime mode: an older cmd_vel no longer drives [s, wall].
+  double odom_rate = 50.0;       ///< Largest odom and joint_states rate [Hz of simulation time].
+  /// tf of the links below the root link; false leaves them to robot_state_publisher.
+  bool publish_link_tf = true;
 };
+
+/// Envs with the robot view: robot_envs clamped to num_envs.
+inline int robotEnvs(const NodeParams& p) { return std::min(p.robot_envs, p.env.num_envs); }
+/// Envs with tf frames: the tf_envs and the robot envs, clamped to num_envs.
+inline int tfEnvs(const NodeParams& p) {
+  return std::min(std::max(p.tf_envs, p.robot_envs), p.env.num_envs);
+}
 
 template <typename C, typename V>
 IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
@@ -46,7 +63,15 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
   v("tf_envs", c.tf_envs, atLeast(0, "", "0: no tf"));
   v("tf_rate", c.tf_rate, positive("Hz of simulation time"));
   v("markers", c.markers, AnyValue{});
+  v("robot_envs", c.robot_envs, atLeast(0, "", "0: no robot view"));
+  v("env_prefix", c.env_prefix, AnyValue{});
+  v("cmd_vel_timeout", c.cmd_vel_timeout, positive("s, wall"));
+  v("odom_rate", c.odom_rate, positive("Hz of simulation time"));
+  v("publish_link_tf", c.publish_link_tf, AnyValue{});
 }
+
+/// Checks the rules between fields (EnvConfig's and env_prefix's); ConfigError naming the field.
+void validateNodeParams(const NodeParams& params);
 
 /// Reads the private parameters from `pnh`, keeping the default of every absent one, and
 /// validates them all. Throws ConfigError naming the first invalid parameter and its value.

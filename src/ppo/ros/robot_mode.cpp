@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ros/publication_flush.h"
 
@@ -26,8 +27,8 @@ DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p) {
   if ((p.wheel_radius <= 0.0 || p.wheel_separation <= 0.0) &&
       nh.getParam("robot_description", urdf)) {
     const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
-    return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf), p.dof_names, limits,
-                                p.wheel_radius, p.wheel_separation);
+    return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf, packageResolver()), p.dof_names,
+                                limits, p.wheel_radius, p.wheel_separation);
   }
   const double r = p.wheel_radius > 0.0 ? p.wheel_radius : kStockWheelRadius;
   const double s = p.wheel_separation > 0.0 ? p.wheel_separation : kStockWheelSeparation;

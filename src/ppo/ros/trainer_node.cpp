@@ -15,6 +15,7 @@
 #include "jetbot_rl/ppo/runner.h"
 #include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/node_params.h"
+#include "jetbot_rl/ros/package_resolver.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -61,7 +62,7 @@ std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHand
     throw ConfigError("robot_description is not set: load the robot's URDF into it");
   }
   return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
-      RobotModel::fromUrdfString(urdf), env_params.env, makeTask(env_params.task)));
+      RobotModel::fromUrdfString(urdf, packageResolver()), env_params.env, makeTask(env_params.task)));
 }
 
 }  // namespace
