@@ -58,6 +58,21 @@ target_include_directories(jetbot_rl_ppo_ros PUBLIC include ${catkin_INCLUDE_DIR
 target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo jetbot_rl_ros)
 add_dependencies(jetbot_rl_ppo_ros ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
+# Every node as a nodelet (nodelet_plugins.xml): the env and a learner in one manager pass
+# messages by shared pointer.
+add_library(jetbot_rl_nodelets src/nodelets/env_nodelet.cpp src/nodelets/learner_nodelets.cpp)
+target_include_directories(jetbot_rl_nodelets PRIVATE src/ros)
+target_link_libraries(jetbot_rl_nodelets jetbot_rl_ppo_ros ${NODELET_LIBRARY}
+  ${CLASS_LOADER_LIBRARY})
+target_include_directories(jetbot_rl_nodelets SYSTEM PRIVATE ${NODELET_INCLUDE_DIR}
+  ${PLUGINLIB_INCLUDE_DIR} ${CLASS_LOADER_INCLUDE_DIR} ${RCPPUTILS_INCLUDE_DIR} ${RCUTILS_INCLUDE_DIR})
+# The bench's round trips, without its main.
+target_sources(jetbot_rl_nodelets PRIVATE src/ros/lockstep_bench.cpp)
+install(TARGETS jetbot_rl_nodelets
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
 add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)
 target_link_libraries(jetbot_ppo_trainer jetbot_rl_ppo_ros)
 add_executable(jetbot_policy_node src/nodes/jetbot_policy_node.cpp)

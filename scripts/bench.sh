@@ -5,34 +5,22 @@
 # client, python_bench.py measures the Python client (JetbotVecEnv): a second table. Needs a built
 # workspace:
 #   source ~/jetbot_rl_ws/devel/setup.bash && rosrun jetbot_rl bench.sh [N ...]
-# The env node runs as for training (no /clock, no tf). Uses its own ROS master on port
+# The env node runs as for training (no /clock, no tf). A third table: the env and the bench as
+# nodelets of one manager (messages by shared pointer). Uses its own ROS master on port
 # $JETBOT_RL_BENCH_PORT (default 11399).
 set -euo pipefail
 
 sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(1 100 1024 10000)
-port=${JETBOT_RL_BENCH_PORT:-11399}
-export ROS_MASTER_URI=http://localhost:$port
-bench_dir=$(mktemp -d)
-roscore -p "$port" > "$bench_dir/roscore.log" 2>&1 &
-roscore_pid=$!
-launch_pid=""
-cleanup() {
-  [ -z "$launch_pid" ] || kill -INT "$launch_pid" 2> /dev/null || true
-  kill -INT "$roscore_pid" 2> /dev/null || true
-  wait 2> /dev/null || true
-  rm -rf "$bench_dir"
-}
-trap cleanup EXIT
-until rostopic list > /dev/null 2>&1; do sleep 0.2; done  # the master answers
+# shellcheck source=bench_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/bench_common.sh" "${JETBOT_RL_BENCH_PORT:-11399}"
 
 steps_for() {  # enough steps for about a second of work at each size
   case "$1" in 1) echo 20000 ;; 100) echo 3000 ;; 1024) echo 400 ;; *) echo 40 ;; esac
 }
-field() { grep -o "$1=[0-9.]*" | tail -n 1 | cut -d= -f2; }
-
 rows=()
 py_rows=()
+inproc_rows=()
 for n in "${sizes[@]}"; do
   steps=$(steps_for "$n")
   for t in 1 2; do
@@ -42,9 +30,17 @@ for n in "${sizes[@]}"; do
     launch_pid=$!
     out=$(rosrun jetbot_rl jetbot_rl_ros_bench --envs "$n" --steps "$steps")
     py_out=$(rosrun jetbot_rl python_bench.py --envs "$n" --steps "$steps")
-    kill -INT "$launch_pid"
-    wait "$launch_pid" 2> /dev/null || true
-    launch_pid=""
+    stop_launch
+    # In one process: the env and the bench as nodelets of one manager (bench_nodelets.launch).
+    roslaunch jetbot_rl bench_nodelets.launch num_envs:="$n" num_threads:="$t" steps:="$steps" \
+      > "$bench_dir/inproc.log" 2>&1 &
+    launch_pid=$!
+    until grep -q env_steps_per_s "$bench_dir/inproc.log"; do  # the bench's last line
+      kill -0 "$launch_pid" 2> /dev/null || { echo "bench_nodelets.launch ended early" >&2; exit 1; }
+      sleep 0.2
+    done
+    stop_launch
+    inproc_out=$(cat "$bench_dir/inproc.log")
     e2e=$(echo "$out" | field env_steps_per_s)
     same_run_core=$(echo "$out" | field core_env_steps_per_s)
     p50=$(echo "$out" | grep '^topic' | field p50)
@@ -57,6 +53,11 @@ for n in "${sizes[@]}"; do
     py_rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
       "$e2e" "$py" "$(awk "BEGIN { print $py / $e2e }")" "$p50" "$py_p50")")
     echo "${py_rows[-1]}"
+    inproc=$(echo "$inproc_out" | field env_steps_per_s)
+    inproc_p50=$(echo "$inproc_out" | grep '^topic' | field p50)
+    inproc_rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
+      "$e2e" "$inproc" "$(awk "BEGIN { print $inproc / $e2e }")" "$p50" "$inproc_p50")")
+    echo "${inproc_rows[-1]}"
   done
 done
 
@@ -73,5 +74,9 @@ echo
 echo "| N | threads | C++ client env steps/s | Python client env steps/s | Python/C++ | C++ round trip p50 [us] | Python round trip p50 [us] |"
 echo "|---|---|---|---|---|---|---|"
 printf '%s\n' "${py_rows[@]}"
+echo
+echo "| N | threads | over TCP env steps/s | in-process (nodelets) env steps/s | in-process/TCP | TCP round trip p50 [us] | in-process round trip p50 [us] |"
+echo "|---|---|---|---|---|---|---|"
+printf '%s\n' "${inproc_rows[@]}"
 echo
 echo "memory: $(awk "BEGIN { printf \"%.1f\", ($large - $small) / 9000 }") KiB per env (resident set growth from 1,000 to 10,000 envs)"

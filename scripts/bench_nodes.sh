@@ -10,32 +10,18 @@ n=${1:-1024}
 k=${2:-2}
 t=${3:-2}
 steps=${4:-400}
-export ROS_MASTER_URI=http://localhost:11398
-dir=$(mktemp -d)
-roscore -p 11398 > "$dir/roscore.log" 2>&1 &
-roscore_pid=$!
-launch_pid=""
-cleanup() {
-  [ -z "$launch_pid" ] || kill -INT "$launch_pid" 2> /dev/null || true
-  kill -INT "$roscore_pid" 2> /dev/null || true
-  wait 2> /dev/null || true
-  rm -rf "$dir"
-}
-trap cleanup EXIT
-until rostopic list > /dev/null 2>&1; do sleep 0.2; done  # the master answers
-field() { grep -o "$1=[0-9.]*" | tail -n 1 | cut -d= -f2; }
+# shellcheck source=bench_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/bench_common.sh" 11398
 
 # run COUNT: COUNT nodes sharing n envs and t threads; prints env steps/s through all of them.
 run() {
   local count=$1 nodes
   roslaunch jetbot_rl env_nodes.launch count:="$count" num_envs:="$n" num_threads:="$t" \
-    > "$dir/env.log" 2>&1 &
+    > "$bench_dir/env.log" 2>&1 &
   launch_pid=$!
   nodes=$(seq -s, -f 'jetbot_env_%g' 0 $((count - 1)))
   rosrun jetbot_rl jetbot_rl_nodes_bench --nodes "$nodes" --steps "$steps" | field env_steps_per_s
-  kill -INT "$launch_pid"
-  wait "$launch_pid" 2> /dev/null || true
-  launch_pid=""
+  stop_launch
 }
 
 one=$(run 1)

@@ -197,16 +197,13 @@ void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   diagnostics_.publish(counters, step);
 }
 
-int runEnvNode() {
-  const std::atomic<bool>& stop = installStopSignalHandlers();
-  ros::NodeHandle nh;
-  ros::NodeHandle pnh("~");
+std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   NodeParams params;
   try {
     params = loadNodeParams(pnh);
   } catch (const Error& e) {
     ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
-    return 1;
+    return nullptr;
   }
   ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
 
@@ -215,7 +212,7 @@ int runEnvNode() {
   if (!nh.getParam("robot_description", urdf)) {
     ROS_FATAL("%s: parameter %s is not set or not a string: load the robot's URDF into it",
               pnh.getNamespace().c_str(), description_param.c_str());
-    return 1;
+    return nullptr;
   }
   std::unique_ptr<BatchedEnv> env;
   try {
@@ -225,12 +222,12 @@ int runEnvNode() {
     } catch (const ModelError& e) {
       ROS_FATAL("%s: %s does not fit the parameters: %s", pnh.getNamespace().c_str(),
                 description_param.c_str(), e.what());
-      return 1;
+      return nullptr;
     }
   } catch (const Error& e) {
     ROS_FATAL("%s: cannot use %s: %s", pnh.getNamespace().c_str(), description_param.c_str(),
               e.what());
-    return 1;
+    return nullptr;
   }
   for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
   // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
@@ -242,16 +239,23 @@ int runEnvNode() {
     if (robotEnvs(params) > 0) {
       ROS_FATAL("%s: robot_envs = %d needs a differential drive of %s: %s (or set robot_envs 0)",
                 pnh.getNamespace().c_str(), params.robot_envs, description_param.c_str(), e.what());
-      return 1;
+      return nullptr;
     }
     ROS_INFO("no differential drive (robot_envs 0: not needed): %s", e.what());
   }
-  EnvNode node(nh, pnh, params, std::move(env), drive);
+  return std::make_unique<EnvNode>(nh, pnh, params, std::move(env), drive);
+}
+
+int runEnvNode() {
+  const std::atomic<bool>& stop = installStopSignalHandlers();
+  ros::NodeHandle pnh("~");
+  const std::unique_ptr<EnvNode> node = makeEnvNode(ros::NodeHandle(), pnh);
+  if (!node) return 1;
   // Timers run here; topics and services in roscpp's network thread (inline_queue_).
   ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
   while (ros::ok() && !stop.load()) queue.callAvailable(ros::WallDuration(kStopCheck));
   if (stop.load()) ROS_INFO("%s: stopped by a signal", pnh.getNamespace().c_str());
-  node.shutdown(kFlushTimeout);
+  node->shutdown(kFlushTimeout);
   ros::shutdown();
   return 0;
 }

@@ -2,24 +2,30 @@
 
 #include <ros/console.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace jetbot_rl {
 namespace {
 
-thread_local const InlineCallbackQueue* running_queue = nullptr;  // the queue this thread is in
+// The queues whose callbacks this thread is inside, innermost last. In one process (nodelets) a
+// callback of one queue may publish to a subscriber of another, which publishes back: the chain
+// must come back to the first queue as "nested", not wait for its own mutex.
+thread_local std::vector<const InlineCallbackQueue*> running_queues;
 
 }  // namespace
 
 void InlineCallbackQueue::addCallback(const ros::CallbackInterfacePtr& callback,
                                       std::uint64_t /*owner_id*/) {
-  if (running_queue == this) {  // re-entered from one of our callbacks: run it right after
-    nested_.push_back(callback);
+  if (std::find(running_queues.begin(), running_queues.end(), this) != running_queues.end()) {
+    nested_.push_back(callback);  // re-entered from one of our callbacks: run it right after
     return;
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  // Cleared however the loop ends: a callback's exception must not leave this thread "inside".
+  // Popped however the loop ends: a callback's exception must not leave this thread "inside".
   struct Running {
-    explicit Running(const InlineCallbackQueue* queue) { running_queue = queue; }
-    ~Running() { running_queue = nullptr; }
+    explicit Running(const InlineCallbackQueue* queue) { running_queues.push_back(queue); }
+    ~Running() { running_queues.pop_back(); }
   } running(this);
   nested_.push_back(callback);
   while (!nested_.empty()) {

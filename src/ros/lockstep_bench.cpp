@@ -1,5 +1,6 @@
 #include "lockstep_bench.h"
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <ros/topic.h>
 #include <ros/transport_hints.h>
@@ -32,7 +33,9 @@ class RoundTripper {
  public:
   RoundTripper(ros::NodeHandle& nh, const LockstepBenchOptions& o, const EnvSpec& spec,
                std::uint64_t first_step)
-      : total_(o.steps + std::max(10, o.steps / 10)), warmup_(total_ - o.steps) {
+      : total_(o.steps + std::max(10, o.steps / 10)),
+        warmup_(total_ - o.steps),
+        answer_inline_(o.answer_inline) {
     Rng rng(12345);
     for (int k = 0; k < kActionSets; ++k) {
       std::vector<float> set(static_cast<std::size_t>(spec.num_envs) * spec.action_dim);
@@ -46,9 +49,14 @@ class RoundTripper {
     round_trips_us_.reserve(total_);
     targets_.step = first_step;
     pub_ = nh.advertise<WheelTargets>(o.env_ns + "/wheel_targets", 1);
-    // Answered in roscpp's network thread, as a fast learner would: no spinner hand-off.
+    // Answered in roscpp's network thread, as a fast learner would (no spinner hand-off), or in
+    // run()'s thread.
     ros::NodeHandle inline_nh(nh);
-    inline_nh.setCallbackQueue(&queue_);
+    if (answer_inline_) {
+      inline_nh.setCallbackQueue(&queue_);
+    } else {
+      inline_nh.setCallbackQueue(&own_queue_);
+    }
     sub_ = inline_nh.subscribe(o.env_ns + "/env_step", 1, &RoundTripper::onEnvStep, this,
                                ros::TransportHints().tcpNoDelay());
   }
@@ -60,13 +68,21 @@ class RoundTripper {
       if (Clock::now() > deadline || !ros::ok()) return false;
       ros::WallDuration(0.01).sleep();
     }
-    std::unique_lock<std::mutex> lock(queue_.mutex());
+    // Sent unlocked: in one process (nodelets) the whole chain of answers may run inside this
+    // call, as nested callbacks of the queues, and take the lock itself.
     send();
+    std::unique_lock<std::mutex> lock(queue_.mutex());
     auto last_progress = Clock::now();
     std::size_t seen = done_;
     while (ros::ok() && done_ < total_) {
-      // Woken by each answer; the time-out only lets Ctrl-C and a silent env node end the run.
-      progress_.wait_for(lock, std::chrono::milliseconds(100));
+      if (answer_inline_) {
+        // Woken by each answer; the time-out only lets Ctrl-C and a silent env node end the run.
+        progress_.wait_for(lock, std::chrono::milliseconds(100));
+      } else {
+        lock.unlock();
+        own_queue_.callAvailable(ros::WallDuration(0.1));  // blocks until an answer arrives
+        lock.lock();
+      }
       if (done_ != seen) {
         seen = done_;
         last_progress = Clock::now();
@@ -87,7 +103,7 @@ class RoundTripper {
     const auto& set = actions_[targets_.step % kActionSets];
     targets_.velocities.assign(set.begin(), set.end());
     sent_ = Clock::now();
-    pub_.publish(targets_);
+    pub_.publish(boost::make_shared<const WheelTargets>(targets_));  // shared in one process
   }
 
   void onEnvStep(const EnvStep::ConstPtr& msg) {
@@ -108,7 +124,9 @@ class RoundTripper {
   std::vector<std::vector<float>> actions_;
   std::vector<double> round_trips_us_;
   WheelTargets targets_;
-  InlineCallbackQueue queue_;  // onEnvStep runs under its mutex
+  const bool answer_inline_;
+  InlineCallbackQueue queue_;     // onEnvStep runs under its mutex
+  ros::CallbackQueue own_queue_;  // answer_inline_ false: run() calls onEnvStep
   std::condition_variable progress_;
   ros::Publisher pub_;
   ros::Subscriber sub_;
@@ -231,6 +249,7 @@ int runLockstepBench(ros::NodeHandle& nh, const LockstepBenchOptions& o) {
     }
   }
   std::printf("env_steps_per_s=%.0f\n", ros_figure);
+  std::fflush(stdout);  // in a nodelet manager whose output is a file: now, not at its exit
   return 0;
 }
 

@@ -12,6 +12,11 @@ struct LockstepBenchOptions {
   int envs = 1024;                     ///< The env node's num_envs (checked against ~spec).
   int steps = 1000;                    ///< Timed round trips.
   bool compare_core = true;            ///< Also step the core in-process with the node's params.
+  /// Answer each EnvStep in the thread that receives it (roscpp's network thread: no hand-off)
+  /// instead of in the bench's own thread. In one process with the env (nodelets) it must be
+  /// false: an answer published from inside the env's publish would re-enter roscpp's
+  /// publication of our own targets, which roscpp does not allow.
+  bool answer_inline = true;
 };
 
 /**

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Trainings with the same seed (run side by side by determinism.test: two through env nodes, one
-with the env in the trainer's process) write identical progress.csv files, timing columns aside."""
+with the env in the trainer's process, one with env and trainer as nodelets of one manager) write
+identical progress.csv files, timing columns aside."""
 import os
 import unittest
 
@@ -16,16 +17,17 @@ class TestDeterminism(unittest.TestCase):
         a = StatsWatcher('/a/jetbot_ppo_trainer/training_stats')
         b = StatsWatcher('/b/jetbot_ppo_trainer/training_stats')
         c = StatsWatcher('/c/jetbot_ppo_trainer/training_stats')
-        for watcher in (a, b, c):
+        d = StatsWatcher('/d/jetbot_ppo_trainer/training_stats')
+        for watcher in (a, b, c, d):
             watcher.wait_iteration(iterations)
         rows = {name: learning_columns(os.path.join(rospy.get_param('~run_dir_' + name),
                                                     'progress.csv'))
-                for name in 'abc'}
+                for name in 'abcd'}
         rows_a = rows['a']
         self.assertEqual(len(rows_a), iterations + 1)
         self.assertIn('mean_reward_per_step', rows_a[0])
         self.assertNotIn('elapsed_s', rows_a[0])
-        for name in 'bc':
+        for name in 'bcd':
             self.assertEqual(len(rows[name]), len(rows_a), name)
             for row_a, row in zip(rows_a, rows[name]):
                 self.assertEqual(row_a, row, 'run %s differs from run a' % name)

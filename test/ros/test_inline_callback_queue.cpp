@@ -60,6 +60,25 @@ TEST(InlineCallbackQueue, ACallbackAddedByACallbackRunsAfterItReturns) {
   EXPECT_EQ(order, (std::vector<std::string>{"outer begins", "outer ends", "inner"}));
 }
 
+TEST(InlineCallbackQueue, APingPongBetweenTwoQueuesInOneThreadRunsAsNestedCallbacks) {
+  // In-process publishers (nodelets): a callback of queue a adds to queue b, whose callback adds
+  // back to a. That must queue behind a's running callback, not wait for a's mutex (deadlock).
+  InlineCallbackQueue a, b;
+  std::vector<std::string> order;
+  int rounds = 0;
+  std::function<void()> on_a, on_b;
+  on_a = [&] {
+    order.push_back("a" + std::to_string(rounds));
+    if (++rounds < 3) b.addCallback(callback(on_b));
+  };
+  on_b = [&] {
+    order.push_back("b" + std::to_string(rounds));
+    a.addCallback(callback(on_a));
+  };
+  a.addCallback(callback(on_a));
+  EXPECT_EQ(order, (std::vector<std::string>{"a0", "b1", "a1", "b2", "a2"}));
+}
+
 TEST(InlineCallbackQueue, AThrowingCallbackLeavesTheQueueUsable) {
   InlineCallbackQueue queue;
   EXPECT_THROW(queue.addCallback(callback([] { throw std::runtime_error("boom"); })),

@@ -76,6 +76,11 @@ class EnvNode {
   EnvDiagnostics diagnostics_;
 };
 
+/// Loads and echoes the parameters under `pnh` and the robot (robot_description, resolved in
+/// `nh`'s namespace), builds the env and serves it (the node's and the nodelet's start-up).
+/// Returns nullptr after a ROS_FATAL naming the bad parameter or robot.
+std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
 /// Runs jetbot_env_node after ros::init() (with ros::init_options::NoSigintHandler): loads and
 /// echoes the parameters and the robot, builds the env, then spins until SIGINT or SIGTERM (or
 /// ROS shuts down), sends the last markers and shuts ROS down. Returns the process exit code: 0,

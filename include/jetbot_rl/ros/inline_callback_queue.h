@@ -19,7 +19,8 @@ namespace jetbot_rl {
  */
 class InlineCallbackQueue : public ros::CallbackQueueInterface {
  public:
-  /// Runs `callback` now; a callback added by a callback of this queue runs after it returns.
+  /// Runs `callback` now; a callback added from inside a callback of this queue (also through
+  /// other inline queues in between, as in-process publishers do) runs after it returns.
   void addCallback(const ros::CallbackInterfacePtr& callback, std::uint64_t owner_id = 0) override;
   /// Nothing is ever queued for long, so there is nothing to remove.
   void removeByID(std::uint64_t /*owner_id*/) override {}

@@ -16,6 +16,7 @@
 #include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/package_resolver.h"
+#include "jetbot_rl/ros/publication_flush.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -61,8 +62,9 @@ std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHand
   if (!nh.getParam("robot_description", urdf)) {
     throw ConfigError("robot_description is not set: load the robot's URDF into it");
   }
-  return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
-      RobotModel::fromUrdfString(urdf, packageResolver()), env_params.env, makeTask(env_params.task)));
+  return std::make_unique<LocalVecEnv>(
+      std::make_unique<BatchedEnv>(RobotModel::fromUrdfString(urdf, packageResolver()),
+                                   env_params.env, makeTask(env_params.task)));
 }
 
 }  // namespace
@@ -131,6 +133,8 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     code = 1;
   }
+  // The last ~training_stats must leave before the publisher goes (a waiting test, rqt_plot).
+  flushPublications(0.5);
   return code;
 }
 
