@@ -90,6 +90,16 @@ void readValue(const std::string& field, const std::string& text, std::vector<in
   v = out;
 }
 
+void readValue(const std::string& field, const std::string& text, std::vector<double>& v) {
+  std::vector<double> out;
+  for (const auto& item : listItems(field, text, "a list of numbers [a, b]")) {
+    double x = 0;
+    readValue(field, item, x);
+    out.push_back(x);
+  }
+  v = out;
+}
+
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v) {
   v = listItems(field, text, "a list of names [a, b]");
 }
