@@ -101,7 +101,7 @@ class BatchedEnv {
   std::uint64_t divergedCount() const { return diverged_count_; }
   /// The values env `env` drew at its last reset (README "Domain randomisation"); the defaults
   /// when randomisation is off.
-  EnvRandomization randomization(int env) const;
+  RandomizationDraw randomization(int env) const;
 
   /// Origin of env `env` on the square grid, Isaac Lab's layout [m].
   Eigen::Vector3d envOrigin(int env) const;

@@ -50,7 +50,7 @@ IfConfig<C, RandomizationConfig> visitFields(C& c, V&& v) {
 }
 
 /// The values one env drew at its last reset (the defaults when randomisation is off).
-struct EnvRandomization {
+struct RandomizationDraw {
   double mass_scale = 1.0;
   double wheel_friction = 1.0;
   double drive_gain_scale = 1.0;

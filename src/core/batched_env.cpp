@@ -365,7 +365,7 @@ void BatchedEnv::jointStates(int env, JointStates& out) const {
   }
 }
 
-EnvRandomization BatchedEnv::randomization(int env) const {
+RandomizationDraw BatchedEnv::randomization(int env) const {
   checkEnv(env);
   return randomizer_->values(env);
 }

@@ -44,8 +44,8 @@ EnvRandomizer::EnvRandomizer(const EnvConfig& config, const PhysicsModel& model,
       std::any_of(obs_std.begin(), obs_std.end(), [](double s) { return s > 0; });
   if (obs_std.size() > 1 && static_cast<int>(obs_std.size()) != obs_dim) {
     throwInvalid("obs_noise_std", listText(obs_std),
-                 "needs one value for every observation component or one per component (" +
-                     std::to_string(obs_dim) + ")");
+                 "must hold one value (for every component) or " + std::to_string(obs_dim) +
+                     " (one per observation component)");
   }
   if (obs_noise) {
     obs_noise_std_ = obs_std.size() == 1 ? std::vector<double>(obs_dim, obs_std[0]) : obs_std;
@@ -162,8 +162,8 @@ void EnvRandomizer::noiseObservation(int env, float* obs) {
   }
 }
 
-EnvRandomization EnvRandomizer::values(int env) const {
-  EnvRandomization r;
+RandomizationDraw EnvRandomizer::values(int env) const {
+  RandomizationDraw r;
   if (!draws_.empty()) {
     const PhysicalDraw& p = draws_[env].physical;
     r.mass_scale = p.mass_scale;

@@ -47,7 +47,7 @@ class EnvRandomizer {
   /// Adds env `env`'s observation noise to `obs` (obs_dim values).
   void noiseObservation(int env, float* obs);
   /// The values env `env` drew at its last reset.
-  EnvRandomization values(int env) const;
+  RandomizationDraw values(int env) const;
 
  private:
   struct Draw {

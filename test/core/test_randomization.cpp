@@ -93,7 +93,7 @@ TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
   const auto& task = static_cast<const CommandTask&>(env.task());
   std::vector<double> yaws;
   for (int e = 0; e < 8; ++e) {
-    const EnvRandomization r = env.randomization(e);
+    const RandomizationDraw r = env.randomization(e);
     yaws.push_back(r.initial_yaw);
     EXPECT_GE(r.initial_yaw, -3.0);
     EXPECT_LE(r.initial_yaw, 3.0);
@@ -281,7 +281,7 @@ EnvConfig everythingOn(int num_envs, int threads) {
   return c;
 }
 
-bool sameValues(const EnvRandomization& a, const EnvRandomization& b) {
+bool sameValues(const RandomizationDraw& a, const RandomizationDraw& b) {
   return a.mass_scale == b.mass_scale && a.wheel_friction == b.wheel_friction &&
          a.drive_gain_scale == b.drive_gain_scale && a.effort_limit_scale == b.effort_limit_scale &&
          a.wheel_radius_scale == b.wheel_radius_scale && a.initial_yaw == b.initial_yaw &&
@@ -292,7 +292,7 @@ bool sameValues(const EnvRandomization& a, const EnvRandomization& b) {
 TEST(Randomization, DrawsAreInRangeDifferPerEnvAndRepeatPerSeed) {
   BatchedEnv env(jetbot(), everythingOn(6, 1));
   for (int e = 0; e < 6; ++e) {
-    const EnvRandomization r = env.randomization(e);
+    const RandomizationDraw r = env.randomization(e);
     EXPECT_GE(r.mass_scale, 0.8);
     EXPECT_LE(r.mass_scale, 1.3);
     EXPECT_GE(r.wheel_friction, 0.6);
@@ -307,13 +307,13 @@ TEST(Randomization, DrawsAreInRangeDifferPerEnvAndRepeatPerSeed) {
     }
   }
   // Every reset draws anew; a reset with the seed repeats the first draws.
-  const EnvRandomization first = env.randomization(2);
+  const RandomizationDraw first = env.randomization(2);
   env.reset({2});
   EXPECT_FALSE(sameValues(env.randomization(2), first));
   env.reset({2}, 0);
   EXPECT_TRUE(sameValues(env.randomization(2), first));
   // A time-out draws anew too.
-  const EnvRandomization before_timeout = env.randomization(4);
+  const RandomizationDraw before_timeout = env.randomization(4);
   for (int s = 0; s < env.maxEpisodeLength(); ++s) env.step(uniformActions(env, 1.0f, 1.0f));
   EXPECT_FALSE(sameValues(env.randomization(4), before_timeout));
 }
@@ -399,7 +399,7 @@ TEST(MotorModel, TrimsDrawnPerSideMakeTheRobotTurn) {
   for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 10.0f, 10.0f));
   int turning = 0;
   for (int e = 0; e < 16; ++e) {
-    const EnvRandomization r = env.randomization(e);
+    const RandomizationDraw r = env.randomization(e);
     // In a turn the wheels track their targets within a few per cent (as without the model).
     EXPECT_NEAR(env.dofVelocity(e, 0), 10.0 * r.motor_trim[0], 0.07 * 10.0 * r.motor_trim[0]);
     EXPECT_NEAR(env.dofVelocity(e, 1), 10.0 * r.motor_trim[1], 0.07 * 10.0 * r.motor_trim[1]);

@@ -91,7 +91,7 @@ TEST(RandomizationOff, NothingIsDrawnFromTheEnvStreams) {
 
 TEST(RandomizationOff, ValuesAreTheDefaults) {
   BatchedEnv env(jetbot(), smallConfig(2));
-  const EnvRandomization r = env.randomization(1);
+  const RandomizationDraw r = env.randomization(1);
   EXPECT_EQ(r.mass_scale, 1.0);
   EXPECT_EQ(r.wheel_friction, 1.0);
   EXPECT_EQ(r.drive_gain_scale, 1.0);

@@ -65,6 +65,7 @@ class EnvNode {
   std::vector<std::unique_ptr<StateOutput>> outputs_;
   ros::Subscriber targets_sub_;
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
+  ros::ServiceServer get_randomization_srv_;  // domain randomisation (randomization_service.h)
   ros::WallTimer realtime_timer_, diagnostics_timer_;
   EnvDiagnostics diagnostics_;
 };
