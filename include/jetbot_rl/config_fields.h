@@ -219,6 +219,7 @@ void readValue(const std::string& field, const std::string& text, std::uint64_t&
 void readValue(const std::string& field, const std::string& text, double& v);
 void readValue(const std::string& field, const std::string& text, std::string& v);
 void readValue(const std::string& field, const std::string& text, std::vector<int>& v);
+/// A flow list of numbers, or one number for a list of one.
 void readValue(const std::string& field, const std::string& text, std::vector<double>& v);
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v);
 template <typename E, typename = std::enable_if_t<IsNamedEnum<E>::value>>

@@ -91,6 +91,12 @@ void readValue(const std::string& field, const std::string& text, std::vector<in
 }
 
 void readValue(const std::string& field, const std::string& text, std::vector<double>& v) {
+  if (!text.empty() && text.front() != '[') {  // a single number stands for a list of one
+    double x = 0;
+    readValue(field, text, x);
+    v = {x};
+    return;
+  }
   std::vector<double> out;
   for (const auto& item : listItems(field, text, "a list of numbers [a, b]")) {
     double x = 0;

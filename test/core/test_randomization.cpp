@@ -551,6 +551,10 @@ TEST(Randomization, FieldsRoundTripThroughYaml) {
   EnvConfig empty;
   fieldsFromYaml("obs_noise_std: []\n", empty);
   EXPECT_TRUE(empty.randomization.obs_noise_std.empty());
+  EnvConfig single;
+  fieldsFromYaml("obs_noise_std: 0.25  # one for every component\n", single);
+  EXPECT_EQ(single.randomization.obs_noise_std, std::vector<double>{0.25});
+  EXPECT_THROW(fieldsFromYaml("mass_scale: [1, x]\n", single), ConfigError);
 }
 
 TEST(Randomization, TheTribotIsRandomisedToo) {
