@@ -10,12 +10,14 @@ add_library(jetbot_rl_core
   src/core/diff_drive.cpp
   src/core/dof_limits.cpp
   src/core/env_config.cpp
+  src/core/env_randomizer.cpp
   src/core/env_world.cpp
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
   src/core/mesh_loader.cpp
   src/core/multi_vec_env.cpp
   src/core/physics_model.cpp
+  src/core/randomization.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp
   src/core/thread_pool.cpp
@@ -74,6 +76,8 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_urdf_cases.cpp
     test/core/test_tribot.cpp
     test/core/test_multi_vec_env.cpp
+    test/core/test_randomization_off.cpp
+    test/core/test_randomization.cpp
   )
   target_link_libraries(test_core jetbot_rl_core)
   target_include_directories(test_core PRIVATE src/core)

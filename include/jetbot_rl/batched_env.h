@@ -10,12 +10,14 @@
 
 #include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
+#include "jetbot_rl/randomization.h"
 #include "jetbot_rl/robot_model.h"
 #include "jetbot_rl/step_result.h"
 #include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
 
+class EnvRandomizer;
 class EnvWorld;
 class PhysicsModel;
 class ThreadPool;
@@ -97,6 +99,9 @@ class BatchedEnv {
   const std::vector<std::string>& jointNames() const { return joint_names_; }
   /// Number of envs reset because they diverged, since construction.
   std::uint64_t divergedCount() const { return diverged_count_; }
+  /// The values env `env` drew at its last reset (README "Domain randomisation"); the defaults
+  /// when randomisation is off.
+  RandomizationDraw randomization(int env) const;
 
   /// Origin of env `env` on the square grid, Isaac Lab's layout [m].
   Eigen::Vector3d envOrigin(int env) const;
@@ -137,6 +142,7 @@ class BatchedEnv {
   std::unique_ptr<Task> task_;
   int obs_dim_ = 0;
   std::unique_ptr<PhysicsModel> physics_;
+  std::unique_ptr<EnvRandomizer> randomizer_;
   std::unique_ptr<ThreadPool> pool_;
   std::vector<std::unique_ptr<WorkerContext>> contexts_;
   std::unique_ptr<Block[]> blocks_;  // per worker
@@ -146,7 +152,7 @@ class BatchedEnv {
   std::vector<DofLimits> dof_limits_;
   std::vector<std::string> joint_names_;
   std::vector<int> dof_of_joint_;      // per jointNames() entry: its dof, or -1
-  std::vector<float> targets_;         // clamped actions of the current step
+  std::vector<float> targets_;         // clamped (raw with action noise) actions of the step
   std::vector<std::uint8_t> ended_;    // per env: ended in the current step
   std::vector<float> final_scratch_;   // per env final observation slot
   std::vector<std::string> diverged_;  // per env divergence reason of the current step

@@ -81,10 +81,13 @@ struct Range {
   const char* note = "";  ///< Appended to the rule, e.g. "0: all cores".
 
   void check(const std::string& name, T value) const {
-    bool ok = true;
-    if constexpr (std::is_floating_point_v<T>) ok = std::isfinite(value);
-    ok = ok && (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
-    if (!ok) throwInvalid(name, value, text());
+    if (!accepts(value)) throwInvalid(name, value, text());
+  }
+  bool accepts(T value) const {
+    if constexpr (std::is_floating_point_v<T>) {
+      if (!std::isfinite(value)) return false;
+    }
+    return (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
   }
   std::string text() const {
     std::ostringstream s;
@@ -166,6 +169,48 @@ void writeValue(std::ostream& s, E v) {
   s << enumName(v);
 }
 
+// ---- rules on lists ----
+
+/// "[a, b]" with the stream's default precision, for error messages.
+template <typename T>
+std::string listText(const std::vector<T>& v) {
+  std::ostringstream s;
+  s << "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s << (i ? ", " : "") << v[i];
+  s << "]";
+  return s.str();
+}
+
+/// A range [min, max] to draw from: two values, min <= max, each accepted by `each` (finite).
+/// [v, v] is the constant v.
+template <typename T>
+struct Interval {
+  Range<T> each;
+  const char* unit = each.unit;
+  void check(const std::string& name, const std::vector<T>& v) const {
+    if (v.size() == 2 && each.accepts(v[0]) && each.accepts(v[1]) && v[0] <= v[1]) return;
+    throwInvalid(name, listText(v),
+                 "must be [min, max] with min <= max; each value " + each.text());
+  }
+};
+template <typename T>
+Interval<T> intervalOf(Range<T> each) {
+  return Interval<T>{each, each.unit};
+}
+
+/// A list of values, each accepted by `each` (any length, empty included; a user of the field
+/// checks the length it needs).
+template <typename T>
+struct EachValue {
+  Range<T> each;
+  const char* unit = each.unit;
+  void check(const std::string& name, const std::vector<T>& v) const {
+    for (T x : v) {
+      if (!each.accepts(x)) throwInvalid(name, listText(v), "every value " + each.text());
+    }
+  }
+};
+
 /// Parses one YAML scalar or flow list into `v`; ConfigError naming `field` on a wrong type.
 void readValue(const std::string& field, const std::string& text, bool& v);
 void readValue(const std::string& field, const std::string& text, int& v);
@@ -174,6 +219,8 @@ void readValue(const std::string& field, const std::string& text, std::uint64_t&
 void readValue(const std::string& field, const std::string& text, double& v);
 void readValue(const std::string& field, const std::string& text, std::string& v);
 void readValue(const std::string& field, const std::string& text, std::vector<int>& v);
+/// A flow list of numbers, or one number for a list of one.
+void readValue(const std::string& field, const std::string& text, std::vector<double>& v);
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v);
 template <typename E, typename = std::enable_if_t<IsNamedEnum<E>::value>>
 void readValue(const std::string& field, const std::string& text, E& v) {

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/motor_model.h"
+#include "jetbot_rl/randomization.h"
 
 namespace jetbot_rl {
 
@@ -29,6 +31,10 @@ struct EnvConfig {
   double wheel_radius = 0.0;
   /// Distance between the two wheels for DiffDrive [m]; 0 derives it from the dof joints.
   double wheel_separation = 0.0;
+  /// Domain randomisation (off by default).
+  RandomizationConfig randomization;
+  /// Open-loop motor model between the targets and the wheels' drives (off by default).
+  MotorModelConfig motor;
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;
@@ -59,6 +65,8 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   v("caster_friction", c.caster_friction, atLeast(0.0));
   v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: derived from the URDF"));
   v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: derived from the URDF"));
+  visitFields(c.randomization, v);
+  visitFields(c.motor, v);
 }
 
 }  // namespace jetbot_rl

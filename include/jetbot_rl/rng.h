@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 namespace jetbot_rl {
@@ -14,6 +15,13 @@ class Rng {
   std::uint64_t next() { return mix(state_ += 0x9e3779b97f4a7c15ULL); }
   /// Uniform double in [0, 1).
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  /// Standard normal value (Box-Muller on two uniform() draws; the second value is not kept).
+  double gaussian() {
+    const double u1 = 1.0 - uniform();  // (0, 1]: log() stays finite
+    const double u2 = uniform();
+    constexpr double kTwoPi = 6.283185307179586;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+  }
 
  private:
   static std::uint64_t mix(std::uint64_t z) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "env_randomizer.h"
 #include "env_world.h"
 #include "jetbot_rl/errors.h"
 #include "physics_model.h"
@@ -42,6 +43,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (!task_) throw ConfigError("invalid task = null: a task object is required");
   obs_dim_ = static_cast<int>(task_->observationNames().size());
   physics_ = std::make_unique<PhysicsModel>(robot_, config_);
+  randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
 
   const int n = config_.num_envs;
   const int workers = std::min(config_.resolvedThreads(), n);
@@ -113,8 +115,12 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
       throw InputError(s.str());
     }
   }
-  for (std::size_t i = 0; i < expected; ++i) {
-    targets_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
+  if (randomizer_->noisesActions()) {
+    std::copy(actions, actions + expected, targets_.begin());  // noise first, then clamping
+  } else {
+    for (std::size_t i = 0; i < expected; ++i) {
+      targets_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
+    }
   }
 
   for (int w = 0; w < pool_->size(); ++w) {
@@ -158,7 +164,9 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   const int last_step = config_.maxEpisodeLength() - 1;
   EnvWorld& world = *worlds_[e];
   world.useContext(context);
-  world.setTargets(&targets_[static_cast<std::size_t>(e) * a]);
+  float* targets = &targets_[static_cast<std::size_t>(e) * a];
+  if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
+  world.setTargets(targets);
   for (int k = 0; k < config_.decimation; ++k) world.step(config_.physics_dt);
   ++result_.episode_steps[e];
 
@@ -177,15 +185,22 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   if (ended_[e]) {
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
-    if (diverged) std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
+    if (diverged) {
+      std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
+    } else if (randomizer_->noisesObservations()) {
+      randomizer_->noiseObservation(e, final_obs);  // what the learner would have seen
+    }
     resetEnv(e);
     state = world.rootState();
   }
-  task_->observe(e, state, &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+  float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+  task_->observe(e, state, obs);
+  if (randomizer_->noisesObservations()) randomizer_->noiseObservation(e, obs);
 }
 
 void BatchedEnv::resetEnv(int env) {
   worlds_[env]->reset();
+  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], *worlds_[env]);
   result_.episode_steps[env] = 0;
   task_->resetEnv(env, rngs_[env]);
 }
@@ -223,7 +238,10 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   }
   for (int e = 0; e < n; ++e) {
     if (!selected[e]) continue;
-    if (seed) rngs_[e] = Rng(*seed, e);
+    if (seed) {
+      rngs_[e] = Rng(*seed, e);
+      randomizer_->reseed(e, *seed);
+    }
     resetEnv(e);
   }
   // Starting steps are given in env_ids order, which need not be ascending.
@@ -231,9 +249,13 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
     const std::uint32_t id = env_ids.empty() ? static_cast<std::uint32_t>(i) : env_ids[i];
     result_.episode_steps[id] = episode_steps[i];
   }
+  // With observation noise only the reset envs observe anew: the others keep their noise.
+  const bool noisy = randomizer_->noisesObservations();
   for (int e = 0; e < n; ++e) {
-    task_->observe(e, worlds_[e]->rootState(),
-                   &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+    if (noisy && !selected[e]) continue;
+    float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+    task_->observe(e, worlds_[e]->rootState(), obs);
+    if (noisy) randomizer_->noiseObservation(e, obs);
   }
   std::fill(result_.rewards.begin(), result_.rewards.end(), 0.0f);
   std::fill(result_.terminated.begin(), result_.terminated.end(), 0);
@@ -341,6 +363,11 @@ void BatchedEnv::jointStates(int env, JointStates& out) const {
     out.velocity[j] = world.jointVelocity(body);
     out.effort[j] = dof_of_joint_[j] < 0 ? 0.0 : world.dofEffort(dof_of_joint_[j]);
   }
+}
+
+RandomizationDraw BatchedEnv::randomization(int env) const {
+  checkEnv(env);
+  return randomizer_->values(env);
 }
 
 BodyTwist BatchedEnv::rootTwist(int env) const {

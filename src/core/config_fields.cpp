@@ -90,6 +90,22 @@ void readValue(const std::string& field, const std::string& text, std::vector<in
   v = out;
 }
 
+void readValue(const std::string& field, const std::string& text, std::vector<double>& v) {
+  if (!text.empty() && text.front() != '[') {  // a single number stands for a list of one
+    double x = 0;
+    readValue(field, text, x);
+    v = {x};
+    return;
+  }
+  std::vector<double> out;
+  for (const auto& item : listItems(field, text, "a list of numbers [a, b]")) {
+    double x = 0;
+    readValue(field, item, x);
+    out.push_back(x);
+  }
+  v = out;
+}
+
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v) {
   v = listItems(field, text, "a list of names [a, b]");
 }

@@ -59,9 +59,15 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
   robot_->setHasSelfCollision(false);
   world_->addMultiBody(robot_.get(), kRobotGroup, kGroundGroup);
 
+  if (model.scalesWheels()) scaled_shapes_.resize(bodies.size());
   for (int b = 0; b <= links; ++b) {
     auto collider = std::make_unique<btMultiBodyLinkCollider>(robot_.get(), b - 1);
-    collider->setCollisionShape(bodies[b].shape);
+    if (model.scalesWheels() && bodies[b].driven) {
+      scaled_shapes_[b] = model.makeScaledShape(b, 1.0);
+      collider->setCollisionShape(scaled_shapes_[b].get());
+    } else {
+      collider->setCollisionShape(bodies[b].shape);
+    }
     collider->setFriction(bodies[b].friction);
     world_->addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
     if (b == 0) {
@@ -123,6 +129,37 @@ void EnvWorld::reset() {
   std::fill(targets_.begin(), targets_.end(), 0.0f);
 }
 
+void EnvWorld::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
+  const auto& bodies = model_.bodies();
+  robot_->setBaseMass(static_cast<btScalar>(bodies[0].mass * draw.mass_scale));
+  robot_->setBaseInertia(bodies[0].inertia * static_cast<btScalar>(draw.mass_scale));
+  gain_scale_ = draw.drive_gain_scale;
+  effort_scale_ = draw.effort_limit_scale;
+  btScalar lift = 0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].driven) continue;
+    colliders_[b]->setFriction(static_cast<btScalar>(draw.wheel_friction));
+    if (scaled_shapes_.empty()) continue;
+    const auto scale = static_cast<btScalar>(draw.wheel_radius_scale);
+    std::unique_ptr<btCollisionShape> shape = model_.makeScaledShape(static_cast<int>(b), scale);
+    colliders_[b]->setCollisionShape(shape.get());
+    scaled_shapes_[b] = std::move(shape);
+    lift = std::max(lift, (scale - 1) * bodies[b].ground_depth);
+  }
+  // Turned about the env's z axis through the root link origin, lifted, moving forward.
+  const btQuaternion yaw(btVector3(0, 0, 1), static_cast<btScalar>(draw.initial_yaw));
+  btTransform base = bodies[0].rest_pose;
+  base.getOrigin() += btVector3(0, 0, lift);
+  robot_->setBaseWorldTransform(btTransform(yaw) * base);
+  robot_->setBaseVel(quatRotate(yaw, btVector3(1, 0, 0)) * draw.initial_speed);
+  for (std::size_t d = 0; d < wheel_spin.size(); ++d) {
+    const int link = model_.joints()[model_.dofs()[d].joint].child - 1;
+    robot_->setJointVel(
+        link, static_cast<btScalar>(wheel_spin[d] * draw.initial_speed / draw.wheel_radius_scale));
+  }
+  syncColliders();
+}
+
 void EnvWorld::useContext(WorkerContext& context) {
   if (&context == context_) return;
   world_->setMultiBodyConstraintSolver(&context.solver);
@@ -139,7 +176,9 @@ void EnvWorld::step(double dt) {
     // Velocity drive: torque = gain * (target - velocity), limited by the effort limit; solved
     // as a velocity constraint so it never overshoots the target (stable at any gain).
     const double error = targets_[d] - dofVelocity(static_cast<int>(d));
-    const double torque = std::min(dofs[d].effort_limit, model_.driveGain() * std::abs(error));
+    // The scales are 1 unless randomised (x 1.0 is exact: the same torque bit for bit).
+    const double torque = std::min(dofs[d].effort_limit * effort_scale_,
+                                   model_.driveGain() * gain_scale_ * std::abs(error));
     motors_[d]->setVelocityTarget(targets_[d]);
     motors_[d]->setMaxAppliedImpulse(static_cast<btScalar>(torque * dt));
   }

@@ -25,6 +25,18 @@ struct alignas(64) WorkerContext {
   btMultiBodyConstraintSolver solver;
 };
 
+/// One env's physical parameters drawn at a reset (README "Domain randomisation"); the defaults
+/// are the model's own values.
+struct PhysicalDraw {
+  double mass_scale = 1.0;  ///< Chassis (root body) mass and inertia factor.
+  double wheel_friction = PhysicsModel::kWheelFriction;  ///< Of the bodies a dof drives.
+  double drive_gain_scale = 1.0;                         ///< Factor on the drive gain.
+  double effort_limit_scale = 1.0;                       ///< Factor on every dof's effort limit.
+  double wheel_radius_scale = 1.0;  ///< Factor on the driven bodies' shapes (scalesWheels()).
+  double initial_yaw = 0.0;         ///< [rad] about the env's z axis through the root origin.
+  double initial_speed = 0.0;       ///< Forward (root +x) speed [m/s].
+};
+
 /**
  * One env's mutable physics state: its own Bullet world in the env's local frame, so that an env
  * never interacts with another and its trajectory does not depend on its origin or on the batch.
@@ -40,6 +52,10 @@ class EnvWorld {
 
   /// Puts the robot at its rest pose with zero velocity and forgets contacts.
   void reset();
+  /// After reset(): applies `draw` (mass, friction, drive, wheel size, heading and speed; bigger
+  /// wheels lift the robot so that they start on the ground). `wheel_spin` [rad/m]: per dof, the
+  /// joint velocity per m/s of forward speed at wheel_radius_scale 1 (empty: speed 0).
+  void randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin);
   /// Makes the next step()s use `context`'s solver (the stepping thread's own).
   void useContext(WorkerContext& context);
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
@@ -85,6 +101,9 @@ class EnvWorld {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
   std::vector<btMultiBodyJointMotor*> motors_;  // per dof, owned by constraints_
+  // Per body when the model scales wheels (else empty): the scaled shape its collider uses.
+  std::vector<std::unique_ptr<btCollisionShape>> scaled_shapes_;
+  double gain_scale_ = 1.0, effort_scale_ = 1.0;  // of the draw in force
   std::vector<float> targets_;
   double last_dt_ = 0.0;  // [s] of the last step(), for efforts
   bool stepped_ = false;

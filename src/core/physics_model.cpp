@@ -65,7 +65,15 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
     b.com_in_link = toBullet(m.com_frame);
     b.rest_pose = toBullet(link_poses.back() * m.com_frame);
     b.friction = driven[i] ? kWheelFriction : static_cast<btScalar>(config.caster_friction);
+    b.driven = driven[i];
     b.shape = makeShape(m, b.com_in_link);
+    if (b.shape->isConvex()) {
+      // The support point along -z (world) at rest, margin included.
+      const btMatrix3x3& basis = b.rest_pose.getBasis();
+      const btVector3 lowest = static_cast<const btConvexShape*>(b.shape)->localGetSupportingVertex(
+          basis.transpose() * btVector3(0, 0, -1));
+      b.ground_depth = -(basis * lowest).z();
+    }
     bodies_.push_back(b);
 
     if (m.parent >= 0) {
@@ -87,6 +95,16 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
       j.upper = m.upper;
       joint_of_body[i] = static_cast<int>(joints_.size());
       joints_.push_back(j);
+    }
+  }
+
+  scales_wheels_ = config.randomization.wheel_radius_scale != std::vector<double>{1.0, 1.0};
+  for (std::size_t i = 0; scales_wheels_ && i < bodies_.size(); ++i) {
+    if (bodies_[i].driven && !bodies_[i].shape->isConvex()) {
+      throw ModelError("link '" + models[i].link_name +
+                       "': wheel_radius_scale needs a wheel of one collision element (a "
+                       "cylinder, sphere or mesh), got " +
+                       std::to_string(models[i].collisions.size()));
     }
   }
 
@@ -135,6 +153,9 @@ class RollingShape : public Shape {
     return PhysicsModel::kRollingContactBreakingThreshold;
   }
 };
+
+/// btUniformScalingShape's margin is its child's, scaled: a rounded tread stays rounded.
+using RollingScaledShape = RollingShape<btUniformScalingShape>;
 
 bool isRound(const CollisionGeometry& g) {
   return g.type == CollisionGeometry::Type::kCylinder || g.type == CollisionGeometry::Type::kSphere;
@@ -235,6 +256,15 @@ btCollisionShape* PhysicsModel::makeShape(const BodyModel& body, const btTransfo
     shapes_.push_back(std::move(primitive));
   }
   return keep(std::move(compound));
+}
+
+std::unique_ptr<btCollisionShape> PhysicsModel::makeScaledShape(int body, btScalar scale) const {
+  auto* convex = static_cast<btConvexShape*>(bodies_.at(body).shape);
+  const int type = convex->getShapeType();
+  if (type == CYLINDER_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE) {
+    return std::make_unique<RollingScaledShape>(convex, scale);
+  }
+  return std::make_unique<btUniformScalingShape>(convex, scale);
 }
 
 }  // namespace jetbot_rl

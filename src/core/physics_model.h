@@ -25,6 +25,8 @@ class PhysicsModel {
     btTransform com_in_link;            ///< Principal inertia frame in the link frame.
     btTransform rest_pose;              ///< COM frame in the env frame at rest.
     btScalar friction = 0;              ///< Coulomb friction coefficient with the ground.
+    bool driven = false;                ///< A dof joint drives it (a wheel).
+    btScalar ground_depth = 0;  ///< Height of its COM above its shape's lowest point at rest [m].
   };
   /// A revolute joint in btMultiBody's terms; frames are the bodies' principal COM frames.
   struct Joint {
@@ -72,6 +74,10 @@ class PhysicsModel {
   }
   double driveGain() const { return drive_gain_; }
   int solverIterations() const { return solver_iterations_; }
+  /// True when the wheels' shapes are scaled per env (wheel_radius_scale is not [1, 1]).
+  bool scalesWheels() const { return scales_wheels_; }
+  /// A new shape: body `body`'s (convex) shape scaled by `scale` about its centre of mass.
+  std::unique_ptr<btCollisionShape> makeScaledShape(int body, btScalar scale) const;
 
  private:
   btCollisionShape* makeShape(const BodyModel& body, const btTransform& com_in_link);
@@ -85,6 +91,7 @@ class PhysicsModel {
   std::vector<Dof> dofs_;
   double drive_gain_;
   int solver_iterations_;
+  bool scales_wheels_ = false;
 };
 
 }  // namespace jetbot_rl

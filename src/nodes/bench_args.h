@@ -1,19 +1,24 @@
 #pragma once
 
 #include <cstdlib>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "jetbot_rl/batched_env.h"
 
 namespace jetbot_rl {
 
-/// Command line of the benchmark programs: --envs N --steps S --threads T --urdf PATH.
+/// Command line of the benchmark programs: --envs N --steps S --threads T --urdf PATH
+/// --config PATH.
 struct BenchArgs {
   int envs = 1024;
   int steps = 1000;
   int threads = 0;  ///< 0: all cores
   std::string urdf = JETBOT_RL_DEFAULT_URDF;
+  std::string
+      config;  ///< EnvConfig fields as YAML over the defaults (e.g. randomisation); "": none
 };
 
 /// Parses argv into `args`; false with `error` naming the bad option or value.
@@ -25,8 +30,8 @@ inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& 
       return false;
     }
     const std::string value = argv[++i];
-    if (option == "--urdf") {
-      args.urdf = value;
+    if (option == "--urdf" || option == "--config") {
+      (option == "--urdf" ? args.urdf : args.config) = value;
       continue;
     }
     char* end = nullptr;
@@ -51,9 +56,17 @@ inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& 
 }
 
 /// The batch the programs step: `args.envs` Jetbots from `args.urdf` on `args.threads` threads,
-/// every other setting the seed's default.
+/// every other setting the seed's default or, with `args.config`, that file's (ConfigError when it
+/// cannot be read).
 inline std::unique_ptr<BatchedEnv> makeBenchEnv(const BenchArgs& args) {
   EnvConfig config;
+  if (!args.config.empty()) {
+    std::ifstream file(args.config);
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (!file) throw ConfigError("--config " + args.config + ": cannot be read");
+    fieldsFromYaml(text.str(), config);
+  }
   config.num_envs = args.envs;
   config.num_threads = args.threads;
   return std::make_unique<BatchedEnv>(RobotModel::fromUrdfFile(args.urdf), config);

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   if (!parseBenchArgs(argc, argv, args, error)) {
     std::fprintf(stderr,
                  "jetbot_rl_bench: %s\nusage: jetbot_rl_bench [--envs N] [--steps S] "
-                 "[--threads T] [--urdf PATH]\n",
+                 "[--threads T] [--urdf PATH] [--config YAML]\n",
                  error.c_str());
     return 2;
   }

@@ -13,6 +13,7 @@
 #include "jetbot_rl/ros/publication_flush.h"
 #include "jetbot_rl/ros/robot_names.h"
 #include "jetbot_rl/ros/robot_state_output.h"
+#include "jetbot_rl/ros/randomization_service.h"
 #include "jetbot_rl/ros/sim_clock.h"
 #include "jetbot_rl/ros/stop_signal.h"
 #include "jetbot_rl/ros/tf_publisher.h"
@@ -98,6 +99,10 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
         [this, e](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(e, msg); },
         refused(topic)));
   }
+  // ---- domain randomisation: the values each env drew (README "Domain randomisation") ----
+  get_randomization_srv_ =
+      advertiseGetRandomization(inline_pnh, *env_, state_mutex_, refused("get_randomization"));
+  // ----
   if (params_.mode == EnvMode::kRealtime) {
     const double period = env_->controlDt() / params_.real_time_factor;
     realtime_timer_ =
@@ -129,6 +134,7 @@ void EnvNode::shutdown(double flush_timeout) {
   step_srv_.shutdown();
   reset_srv_.shutdown();
   set_command_srv_.shutdown();
+  get_randomization_srv_.shutdown();
   {
     // After any call in flight; a later one (already past roscpp) publishes nothing.
     std::lock_guard<std::mutex> state_lock(state_mutex_);
@@ -219,6 +225,9 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     RobotModelConstPtr robot = RobotModel::fromUrdfString(urdf, packageResolver());
     try {
       env = std::make_unique<BatchedEnv>(robot, params.env, makeTask(params.task));
+    } catch (const ConfigError& e) {  // a rule the env checks against the task or robot
+      ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
+      return nullptr;
     } catch (const ModelError& e) {
       ROS_FATAL("%s: %s does not fit the parameters: %s", pnh.getNamespace().c_str(),
                 description_param.c_str(), e.what());

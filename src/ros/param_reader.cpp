@@ -24,6 +24,15 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name,
   readParam<std::vector<std::string>>(pnh, name, value);
 }
 
+void readParam(const ros::NodeHandle& pnh, const std::string& name, std::vector<double>& value) {
+  double single = 0.0;
+  if (pnh.getParam(name, single)) {
+    value = {single};
+    return;
+  }
+  readParam<std::vector<double>>(pnh, name, value);
+}
+
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::int64_t& value) {
   int v = static_cast<int>(value);
   readParam(pnh, name, v);

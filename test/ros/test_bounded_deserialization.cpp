@@ -16,6 +16,7 @@
 
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
+#include "jetbot_rl/GetRandomization.h"
 #include "jetbot_rl/Reset.h"
 #include "jetbot_rl/SetCommand.h"
 #include "jetbot_rl/Step.h"
@@ -190,6 +191,15 @@ TEST(BoundedDeserialization, ResetRequest) {
   expectTruncationsRefused(sample);
   expectLyingLengthsRefused<Reset::Request>(
       sample, {{"env_ids", 4, [](Reset::Request& m) { m.env_ids.push_back(9); }}});
+}
+
+TEST(BoundedDeserialization, GetRandomizationRequest) {
+  GetRandomization::Request sample;
+  sample.env_ids = {0, 3};
+  expectValidPassesAndRoundTrips(sample);
+  expectTruncationsRefused(sample);
+  expectLyingLengthsRefused<GetRandomization::Request>(
+      sample, {{"env_ids", 4, [](GetRandomization::Request& m) { m.env_ids.push_back(9); }}});
 }
 
 TEST(BoundedDeserialization, SetCommandRequestAndTwistHaveOnlyFixedFields) {

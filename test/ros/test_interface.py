@@ -28,6 +28,7 @@ class TestInterface(unittest.TestCase):
                     NODE in subs.get(NODE + '/wheel_targets', []) and
                     NODE in pubs.get(NODE + '/markers', []) and
                     NODE in srvs.get(NODE + '/set_command', []) and
+                    NODE in srvs.get(NODE + '/get_randomization', []) and
                     NODE in srvs.get(NODE + '/step', []) and
                     NODE in srvs.get(NODE + '/reset', []))
         wait_for(advertised, what='every topic and service of ' + NODE,

@@ -127,6 +127,13 @@ class TestRefuseStart(unittest.TestCase):
         self.refuses(['_wheel_velocity_limit:=8.0', '_effort_limit:=0.3'], "link 'base_link'",
                      "package 'no_such_package_here'", dof_names=TRIBOT_DOFS)
 
+    def test_randomization_range_inverted(self):
+        self.refuses([], 'mass_scale = [1.2, 0.8]', 'min <= max', mass_scale=[1.2, 0.8])
+
+    def test_obs_noise_std_wrong_length(self):
+        # Checked against the task's observation size when the env is built.
+        self.refuses([], 'parameter error', 'obs_noise_std = [0.1, 0.2]', obs_noise_std=[0.1, 0.2])
+
     # --- robot_description ---
     def test_robot_description_missing(self):
         rospy.delete_param('/robot_description')

@@ -72,6 +72,7 @@ class EnvNode {
   ros::Subscriber targets_sub_;
   std::vector<ros::Subscriber> cmd_vel_subs_;  // per robot env
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
+  ros::ServiceServer get_randomization_srv_;  // domain randomisation (randomization_service.h)
   ros::WallTimer realtime_timer_, diagnostics_timer_;
   EnvDiagnostics diagnostics_;
 };

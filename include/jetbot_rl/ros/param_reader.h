@@ -17,6 +17,7 @@ inline const char* paramTypeName(int) { return "an integer"; }
 inline const char* paramTypeName(double) { return "a number"; }
 inline const char* paramTypeName(const std::string&) { return "a string"; }
 inline const char* paramTypeName(const std::vector<int>&) { return "a list of integers"; }
+inline const char* paramTypeName(const std::vector<double>&) { return "a list of numbers"; }
 inline const char* paramTypeName(const std::vector<std::string>&) { return "a list of strings"; }
 
 /// Reads private parameter `name` into `value` when it is set, keeping the default otherwise;
@@ -32,6 +33,8 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
 /// A list of names; a single name stands for a list of one.
 void readParam(const ros::NodeHandle& pnh, const std::string& name,
                std::vector<std::string>& value);
+/// A list of numbers; a single number stands for a list of one.
+void readParam(const ros::NodeHandle& pnh, const std::string& name, std::vector<double>& value);
 /// 64-bit integers are 32-bit integers on the parameter server; negative for unsigned: invalid.
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::int64_t& value);
 void readParam(const ros::NodeHandle& pnh, const std::string& name, std::uint64_t& value);

@@ -1,0 +1,55 @@
+#pragma once
+
+// An open-loop motor (README "Domain randomisation", "Motor model"): the stock Jetbot's driver
+// (dusty-nv/jetbot_ros motors.py) turns a wheel speed into a PWM duty without encoders, so what
+// the wheel does depends on the motor: below a duty it does not turn (stiction), above 1 it
+// saturates, and two motors never run at the same speed for the same duty (trim).
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "jetbot_rl/config_fields.h"
+
+namespace jetbot_rl {
+
+/// The motor model; off by default (targets drive the wheels' velocity servos directly).
+struct MotorModelConfig {
+  bool enabled = false;  ///< `motor_model`
+  /// Wheel speed at duty 1 [rad/s]; 0: each dof's velocity limit. The stock Jetbot's 200 rpm
+  /// motors: 20.944 rad/s.
+  double max_wheel_speed = 0.0;
+  std::vector<double> dead_zone{0.0, 0.0};  ///< Range of |duty| below which a wheel stops.
+  std::vector<double> trim{1.0, 1.0};       ///< Range of the per-dof factor on the duty.
+
+  /// True when a reset draws per-dof dead zones and trims (the model is on and a range is not
+  /// its default).
+  bool drawsAtReset() const {
+    return enabled &&
+           (dead_zone != std::vector<double>{0.0, 0.0} || trim != std::vector<double>{1.0, 1.0});
+  }
+};
+
+template <typename C, typename V>
+IfConfig<C, MotorModelConfig> visitFields(C& c, V&& v) {
+  v("motor_model", c.enabled, AnyValue{});
+  v("motor_max_wheel_speed", c.max_wheel_speed,
+    atLeast(0.0, "rad/s", "0: each dof's velocity limit"));
+  v("motor_dead_zone", c.dead_zone, intervalOf(Range<double>{0.0, 1.0, false, true, "duty"}));
+  v("motor_trim", c.trim, intervalOf(positive()));
+}
+
+/**
+ * The wheel velocity target [rad/s] a motor gives for a commanded one `target` [rad/s]: the duty
+ * target / max_wheel_speed [rad/s] is set to 0 below `dead_zone` (|duty|), saturated at +-1 and
+ * multiplied by `trim`.
+ */
+inline double motorVelocityTarget(double target, double max_wheel_speed, double dead_zone,
+                                  double trim) {
+  double duty = target / max_wheel_speed;
+  if (std::abs(duty) < dead_zone) duty = 0.0;
+  duty = std::clamp(duty, -1.0, 1.0);
+  return trim * duty * max_wheel_speed;
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,577 @@
+// Domain randomisation: each randomised quantity changes the physics as it should, the drawn
+// values are reproducible per seed and independent of the threads and the rest of the batch, and
+// invalid ranges are refused naming the parameter.
+#include <cmath>
+#include <functional>
+
+#include "jetbot_rl/command_task.h"
+#include "jetbot_rl/errors.h"
+#include "test_util.h"
+
+namespace jetbot_rl {
+namespace {
+
+using namespace test;
+
+constexpr double kWheelRadius = 0.03;  // [m]
+
+/// Forward body speed [m/s] of env 0 after `steps` steps at (left, right) targets [rad/s].
+double speedAfter(BatchedEnv& env, int steps, float left = 20.0f, float right = 20.0f) {
+  for (int s = 0; s < steps; ++s) env.step(uniformActions(env, left, right));
+  return env.rootState(0).comLinearVelocityBody().x();
+}
+
+// ---- each quantity acts as it should ----
+
+TEST(Randomization, AHeavierChassisAcceleratesSlower) {
+  EnvConfig heavy = smallConfig(1);
+  heavy.randomization.mass_scale = {3.0, 3.0};
+  BatchedEnv light_env(jetbot(), smallConfig(1)), heavy_env(jetbot(), heavy);
+  EXPECT_EQ(heavy_env.randomization(0).mass_scale, 3.0);
+  const double v_light = speedAfter(light_env, 5), v_heavy = speedAfter(heavy_env, 5);
+  EXPECT_LT(v_heavy, 0.7 * v_light) << v_light << " " << v_heavy;
+  // The heavy robot is torque-limited: a = 2 x 0.08 N m / 0.03 m over the chassis and caster
+  // (3 x 0.82 kg), the wheels (0.06 kg) and their inertia (2 x 1.35e-5 kg m^2 / r^2 = 0.03 kg).
+  // (The stock one spins its wheels: its start is limited by their grip.)
+  const double a_heavy = v_heavy / (5 * heavy_env.controlDt());
+  EXPECT_NEAR(a_heavy, 2 * 0.08 / kWheelRadius / (3 * 0.82 + 0.06 + 0.03), 0.05 * a_heavy);
+  // Both reach the same top speed: only the mass changed.
+  EXPECT_NEAR(speedAfter(heavy_env, 200), speedAfter(light_env, 200), 0.01);
+}
+
+TEST(Randomization, LowerFrictionSlips) {
+  EnvConfig slippery = smallConfig(1);
+  slippery.randomization.wheel_friction = {0.05, 0.05};
+  BatchedEnv grip_env(jetbot(), smallConfig(1)), slip_env(jetbot(), slippery);
+  EXPECT_EQ(slip_env.randomization(0).wheel_friction, 0.05);
+  // Slip: the wheels' rim speed less the body's speed, 10 steps after a full-speed start.
+  const auto slip = [](BatchedEnv& env) {
+    const double v = speedAfter(env, 10);
+    const double rim = 0.5 * (env.dofVelocity(0, 0) + env.dofVelocity(0, 1)) * kWheelRadius;
+    return rim - v;
+  };
+  const double grip = slip(grip_env), slipping = slip(slip_env);
+  EXPECT_LT(std::abs(grip), 0.02) << grip;
+  EXPECT_GT(slipping, 0.2) << slipping;  // mu g = 0.5 m/s^2 cannot follow the wheels
+}
+
+TEST(Randomization, DriveGainAndEffortScalesWeakenTheDrive) {
+  BatchedEnv normal(jetbot(), smallConfig(1));
+  EnvConfig weak_effort = smallConfig(1);
+  weak_effort.randomization.effort_limit_scale = {0.25, 0.25};
+  BatchedEnv effort_env(jetbot(), weak_effort);
+  EnvConfig weak_gain = smallConfig(1);
+  weak_gain.randomization.drive_gain_scale = {0.0001, 0.0001};  // 0.001 N m s/rad
+  BatchedEnv gain_env(jetbot(), weak_gain);
+  const double v = speedAfter(normal, 5);
+  EXPECT_LT(speedAfter(effort_env, 5), 0.5 * v);
+  EXPECT_LT(speedAfter(gain_env, 5), 0.5 * v);
+}
+
+TEST(Randomization, BiggerWheelsDriveFasterAndStartOnTheGround) {
+  EnvConfig big = smallConfig(1);
+  big.randomization.wheel_radius_scale = {1.2, 1.2};
+  EnvConfig small = smallConfig(1);
+  small.randomization.wheel_radius_scale = {0.8, 0.8};
+  BatchedEnv big_env(jetbot(), big), small_env(jetbot(), small);
+  const double z_rest = BatchedEnv(jetbot(), smallConfig(1)).rootState(0).position.z();
+  EXPECT_NEAR(big_env.rootState(0).position.z(), z_rest + 0.2 * kWheelRadius, 1e-9);
+  EXPECT_EQ(small_env.rootState(0).position.z(), z_rest);  // dropped onto its wheels
+  // Top speed = wheel speed x radius.
+  const double v_big = speedAfter(big_env, 200, 10.0f, 10.0f);
+  const double v_small = speedAfter(small_env, 200, 10.0f, 10.0f);
+  EXPECT_NEAR(v_big, 10.0 * 1.2 * kWheelRadius, 0.03 * v_big);
+  EXPECT_NEAR(v_small, 10.0 * 0.8 * kWheelRadius, 0.03 * v_small);
+  EXPECT_LT(big_env.maxJointError(0), 1e-3);
+}
+
+TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
+  EnvConfig c = smallConfig(8);
+  c.randomization.initial_yaw = {-3.0, 3.0};
+  c.randomization.initial_speed = {0.3, 0.3};
+  BatchedEnv env(jetbot(), c, std::make_unique<CommandTask>());
+  const auto& task = static_cast<const CommandTask&>(env.task());
+  std::vector<double> yaws;
+  for (int e = 0; e < 8; ++e) {
+    const RandomizationDraw r = env.randomization(e);
+    yaws.push_back(r.initial_yaw);
+    EXPECT_GE(r.initial_yaw, -3.0);
+    EXPECT_LE(r.initial_yaw, 3.0);
+    const RootState s = env.rootState(e);
+    const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
+    EXPECT_NEAR(std::atan2(forward.y(), forward.x()), r.initial_yaw, 1e-6);
+    // [dot(forward, command), cross.z, v_x]
+    const Eigen::Vector2d cmd = task.command(e);
+    const std::vector<float> obs = envObs(env, e);
+    EXPECT_NEAR(obs[0], std::cos(std::atan2(cmd.y(), cmd.x()) - r.initial_yaw), 1e-5);
+    EXPECT_NEAR(obs[2], 0.3, 1e-6);
+    // The wheels roll with it.
+    EXPECT_NEAR(env.dofVelocity(e, 0) * kWheelRadius, 0.3, 1e-6);
+  }
+  EXPECT_GT(
+      *std::max_element(yaws.begin(), yaws.end()) - *std::min_element(yaws.begin(), yaws.end()),
+      1.0)
+      << "8 envs drew about the same yaw";
+  // Held at its wheel speed, the robot keeps its speed (no start-up jolt).
+  for (int s = 0; s < 10; ++s) {
+    env.step(uniformActions(env, 10.0f, 10.0f));
+    EXPECT_NEAR(envObs(env, 0)[2], 0.3, 0.01) << "step " << s;
+  }
+}
+
+/// The first step (1-based) at which env 0's forward speed exceeds 1 mm/s, driving at 20 rad/s.
+int firstMovingStep(BatchedEnv& env) {
+  for (int s = 1; s <= 50; ++s) {
+    env.step(uniformActions(env, 20.0f, 20.0f));
+    if (env.rootState(0).comLinearVelocityBody().x() > 1e-3) return s;
+  }
+  return -1;
+}
+
+TEST(Randomization, ADelayOfKStepsStartsTheResponseKStepsLater) {
+  BatchedEnv prompt(jetbot(), smallConfig(1));
+  const int first = firstMovingStep(prompt);
+  ASSERT_EQ(first, 1);
+  for (int k : {1, 3, 7}) {
+    EnvConfig c = smallConfig(1);
+    c.randomization.action_delay_steps = {k, k};
+    BatchedEnv delayed(jetbot(), c);
+    EXPECT_EQ(delayed.randomization(0).action_delay_steps, k);
+    EXPECT_EQ(firstMovingStep(delayed), first + k) << "delay " << k;
+  }
+  // A range draws per env, and the drawn delay is the one applied.
+  EnvConfig c = smallConfig(16);
+  c.randomization.action_delay_steps = {0, 3};
+  BatchedEnv batch(jetbot(), c);
+  std::vector<int> seen(4, 0);
+  for (int e = 0; e < 16; ++e) ++seen.at(batch.randomization(e).action_delay_steps);
+  for (int k = 0; k < 4; ++k) EXPECT_GT(seen[k], 0) << "no env drew delay " << k;
+  std::vector<int> moved(16, -1);
+  for (int s = 1; s <= 10; ++s) {
+    batch.step(uniformActions(batch, 20.0f, 20.0f));
+    for (int e = 0; e < 16; ++e) {
+      if (moved[e] < 0 && batch.rootState(e).comLinearVelocityBody().x() > 1e-3) moved[e] = s;
+    }
+  }
+  for (int e = 0; e < 16; ++e) {
+    EXPECT_EQ(moved[e], 1 + batch.randomization(e).action_delay_steps) << "env " << e;
+  }
+}
+
+TEST(Randomization, ADelayedTargetIsTheOneGivenKStepsBefore) {
+  // The wheel speed follows a changing target exactly as without delay, k steps later.
+  EnvConfig c = smallConfig(1);
+  c.randomization.action_delay_steps = {2, 2};
+  BatchedEnv delayed(jetbot(), c), prompt(jetbot(), smallConfig(1));
+  std::vector<double> prompt_wheel, delayed_wheel;
+  for (int s = 0; s < 40; ++s) {
+    const float target = s < 20 ? 12.0f : -5.0f;
+    prompt.step(uniformActions(prompt, target, target));
+    delayed.step(uniformActions(delayed, target, target));
+    prompt_wheel.push_back(prompt.dofVelocity(0, 0));
+    delayed_wheel.push_back(delayed.dofVelocity(0, 0));
+  }
+  for (int s = 0; s + 2 < 40; ++s) {
+    EXPECT_NEAR(delayed_wheel[s + 2], prompt_wheel[s], 0.05) << "step " << s;
+  }
+}
+
+TEST(Randomization, ActionNoiseChangesTheTrajectoryReproduciblyPerSeed) {
+  EnvConfig c = smallConfig(4);
+  c.randomization.action_noise_std = 2.0;
+  EnvConfig other_seed = c;
+  other_seed.seed = 1;
+  BatchedEnv clean(jetbot(), smallConfig(4)), noisy(jetbot(), c), again(jetbot(), c),
+      other(jetbot(), other_seed);
+  for (int s = 0; s < 30; ++s) {
+    const auto actions = uniformActions(clean, 8.0f, 8.0f);
+    clean.step(actions);
+    noisy.step(actions);
+    again.step(actions);
+    other.step(actions);
+  }
+  EXPECT_TRUE(bitEqual(noisy.state().observations, again.state().observations));
+  EXPECT_FALSE(bitEqual(noisy.state().observations, clean.state().observations));
+  EXPECT_FALSE(bitEqual(noisy.state().observations, other.state().observations));
+  EXPECT_FALSE(bitEqual(envObs(noisy, 0), envObs(noisy, 1))) << "envs share their noise";
+  // Noisy targets turn the robot a little; on average it still drives at about 8 rad/s.
+  EXPECT_NEAR(noisy.rootState(0).comLinearVelocityBody().x(), 8.0 * kWheelRadius, 0.05);
+  // The noise stream restarts with a reseeding reset.
+  noisy.reset({}, 3);
+  again.reset({}, 3);
+  for (int s = 0; s < 5; ++s) {
+    noisy.step(uniformActions(noisy, 8.0f, 8.0f));
+    again.step(uniformActions(again, 8.0f, 8.0f));
+  }
+  EXPECT_TRUE(bitEqual(noisy.state().observations, again.state().observations));
+}
+
+TEST(Randomization, ObservationNoiseHasTheConfiguredStdAndSparesThePhysics) {
+  const int n = 32;
+  const std::vector<double> stds{0.01, 0.02, 0.05};
+  EnvConfig c = smallConfig(n, 2);
+  c.episode_length_s = 1.0;  // time-outs every 59 steps: final observations too
+  c.randomization.obs_noise_std = stds;
+  EnvConfig clean_config = c;
+  clean_config.randomization.obs_noise_std.clear();
+  BatchedEnv noisy(jetbot(), c), clean(jetbot(), clean_config);
+  std::vector<double> sum(3, 0.0), sum2(3, 0.0);
+  long samples = 0;
+  for (int s = 0; s < 300; ++s) {
+    const auto actions = randomActions(n, s);
+    const StepResult& a = noisy.step(actions);
+    const StepResult& b = clean.step(actions);
+    // The physics, and so the rewards (on the true state), are untouched.
+    ASSERT_TRUE(bitEqual(a.rewards, b.rewards)) << "step " << s;
+    ASSERT_EQ(a.reset_env_ids, b.reset_env_ids);
+    ASSERT_EQ(a.final_observations.size(), b.final_observations.size());
+    for (std::size_t i = 0; i < a.final_observations.size(); ++i) {
+      EXPECT_NE(a.final_observations[i], b.final_observations[i]) << "step " << s;
+    }
+    for (int e = 0; e < n; ++e) {
+      for (int k = 0; k < 3; ++k) {
+        const double noise = a.observations[e * 3 + k] - b.observations[e * 3 + k];
+        sum[k] += noise;
+        sum2[k] += noise * noise;
+      }
+    }
+    ++samples;
+  }
+  samples *= n;
+  for (int k = 0; k < 3; ++k) {
+    const double mean = sum[k] / samples;
+    const double std = std::sqrt(sum2[k] / samples - mean * mean);
+    EXPECT_NEAR(mean, 0.0, 4.0 * stds[k] / std::sqrt(samples)) << "component " << k;
+    EXPECT_NEAR(std, stds[k], 0.03 * stds[k]) << "component " << k;  // 9,600 samples: +-0.7 %
+  }
+}
+
+TEST(Randomization, AResetObservesOnlyTheResetEnvsWithObservationNoise) {
+  EnvConfig c = smallConfig(3);
+  c.randomization.obs_noise_std = {0.1};
+  BatchedEnv env(jetbot(), c);
+  env.step(uniformActions(env, 5.0f, 5.0f));
+  const std::vector<float> before = env.state().observations;
+  env.reset({1});
+  EXPECT_TRUE(bitEqual(envObs(env, 0), std::vector<float>(before.begin(), before.begin() + 3)));
+  EXPECT_TRUE(bitEqual(envObs(env, 2), std::vector<float>(before.begin() + 6, before.end())));
+  EXPECT_FALSE(
+      bitEqual(envObs(env, 1), std::vector<float>(before.begin() + 3, before.begin() + 6)));
+}
+
+// ---- draws: per env, per seed, independent of threads and batch ----
+
+/// Every randomisation on, and the motor model.
+EnvConfig everythingOn(int num_envs, int threads) {
+  EnvConfig c = smallConfig(num_envs, threads);
+  RandomizationConfig& r = c.randomization;
+  r.mass_scale = {0.8, 1.3};
+  r.wheel_friction = {0.6, 1.2};
+  r.drive_gain_scale = {0.5, 2.0};
+  r.effort_limit_scale = {0.7, 1.2};
+  r.wheel_radius_scale = {0.95, 1.05};
+  r.initial_yaw = {-3.1, 3.1};
+  r.initial_speed = {-0.2, 0.4};
+  r.action_delay_steps = {0, 3};
+  r.action_noise_std = 1.0;
+  r.obs_noise_std = {0.01};
+  c.motor.enabled = true;
+  c.motor.dead_zone = {0.0, 0.1};
+  c.motor.trim = {0.9, 1.1};
+  return c;
+}
+
+bool sameValues(const RandomizationDraw& a, const RandomizationDraw& b) {
+  return a.mass_scale == b.mass_scale && a.wheel_friction == b.wheel_friction &&
+         a.drive_gain_scale == b.drive_gain_scale && a.effort_limit_scale == b.effort_limit_scale &&
+         a.wheel_radius_scale == b.wheel_radius_scale && a.initial_yaw == b.initial_yaw &&
+         a.initial_speed == b.initial_speed && a.action_delay_steps == b.action_delay_steps &&
+         a.motor_dead_zone == b.motor_dead_zone && a.motor_trim == b.motor_trim;
+}
+
+TEST(Randomization, DrawsAreInRangeDifferPerEnvAndRepeatPerSeed) {
+  BatchedEnv env(jetbot(), everythingOn(6, 1));
+  for (int e = 0; e < 6; ++e) {
+    const RandomizationDraw r = env.randomization(e);
+    EXPECT_GE(r.mass_scale, 0.8);
+    EXPECT_LE(r.mass_scale, 1.3);
+    EXPECT_GE(r.wheel_friction, 0.6);
+    EXPECT_LE(r.wheel_friction, 1.2);
+    EXPECT_GE(r.action_delay_steps, 0);
+    EXPECT_LE(r.action_delay_steps, 3);
+    ASSERT_EQ(r.motor_trim.size(), 2u);
+    ASSERT_EQ(r.motor_dead_zone.size(), 2u);
+    EXPECT_NE(r.motor_trim[0], r.motor_trim[1]);
+    if (e > 0) {
+      EXPECT_FALSE(sameValues(r, env.randomization(e - 1))) << "env " << e;
+    }
+  }
+  // Every reset draws anew; a reset with the seed repeats the first draws.
+  const RandomizationDraw first = env.randomization(2);
+  env.reset({2});
+  EXPECT_FALSE(sameValues(env.randomization(2), first));
+  env.reset({2}, 0);
+  EXPECT_TRUE(sameValues(env.randomization(2), first));
+  // A time-out draws anew too.
+  const RandomizationDraw before_timeout = env.randomization(4);
+  for (int s = 0; s < env.maxEpisodeLength(); ++s) env.step(uniformActions(env, 1.0f, 1.0f));
+  EXPECT_FALSE(sameValues(env.randomization(4), before_timeout));
+}
+
+TEST(Randomization, TrajectoriesDoNotDependOnThreadsOrTheRestOfTheBatch) {
+  BatchedEnv one(jetbot(), everythingOn(7, 1)), three(jetbot(), everythingOn(7, 3));
+  BatchedEnv larger(jetbot(), everythingOn(11, 2));
+  ASSERT_EQ(three.numThreads(), 3);
+  for (int s = 0; s < 400; ++s) {  // past the first time-outs: redrawn values
+    const auto actions = randomActions(7, s);
+    auto actions_11 = randomActions(11, s, 5);
+    std::copy(actions.begin(), actions.end(), actions_11.begin());
+    const StepResult& a = one.step(actions);
+    const StepResult& b = three.step(actions);
+    larger.step(actions_11);
+    ASSERT_TRUE(bitEqual(a.observations, b.observations)) << "step " << s;
+    ASSERT_TRUE(bitEqual(a.rewards, b.rewards)) << "step " << s;
+    ASSERT_TRUE(bitEqual(a.final_observations, b.final_observations)) << "step " << s;
+    for (int e = 0; e < 7; ++e) {
+      ASSERT_TRUE(bitEqual(envObs(one, e), envObs(larger, e))) << "step " << s << " env " << e;
+    }
+  }
+  for (int e = 0; e < 7; ++e) {
+    EXPECT_TRUE(sameValues(one.randomization(e), three.randomization(e)));
+    EXPECT_TRUE(sameValues(one.randomization(e), larger.randomization(e)));
+  }
+}
+
+// ---- the motor model ----
+
+TEST(MotorModel, VelocityTargetOnHandComputedValues) {
+  // duty = target / max; |duty| < dead zone -> 0; saturated at 1; times trim.
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(10.0, 20.0, 0.0, 1.0), 10.0);
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(3.0, 20.0, 0.2, 1.0), 0.0);  // duty 0.15
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(-3.0, 20.0, 0.2, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(5.0, 20.0, 0.2, 1.0), 5.0);    // duty 0.25
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(30.0, 20.0, 0.0, 1.0), 20.0);  // saturated
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(-30.0, 20.0, 0.0, 1.0), -20.0);
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(10.0, 20.0, 0.0, 0.9), 9.0);
+  EXPECT_DOUBLE_EQ(motorVelocityTarget(30.0, 20.0, 0.0, 0.9), 18.0);
+}
+
+/// Wheel speeds [rad/s] of env 0 after 60 steps at (left, right) targets.
+std::pair<double, double> wheelSpeeds(const EnvConfig& c, float left, float right) {
+  BatchedEnv env(jetbot(), c);
+  speedAfter(env, 60, left, right);
+  return {env.dofVelocity(0, 0), env.dofVelocity(0, 1)};
+}
+
+TEST(MotorModel, DeadZoneStopsSlowWheels) {
+  EnvConfig c = smallConfig(1);
+  c.motor.enabled = true;
+  c.motor.dead_zone = {0.3, 0.3};
+  EXPECT_NEAR(wheelSpeeds(smallConfig(1), 4.0f, 4.0f).first, 4.0, 0.2);  // without the model
+  EXPECT_NEAR(wheelSpeeds(c, 4.0f, 4.0f).first, 0.0, 0.01);              // duty 0.2
+  EXPECT_NEAR(wheelSpeeds(c, 8.0f, 8.0f).first, 8.0, 0.2);               // duty 0.4
+  EXPECT_NEAR(wheelSpeeds(c, -8.0f, -4.0f).second, 0.0, 0.05);           // turning about it
+}
+
+TEST(MotorModel, SaturationCapsTheWheelSpeed) {
+  EnvConfig c = smallConfig(1);
+  c.motor.enabled = true;
+  c.motor.max_wheel_speed = 12.0;  // [rad/s] at duty 1
+  EXPECT_NEAR(wheelSpeeds(c, 20.0f, 20.0f).first, 12.0, 0.3);
+  EXPECT_NEAR(wheelSpeeds(c, 6.0f, 6.0f).first, 6.0, 0.2);
+  EXPECT_NEAR(wheelSpeeds(smallConfig(1), 20.0f, 20.0f).first, 20.0, 0.5);
+}
+
+TEST(MotorModel, TrimScalesTheWheelSpeed) {
+  EnvConfig c = smallConfig(1);
+  c.motor.enabled = true;
+  c.motor.trim = {0.8, 0.8};
+  const auto [left, right] = wheelSpeeds(c, 10.0f, 10.0f);
+  EXPECT_NEAR(left, 8.0, 0.2);
+  EXPECT_NEAR(right, 8.0, 0.2);
+}
+
+TEST(MotorModel, TrimsDrawnPerSideMakeTheRobotTurn) {
+  EnvConfig c = smallConfig(16);
+  c.motor.enabled = true;
+  c.motor.trim = {0.7, 1.0};
+  BatchedEnv env(jetbot(), c);
+  for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 10.0f, 10.0f));
+  int turning = 0;
+  for (int e = 0; e < 16; ++e) {
+    const RandomizationDraw r = env.randomization(e);
+    // In a turn the wheels track their targets within a few per cent (as without the model).
+    EXPECT_NEAR(env.dofVelocity(e, 0), 10.0 * r.motor_trim[0], 0.07 * 10.0 * r.motor_trim[0]);
+    EXPECT_NEAR(env.dofVelocity(e, 1), 10.0 * r.motor_trim[1], 0.07 * 10.0 * r.motor_trim[1]);
+    // The weaker side is on the inside of the turn (counter-clockwise when the left is weaker).
+    if (std::abs(r.motor_trim[0] - r.motor_trim[1]) > 0.05) {
+      ++turning;
+      const double yaw_rate = env.rootState(e).angular_velocity.z();
+      EXPECT_EQ(yaw_rate > 0, r.motor_trim[0] < r.motor_trim[1]) << "env " << e;
+    }
+  }
+  EXPECT_GT(turning, 8);
+}
+
+// ---- refused configurations ----
+
+struct BadRange {
+  const char* expected;  // text the error must contain
+  std::function<void(EnvConfig&)> spoil;
+};
+
+TEST(Randomization, InvalidRangesAreRefusedNamingTheParameter) {
+  const std::vector<BadRange> cases = {
+      {"mass_scale = [1.2, 0.8]",
+       [](EnvConfig& c) {
+         c.randomization.mass_scale = {1.2, 0.8};
+       }},
+      {"mass_scale = [0, 1]",
+       [](EnvConfig& c) {
+         c.randomization.mass_scale = {0.0, 1.0};
+       }},
+      {"mass_scale = [1]", [](EnvConfig& c) { c.randomization.mass_scale = {1.0}; }},
+      {"mass_scale = [nan, 1]",
+       [](EnvConfig& c) {
+         c.randomization.mass_scale = {std::nan(""), 1.0};
+       }},
+      {"wheel_friction = [-0.1, 1]",
+       [](EnvConfig& c) {
+         c.randomization.wheel_friction = {-0.1, 1.0};
+       }},
+      {"drive_gain_scale = [-1, 1]",
+       [](EnvConfig& c) {
+         c.randomization.drive_gain_scale = {-1.0, 1.0};
+       }},
+      {"effort_limit_scale = [1, inf]",
+       [](EnvConfig& c) {
+         c.randomization.effort_limit_scale = {1.0, INFINITY};
+       }},
+      {"wheel_radius_scale = [0, 1]",
+       [](EnvConfig& c) {
+         c.randomization.wheel_radius_scale = {0.0, 1.0};
+       }},
+      {"initial_yaw = [1, -1]",
+       [](EnvConfig& c) {
+         c.randomization.initial_yaw = {1.0, -1.0};
+       }},
+      {"initial_speed = [0, 1, 2]",
+       [](EnvConfig& c) {
+         c.randomization.initial_speed = {0.0, 1.0, 2.0};
+       }},
+      {"action_delay_steps = [3, 1]",
+       [](EnvConfig& c) {
+         c.randomization.action_delay_steps = {3, 1};
+       }},
+      {"action_delay_steps = [-1, 0]",
+       [](EnvConfig& c) {
+         c.randomization.action_delay_steps = {-1, 0};
+       }},
+      {"action_noise_std = -1", [](EnvConfig& c) { c.randomization.action_noise_std = -1.0; }},
+      {"obs_noise_std = [0.1, -0.1, 0]",
+       [](EnvConfig& c) {
+         c.randomization.obs_noise_std = {0.1, -0.1, 0.0};
+       }},
+      {"motor_dead_zone = [0, 1]",
+       [](EnvConfig& c) {
+         c.motor.dead_zone = {0.0, 1.0};
+       }},
+      {"motor_trim = [0.9, 0.8]",
+       [](EnvConfig& c) {
+         c.motor.trim = {0.9, 0.8};
+       }},
+      {"motor_max_wheel_speed = -2", [](EnvConfig& c) { c.motor.max_wheel_speed = -2.0; }},
+  };
+  for (const auto& bad : cases) {
+    EnvConfig config = smallConfig(1);
+    bad.spoil(config);
+    try {
+      BatchedEnv env(jetbot(), config);
+      ADD_FAILURE() << "accepted: " << bad.expected;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Randomization, ObservationNoiseNeedsOneStdOrOnePerComponent) {
+  EnvConfig c = smallConfig(1);
+  c.randomization.obs_noise_std = {0.1, 0.1};
+  try {
+    BatchedEnv env(jetbot(), c);
+    ADD_FAILURE() << "accepted two values for three components";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("obs_noise_std = [0.1, 0.1]"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("3"), std::string::npos) << e.what();
+  }
+  c.randomization.obs_noise_std = {0.1, 0.0, 0.2};
+  EXPECT_NO_THROW(BatchedEnv(jetbot(), c));
+}
+
+TEST(Randomization, WhatTheRobotCannotDoIsRefusedNamingTheParameter) {
+  // A wheel of two collision elements cannot be scaled.
+  const std::string urdf = replaceOnce(
+      jetbotUrdfText(), "<link name=\"left_wheel\">",
+      "<link name=\"left_wheel\"><collision><geometry><sphere radius=\"0.01\"/></geometry>"
+      "</collision>");
+  EnvConfig c = smallConfig(1);
+  c.randomization.wheel_radius_scale = {0.9, 1.1};
+  try {
+    BatchedEnv env(RobotModel::fromUrdfString(urdf), c);
+    ADD_FAILURE() << "accepted a compound wheel";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("left_wheel"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("wheel_radius_scale"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(BatchedEnv(RobotModel::fromUrdfString(urdf), smallConfig(1)));
+  // An initial speed needs the two wheels of a differential drive.
+  EnvConfig one_wheel = smallConfig(1);
+  one_wheel.dof_names = {"left_wheel_joint"};
+  one_wheel.randomization.initial_speed = {0.1, 0.2};
+  try {
+    BatchedEnv env(jetbot(), one_wheel);
+    ADD_FAILURE() << "accepted an initial speed for one wheel";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("initial_speed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Randomization, FieldsRoundTripThroughYaml) {
+  EnvConfig c = everythingOn(3, 1);
+  c.randomization.obs_noise_std = {0.01, 0.02, 0.5};
+  EnvConfig back;
+  fieldsFromYaml(fieldsToYaml(c), back);
+  EXPECT_EQ(fieldsToYaml(back), fieldsToYaml(c));
+  EXPECT_EQ(back.randomization.mass_scale, c.randomization.mass_scale);
+  EXPECT_EQ(back.randomization.action_delay_steps, c.randomization.action_delay_steps);
+  EXPECT_EQ(back.randomization.obs_noise_std, c.randomization.obs_noise_std);
+  EXPECT_EQ(back.motor.trim, c.motor.trim);
+  EXPECT_TRUE(back.motor.enabled);
+  EnvConfig empty;
+  fieldsFromYaml("obs_noise_std: []\n", empty);
+  EXPECT_TRUE(empty.randomization.obs_noise_std.empty());
+  EnvConfig single;
+  fieldsFromYaml("obs_noise_std: 0.25  # one for every component\n", single);
+  EXPECT_EQ(single.randomization.obs_noise_std, std::vector<double>{0.25});
+  EXPECT_THROW(fieldsFromYaml("mass_scale: [1, x]\n", single), ConfigError);
+}
+
+TEST(Randomization, TheTribotIsRandomisedToo) {
+  EnvConfig c = tribotConfig(4);
+  c.randomization.wheel_radius_scale = {0.9, 1.1};
+  c.randomization.initial_speed = {0.1, 0.1};
+  c.randomization.mass_scale = {0.5, 2.0};
+  BatchedEnv env(tribot(), c);
+  for (int e = 0; e < 4; ++e) {
+    // Its wheels are 0.033 m, their joint axes rotated: the forward speed is the drawn one.
+    EXPECT_NEAR(env.rootState(e).comLinearVelocityBody().x(), 0.1, 1e-6);
+    EXPECT_NEAR(std::abs(env.dofVelocity(e, 0)) * 0.033 * env.randomization(e).wheel_radius_scale,
+                0.1, 1e-3);
+  }
+  for (int s = 0; s < 100; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
+  for (int e = 0; e < 4; ++e) EXPECT_LT(env.maxJointError(e), 1e-3);
+}
+
+}  // namespace
+}  // namespace jetbot_rl
