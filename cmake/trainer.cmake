@@ -73,6 +73,12 @@ install(TARGETS jetbot_rl_nodelets
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 
+# A policy's mean reward per step on envs configured by YAML (e.g. perturbed physics), in-process.
+add_executable(jetbot_rl_evaluate src/nodes/evaluate_main.cpp)
+target_link_libraries(jetbot_rl_evaluate jetbot_rl_ppo)
+target_compile_definitions(jetbot_rl_evaluate PRIVATE
+  JETBOT_RL_DEFAULT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf")
+
 add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)
 target_link_libraries(jetbot_ppo_trainer jetbot_rl_ppo_ros)
 add_executable(jetbot_policy_node src/nodes/jetbot_policy_node.cpp)
@@ -82,7 +88,7 @@ install(TARGETS jetbot_rl_ppo_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
-install(TARGETS jetbot_ppo_trainer jetbot_policy_node
+install(TARGETS jetbot_ppo_trainer jetbot_policy_node jetbot_rl_evaluate
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 catkin_install_python(PROGRAMS scripts/plot_learning_curve.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
