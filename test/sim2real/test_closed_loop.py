@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Closed loop, as on a robot: a policy trained with domain randomisation (config/
+randomization.yaml) drives the env node's robot view through jetbot_policy_node's robot mode
+(odometry in, cmd_vel out). Velocity task: the robot reaches >= 90 % of its top speed. Command
+task: given a command on the command topic, the robot heads along it within 0.3 rad after 3 s."""
+import math
+import os
+import signal
+import subprocess
+import tempfile
+import unittest
+
+import sys
+
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import Vector3
+from nav_msgs.msg import Odometry
+
+sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ros'))
+from env_client import TIMEOUT, EventList, wait_for  # noqa: E402
+from robot_view_client import Motion, stamp, yaw  # noqa: E402
+
+TOP_SPEED = 20.0 * 0.03  # m/s: wheel velocity limit x wheel radius
+
+
+class TestClosedLoop(unittest.TestCase):
+    def setUp(self):
+        self.odoms = EventList()
+        rospy.Subscriber('/env_0/odom', Odometry, self.odoms.append)
+
+    def train(self, task, iterations):
+        """Trains in the trainer's process with randomisation; returns the run directory."""
+        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_closed_loop_')
+        randomization = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
+                                     'randomization.yaml')
+        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                        'task:=' + task, 'iterations:=%d' % iterations, 'run_dir:=' + run_dir,
+                        'randomization:=' + randomization, 'output:=log'],
+                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
+        with open(os.path.join(run_dir, 'summary.yaml')) as f:
+            print(f.read())
+        return run_dir
+
+    def drive(self, run_dir, task):
+        """Starts the policy node in robot mode on env 0's robot view."""
+        return subprocess.Popen([
+            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=robot_policy',
+            '_checkpoint:=' + run_dir, '_robot:=true', '_task:=' + task,
+            '_odom_topic:=/env_0/odom', '_cmd_vel_topic:=/env_0/cmd_vel',
+            '_command_topic:=/robot_command'])
+
+    def odoms_after(self, start, seconds):
+        """Odometry from `start` to `start + seconds` of simulation time."""
+        wait_for(lambda: self.odoms and stamp(self.odoms[-1]) >= start + seconds,
+                 timeout=TIMEOUT, what='odometry up to %.1f s' % (start + seconds))
+        return [o for o in self.odoms if start <= stamp(o) <= start + seconds]
+
+    def stop(self, proc):
+        proc.send_signal(signal.SIGINT)
+        self.assertEqual(proc.wait(timeout=TIMEOUT), 0)
+
+    def test_closed_loop(self):
+        task = rospy.get_param('~task')
+        run_dir = self.train(task, rospy.get_param('~iterations'))
+        wait_for(lambda: self.odoms, what='odometry of env 0')
+        if task == 'velocity':
+            proc = self.drive(run_dir, task)
+            try:
+                t0 = stamp(self.odoms[-1])
+                motion = Motion(self.odoms_after(t0 + 1.5, 1.5))
+            finally:
+                self.stop(proc)
+            print('FIGURE: closed loop, velocity task: %.3f m/s = %.1f %% of the top speed'
+                  % (motion.speed, 100.0 * motion.speed / TOP_SPEED))
+            self.assertGreaterEqual(motion.speed, 0.9 * TOP_SPEED)
+        else:
+            target = 2.0  # rad: well to the left of the start heading (0)
+            command = rospy.Publisher('/robot_command', Vector3, queue_size=1, latch=True)
+            command.publish(Vector3(math.cos(target), math.sin(target), 0.0))
+            proc = self.drive(run_dir, task)
+            try:
+                # The command arrives with the node's subscription: give it a moment of
+                # simulation time to connect, then 3 s to turn.
+                t0 = stamp(self.odoms[-1]) + 0.5
+                window = self.odoms_after(t0, 3.5)
+            finally:
+                self.stop(proc)
+            late = [o for o in window if stamp(o) >= t0 + 3.0]
+            errors = [abs(math.atan2(math.sin(yaw(o.pose.pose.orientation) - target),
+                                     math.cos(yaw(o.pose.pose.orientation) - target)))
+                      for o in late]
+            speed = Motion(late).speed
+            print('FIGURE: closed loop, command task: heading %.3f rad off the command 3 s '
+                  'after it, at %.3f m/s' % (max(errors), speed))
+            self.assertLess(max(errors), 0.3)
+            self.assertGreater(speed, 0.3)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_closed_loop')
+    rostest.rosrun('jetbot_rl', 'test_closed_loop', TestClosedLoop)
