@@ -1,4 +1,4 @@
-// jetbot_rl_evaluate --checkpoint PATH (a file or a run directory: its best.pt) [--config YAML ...] [--envs N] [--steps S] [--seed S]
+// jetbot_rl_evaluate --checkpoint PATH (a file or a run directory: its best.pt) [--task NAME] [--config YAML ...] [--envs N] [--steps S] [--seed S]
 //   [--urdf PATH]: plays a trained policy's mean action in-process on envs configured by the
 // YAML files (the env node's parameter names: task, reward, randomisation ranges, ...), and
 // prints the mean reward per step over every env step. For evaluating a policy on perturbed
@@ -35,12 +35,15 @@ int main(int argc, char** argv) {
   using namespace jetbot_rl;
   std::string checkpoint, urdf = JETBOT_RL_DEFAULT_URDF;
   std::vector<std::string> configs;
+  std::string task;
   int envs = 64, steps = 600;
   long long seed = 1000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string option = argv[i], value = argv[i + 1];
     if (option == "--checkpoint") {
       checkpoint = value;
+    } else if (option == "--task") {
+      task = value;
     } else if (option == "--config") {
       configs.push_back(value);
     } else if (option == "--urdf") {
@@ -58,8 +61,8 @@ int main(int argc, char** argv) {
   }
   if (checkpoint.empty() || envs < 1 || steps < 1 || seed < 0) {
     std::fprintf(stderr,
-                 "usage: jetbot_rl_evaluate --checkpoint PATH [--config YAML ...] [--envs N] "
-                 "[--steps S] [--seed S] [--urdf PATH]\n");
+                 "usage: jetbot_rl_evaluate --checkpoint PATH [--task NAME] [--config YAML ...] "
+                 "[--envs N] [--steps S] [--seed S] [--urdf PATH]\n");
     return 2;
   }
   try {
@@ -71,6 +74,7 @@ int main(int argc, char** argv) {
       text << file.rdbuf();
       fieldsFromYaml(text.str(), config);
     }
+    if (!task.empty()) fieldsFromYaml("task: " + task, config);
     config.env.num_envs = envs;
     config.env.num_threads = 1;
     config.env.seed = static_cast<std::uint64_t>(seed);

@@ -92,7 +92,7 @@ class TestClientKilled(unittest.TestCase):
         run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_trainer_killed_')
         stats = StatsWatcher('/trainer_a/training_stats')
         proc = start(node_command('jetbot_ppo_trainer', 'trainer_a', {
-            'env': NODE, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 2}))
+            'envs': NODE, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 2}))
         try:
             stats.wait_iteration(5)
             time.sleep(random.Random(1).uniform(0.0, 0.05))  # anywhere in an iteration
@@ -105,7 +105,7 @@ class TestClientKilled(unittest.TestCase):
         done = len(rows)  # rows written before the kill: the checkpoint may be older
 
         code, output = run_node('jetbot_ppo_trainer', 'trainer_b', {
-            'env': NODE, 'iterations': done + 2, 'resume': run_dir, 'save_interval': 2})
+            'envs': NODE, 'iterations': done + 2, 'resume': run_dir, 'save_interval': 2})
         self.assertEqual(code, 0, output)
         line = next(l for l in output.splitlines() if 'resumed from' in l)
         resumed_at = int(line.split('at iteration ')[1].split(',')[0])

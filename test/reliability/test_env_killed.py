@@ -32,7 +32,7 @@ class TestEnvKilled(unittest.TestCase):
         try:
             stats = StatsWatcher('/trainer_a/training_stats')
             trainer = start(node_command('jetbot_ppo_trainer', 'trainer_a', {
-                'env': ENV, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 1000,
+                'envs': ENV, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 1000,
                 'step_timeout': STEP_TIMEOUT}))
             stats.wait_iteration(3)
             self.assertEqual(node_pid(ENV), env.pid)
@@ -67,7 +67,7 @@ class TestEnvKilled(unittest.TestCase):
         env = start(node_command('jetbot_env_node', ENV.lstrip('/'), ENV_PARAMS))
         try:
             code, output = run_node('jetbot_ppo_trainer', 'trainer_b', {
-                'env': ENV, 'iterations': done + 2, 'resume': run_dir})
+                'envs': ENV, 'iterations': done + 2, 'resume': run_dir})
         finally:
             env.send_signal(signal.SIGINT)
             env.communicate(timeout=TIMEOUT)

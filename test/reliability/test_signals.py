@@ -74,7 +74,7 @@ class TestSignals(unittest.TestCase):
             run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_signals_')
             stats = StatsWatcher('/%s/training_stats' % name)
             proc = start(node_command('jetbot_ppo_trainer', name, {
-                'env': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
+                'envs': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
                 'save_interval': 1000}))
             try:
                 stats.wait_iteration(2)
@@ -102,7 +102,7 @@ class TestSignals(unittest.TestCase):
             name = 'signal_policy_' + sig.name.lower()
             count = len(steps)
             proc = start(node_command('jetbot_policy_node', name, {
-                'env': '/jetbot_env', 'checkpoint': checkpoint, 'mode': 'lockstep'}))
+                'envs': '/jetbot_env', 'checkpoint': checkpoint, 'mode': 'lockstep'}))
             try:
                 wait_for(lambda: len(steps) > count + 50, what=name + ' to drive 50 steps')
             except BaseException:
