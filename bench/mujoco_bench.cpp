@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include "../src/nodes/resident_memory.h"
+
 namespace {
 
 constexpr int kDecimation = 2;
@@ -45,18 +47,6 @@ class Barrier {
   int arrived_ = 0;
   unsigned long generation_ = 0;
 };
-
-long residentKib() {
-  std::FILE* status = std::fopen("/proc/self/status", "r");
-  if (!status) return 0;
-  char line[256];
-  long kib = 0;
-  while (std::fgets(line, sizeof line, status)) {
-    if (std::sscanf(line, "VmRSS: %ld kB", &kib) == 1) break;
-  }
-  std::fclose(status);
-  return kib;
-}
 
 struct Args {
   int envs = 1024;
@@ -167,7 +157,7 @@ int main(int argc, char** argv) {
   std::printf("mujoco %s envs=%d threads=%d steps=%d wall_s=%.3f mjdata_bytes=%ld\n",
               mj_versionString(), n, workers, args.steps, seconds,
               static_cast<long>(data[0]->nbuffer) + static_cast<long>(data[0]->nstack) * 8);
-  std::printf("rss_kib=%ld\n", residentKib());
+  std::printf("rss_kib=%ld\n", jetbot_rl::residentKib());
   std::printf("env_steps_per_s=%.0f\n", env_steps / seconds);
   for (mjData* d : data) mj_deleteData(d);
   mj_deleteModel(model);

@@ -78,6 +78,8 @@ if(CATKIN_ENABLE_TESTING)
     test/core/test_multi_vec_env.cpp
     test/core/test_randomization_off.cpp
     test/core/test_randomization.cpp
+    test/core/test_randomization_config.cpp
+    test/core/test_motor_model.cpp
   )
   target_link_libraries(test_core jetbot_rl_core)
   target_include_directories(test_core PRIVATE src/core)

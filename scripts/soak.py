@@ -13,34 +13,17 @@ import random
 import sys
 import threading
 import time
-from xmlrpc.client import ServerProxy
 
-import rosgraph
 import rospy
 
 from jetbot_rl.msg import EnvSpec, EnvStep, WheelTargets
+from jetbot_rl.process_info import node_pid, rss_kb
 from jetbot_rl.srv import Reset, Step
 
 
 def figure(text):
     sys.stdout.write('FIGURE: soak: %s\n' % text)
     sys.stdout.flush()
-
-
-def rss_kb(pid):
-    with open('/proc/%d/status' % pid) as f:
-        for line in f:
-            if line.startswith('VmRSS:'):
-                return int(line.split()[1])
-    raise RuntimeError('no VmRSS for pid %d' % pid)
-
-
-def node_pid(node):
-    uri = rosgraph.Master('/jetbot_rl_soak').lookupNode(node)
-    code, msg, pid = ServerProxy(uri).getPid('/jetbot_rl_soak')
-    if code != 1:
-        raise RuntimeError('getPid of %s failed: %s' % (node, msg))
-    return pid
 
 
 class PublishedSteps(object):

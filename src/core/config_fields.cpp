@@ -80,14 +80,21 @@ void readValue(const std::string& field, const std::string& text, double& v) {
 
 void readValue(const std::string&, const std::string& text, std::string& v) { v = text; }
 
-void readValue(const std::string& field, const std::string& text, std::vector<int>& v) {
-  std::vector<int> out;
-  for (const auto& item : listItems(field, text, "a list of integers [a, b]")) {
-    int x = 0;
+// All items are read before `v` changes: a bad item leaves it as it was.
+template <typename T>
+void readList(const std::string& field, const std::string& text, const char* what,
+              std::vector<T>& v) {
+  std::vector<T> out;
+  for (const auto& item : listItems(field, text, what)) {
+    T x{};
     readValue(field, item, x);
     out.push_back(x);
   }
   v = out;
+}
+
+void readValue(const std::string& field, const std::string& text, std::vector<int>& v) {
+  readList(field, text, "a list of integers [a, b]", v);
 }
 
 void readValue(const std::string& field, const std::string& text, std::vector<double>& v) {
@@ -97,13 +104,7 @@ void readValue(const std::string& field, const std::string& text, std::vector<do
     v = {x};
     return;
   }
-  std::vector<double> out;
-  for (const auto& item : listItems(field, text, "a list of numbers [a, b]")) {
-    double x = 0;
-    readValue(field, item, x);
-    out.push_back(x);
-  }
-  v = out;
+  readList(field, text, "a list of numbers [a, b]", v);
 }
 
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v) {

@@ -7,23 +7,7 @@
 
 #include "bench_args.h"
 #include "jetbot_rl/batched_env.h"
-
-namespace {
-
-/// Resident set size of this process [KiB], from /proc (0 where unavailable).
-long residentKib() {
-  std::FILE* status = std::fopen("/proc/self/status", "r");
-  if (!status) return 0;
-  char line[256];
-  long kib = 0;
-  while (std::fgets(line, sizeof line, status)) {
-    if (std::sscanf(line, "VmRSS: %ld kB", &kib) == 1) break;
-  }
-  std::fclose(status);
-  return kib;
-}
-
-}  // namespace
+#include "resident_memory.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;

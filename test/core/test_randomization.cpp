@@ -1,12 +1,10 @@
-// Domain randomisation: each randomised quantity changes the physics as it should, the drawn
-// values are reproducible per seed and independent of the threads and the rest of the batch, and
-// invalid ranges are refused naming the parameter.
+// Domain randomisation: each randomised quantity changes the physics as it should, and the drawn
+// values are reproducible per seed and independent of the threads and the rest of the batch
+// (refused configurations: test_randomization_config.cpp; the motor model: test_motor_model.cpp).
 #include <cmath>
-#include <functional>
 
 #include "jetbot_rl/command_task.h"
-#include "jetbot_rl/errors.h"
-#include "test_util.h"
+#include "randomization_test_util.h"
 
 namespace jetbot_rl {
 namespace {
@@ -14,12 +12,6 @@ namespace {
 using namespace test;
 
 constexpr double kWheelRadius = 0.03;  // [m]
-
-/// Forward body speed [m/s] of env 0 after `steps` steps at (left, right) targets [rad/s].
-double speedAfter(BatchedEnv& env, int steps, float left = 20.0f, float right = 20.0f) {
-  for (int s = 0; s < steps; ++s) env.step(uniformActions(env, left, right));
-  return env.rootState(0).comLinearVelocityBody().x();
-}
 
 // ---- each quantity acts as it should ----
 
@@ -261,26 +253,6 @@ TEST(Randomization, AResetObservesOnlyTheResetEnvsWithObservationNoise) {
 
 // ---- draws: per env, per seed, independent of threads and batch ----
 
-/// Every randomisation on, and the motor model.
-EnvConfig everythingOn(int num_envs, int threads) {
-  EnvConfig c = smallConfig(num_envs, threads);
-  RandomizationConfig& r = c.randomization;
-  r.mass_scale = {0.8, 1.3};
-  r.wheel_friction = {0.6, 1.2};
-  r.drive_gain_scale = {0.5, 2.0};
-  r.effort_limit_scale = {0.7, 1.2};
-  r.wheel_radius_scale = {0.95, 1.05};
-  r.initial_yaw = {-3.1, 3.1};
-  r.initial_speed = {-0.2, 0.4};
-  r.action_delay_steps = {0, 3};
-  r.action_noise_std = 1.0;
-  r.obs_noise_std = {0.01};
-  c.motor.enabled = true;
-  c.motor.dead_zone = {0.0, 0.1};
-  c.motor.trim = {0.9, 1.1};
-  return c;
-}
-
 bool sameValues(const RandomizationDraw& a, const RandomizationDraw& b) {
   return a.mass_scale == b.mass_scale && a.wheel_friction == b.wheel_friction &&
          a.drive_gain_scale == b.drive_gain_scale && a.effort_limit_scale == b.effort_limit_scale &&
@@ -340,221 +312,6 @@ TEST(Randomization, TrajectoriesDoNotDependOnThreadsOrTheRestOfTheBatch) {
     EXPECT_TRUE(sameValues(one.randomization(e), three.randomization(e)));
     EXPECT_TRUE(sameValues(one.randomization(e), larger.randomization(e)));
   }
-}
-
-// ---- the motor model ----
-
-TEST(MotorModel, VelocityTargetOnHandComputedValues) {
-  // duty = target / max; |duty| < dead zone -> 0; saturated at 1; times trim.
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(10.0, 20.0, 0.0, 1.0), 10.0);
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(3.0, 20.0, 0.2, 1.0), 0.0);  // duty 0.15
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(-3.0, 20.0, 0.2, 1.0), 0.0);
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(5.0, 20.0, 0.2, 1.0), 5.0);    // duty 0.25
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(30.0, 20.0, 0.0, 1.0), 20.0);  // saturated
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(-30.0, 20.0, 0.0, 1.0), -20.0);
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(10.0, 20.0, 0.0, 0.9), 9.0);
-  EXPECT_DOUBLE_EQ(motorVelocityTarget(30.0, 20.0, 0.0, 0.9), 18.0);
-}
-
-/// Wheel speeds [rad/s] of env 0 after 60 steps at (left, right) targets.
-std::pair<double, double> wheelSpeeds(const EnvConfig& c, float left, float right) {
-  BatchedEnv env(jetbot(), c);
-  speedAfter(env, 60, left, right);
-  return {env.dofVelocity(0, 0), env.dofVelocity(0, 1)};
-}
-
-TEST(MotorModel, DeadZoneStopsSlowWheels) {
-  EnvConfig c = smallConfig(1);
-  c.motor.enabled = true;
-  c.motor.dead_zone = {0.3, 0.3};
-  EXPECT_NEAR(wheelSpeeds(smallConfig(1), 4.0f, 4.0f).first, 4.0, 0.2);  // without the model
-  EXPECT_NEAR(wheelSpeeds(c, 4.0f, 4.0f).first, 0.0, 0.01);              // duty 0.2
-  EXPECT_NEAR(wheelSpeeds(c, 8.0f, 8.0f).first, 8.0, 0.2);               // duty 0.4
-  EXPECT_NEAR(wheelSpeeds(c, -8.0f, -4.0f).second, 0.0, 0.05);           // turning about it
-}
-
-TEST(MotorModel, SaturationCapsTheWheelSpeed) {
-  EnvConfig c = smallConfig(1);
-  c.motor.enabled = true;
-  c.motor.max_wheel_speed = 12.0;  // [rad/s] at duty 1
-  EXPECT_NEAR(wheelSpeeds(c, 20.0f, 20.0f).first, 12.0, 0.3);
-  EXPECT_NEAR(wheelSpeeds(c, 6.0f, 6.0f).first, 6.0, 0.2);
-  EXPECT_NEAR(wheelSpeeds(smallConfig(1), 20.0f, 20.0f).first, 20.0, 0.5);
-}
-
-TEST(MotorModel, TrimScalesTheWheelSpeed) {
-  EnvConfig c = smallConfig(1);
-  c.motor.enabled = true;
-  c.motor.trim = {0.8, 0.8};
-  const auto [left, right] = wheelSpeeds(c, 10.0f, 10.0f);
-  EXPECT_NEAR(left, 8.0, 0.2);
-  EXPECT_NEAR(right, 8.0, 0.2);
-}
-
-TEST(MotorModel, TrimsDrawnPerSideMakeTheRobotTurn) {
-  EnvConfig c = smallConfig(16);
-  c.motor.enabled = true;
-  c.motor.trim = {0.7, 1.0};
-  BatchedEnv env(jetbot(), c);
-  for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 10.0f, 10.0f));
-  int turning = 0;
-  for (int e = 0; e < 16; ++e) {
-    const RandomizationDraw r = env.randomization(e);
-    // In a turn the wheels track their targets within a few per cent (as without the model).
-    EXPECT_NEAR(env.dofVelocity(e, 0), 10.0 * r.motor_trim[0], 0.07 * 10.0 * r.motor_trim[0]);
-    EXPECT_NEAR(env.dofVelocity(e, 1), 10.0 * r.motor_trim[1], 0.07 * 10.0 * r.motor_trim[1]);
-    // The weaker side is on the inside of the turn (counter-clockwise when the left is weaker).
-    if (std::abs(r.motor_trim[0] - r.motor_trim[1]) > 0.05) {
-      ++turning;
-      const double yaw_rate = env.rootState(e).angular_velocity.z();
-      EXPECT_EQ(yaw_rate > 0, r.motor_trim[0] < r.motor_trim[1]) << "env " << e;
-    }
-  }
-  EXPECT_GT(turning, 8);
-}
-
-// ---- refused configurations ----
-
-struct BadRange {
-  const char* expected;  // text the error must contain
-  std::function<void(EnvConfig&)> spoil;
-};
-
-TEST(Randomization, InvalidRangesAreRefusedNamingTheParameter) {
-  const std::vector<BadRange> cases = {
-      {"mass_scale = [1.2, 0.8]",
-       [](EnvConfig& c) {
-         c.randomization.mass_scale = {1.2, 0.8};
-       }},
-      {"mass_scale = [0, 1]",
-       [](EnvConfig& c) {
-         c.randomization.mass_scale = {0.0, 1.0};
-       }},
-      {"mass_scale = [1]", [](EnvConfig& c) { c.randomization.mass_scale = {1.0}; }},
-      {"mass_scale = [nan, 1]",
-       [](EnvConfig& c) {
-         c.randomization.mass_scale = {std::nan(""), 1.0};
-       }},
-      {"wheel_friction = [-0.1, 1]",
-       [](EnvConfig& c) {
-         c.randomization.wheel_friction = {-0.1, 1.0};
-       }},
-      {"drive_gain_scale = [-1, 1]",
-       [](EnvConfig& c) {
-         c.randomization.drive_gain_scale = {-1.0, 1.0};
-       }},
-      {"effort_limit_scale = [1, inf]",
-       [](EnvConfig& c) {
-         c.randomization.effort_limit_scale = {1.0, INFINITY};
-       }},
-      {"wheel_radius_scale = [0, 1]",
-       [](EnvConfig& c) {
-         c.randomization.wheel_radius_scale = {0.0, 1.0};
-       }},
-      {"initial_yaw = [1, -1]",
-       [](EnvConfig& c) {
-         c.randomization.initial_yaw = {1.0, -1.0};
-       }},
-      {"initial_speed = [0, 1, 2]",
-       [](EnvConfig& c) {
-         c.randomization.initial_speed = {0.0, 1.0, 2.0};
-       }},
-      {"action_delay_steps = [3, 1]",
-       [](EnvConfig& c) {
-         c.randomization.action_delay_steps = {3, 1};
-       }},
-      {"action_delay_steps = [-1, 0]",
-       [](EnvConfig& c) {
-         c.randomization.action_delay_steps = {-1, 0};
-       }},
-      {"action_noise_std = -1", [](EnvConfig& c) { c.randomization.action_noise_std = -1.0; }},
-      {"obs_noise_std = [0.1, -0.1, 0]",
-       [](EnvConfig& c) {
-         c.randomization.obs_noise_std = {0.1, -0.1, 0.0};
-       }},
-      {"motor_dead_zone = [0, 1]",
-       [](EnvConfig& c) {
-         c.motor.dead_zone = {0.0, 1.0};
-       }},
-      {"motor_trim = [0.9, 0.8]",
-       [](EnvConfig& c) {
-         c.motor.trim = {0.9, 0.8};
-       }},
-      {"motor_max_wheel_speed = -2", [](EnvConfig& c) { c.motor.max_wheel_speed = -2.0; }},
-  };
-  for (const auto& bad : cases) {
-    EnvConfig config = smallConfig(1);
-    bad.spoil(config);
-    try {
-      BatchedEnv env(jetbot(), config);
-      ADD_FAILURE() << "accepted: " << bad.expected;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos) << e.what();
-    }
-  }
-}
-
-TEST(Randomization, ObservationNoiseNeedsOneStdOrOnePerComponent) {
-  EnvConfig c = smallConfig(1);
-  c.randomization.obs_noise_std = {0.1, 0.1};
-  try {
-    BatchedEnv env(jetbot(), c);
-    ADD_FAILURE() << "accepted two values for three components";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("obs_noise_std = [0.1, 0.1]"), std::string::npos)
-        << e.what();
-    EXPECT_NE(std::string(e.what()).find("3"), std::string::npos) << e.what();
-  }
-  c.randomization.obs_noise_std = {0.1, 0.0, 0.2};
-  EXPECT_NO_THROW(BatchedEnv(jetbot(), c));
-}
-
-TEST(Randomization, WhatTheRobotCannotDoIsRefusedNamingTheParameter) {
-  // A wheel of two collision elements cannot be scaled.
-  const std::string urdf = replaceOnce(
-      jetbotUrdfText(), "<link name=\"left_wheel\">",
-      "<link name=\"left_wheel\"><collision><geometry><sphere radius=\"0.01\"/></geometry>"
-      "</collision>");
-  EnvConfig c = smallConfig(1);
-  c.randomization.wheel_radius_scale = {0.9, 1.1};
-  try {
-    BatchedEnv env(RobotModel::fromUrdfString(urdf), c);
-    ADD_FAILURE() << "accepted a compound wheel";
-  } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("left_wheel"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("wheel_radius_scale"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(BatchedEnv(RobotModel::fromUrdfString(urdf), smallConfig(1)));
-  // An initial speed needs the two wheels of a differential drive.
-  EnvConfig one_wheel = smallConfig(1);
-  one_wheel.dof_names = {"left_wheel_joint"};
-  one_wheel.randomization.initial_speed = {0.1, 0.2};
-  try {
-    BatchedEnv env(jetbot(), one_wheel);
-    ADD_FAILURE() << "accepted an initial speed for one wheel";
-  } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("initial_speed"), std::string::npos) << e.what();
-  }
-}
-
-TEST(Randomization, FieldsRoundTripThroughYaml) {
-  EnvConfig c = everythingOn(3, 1);
-  c.randomization.obs_noise_std = {0.01, 0.02, 0.5};
-  EnvConfig back;
-  fieldsFromYaml(fieldsToYaml(c), back);
-  EXPECT_EQ(fieldsToYaml(back), fieldsToYaml(c));
-  EXPECT_EQ(back.randomization.mass_scale, c.randomization.mass_scale);
-  EXPECT_EQ(back.randomization.action_delay_steps, c.randomization.action_delay_steps);
-  EXPECT_EQ(back.randomization.obs_noise_std, c.randomization.obs_noise_std);
-  EXPECT_EQ(back.motor.trim, c.motor.trim);
-  EXPECT_TRUE(back.motor.enabled);
-  EnvConfig empty;
-  fieldsFromYaml("obs_noise_std: []\n", empty);
-  EXPECT_TRUE(empty.randomization.obs_noise_std.empty());
-  EnvConfig single;
-  fieldsFromYaml("obs_noise_std: 0.25  # one for every component\n", single);
-  EXPECT_EQ(single.randomization.obs_noise_std, std::vector<double>{0.25});
-  EXPECT_THROW(fieldsFromYaml("mass_scale: [1, x]\n", single), ConfigError);
 }
 
 TEST(Randomization, TheTribotIsRandomisedToo) {

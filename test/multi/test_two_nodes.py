@@ -9,12 +9,11 @@ import sys
 import tempfile
 import time
 import unittest
-import xmlrpc.client
 
-import rosgraph
 import rospkg
 import rospy
 import rostest
+from jetbot_rl.process_info import node_pid
 
 sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ppo'))
 from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node, start_node  # noqa: E402
@@ -23,14 +22,6 @@ NODES = ['/jetbot_env_0', '/jetbot_env_1']
 STEP_TIMEOUT = 3.0
 STEPS_PER_ITERATION = 16 * 64
 LEARNED_AT = 30  # iterations
-
-
-def node_pid(name):
-    """The pid of ROS node `name`, asked through its XML-RPC server."""
-    uri = rosgraph.Master('/test_two_nodes').lookupNode(name)
-    code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/test_two_nodes')
-    assert code == 1
-    return pid
 
 
 class TestTwoNodes(unittest.TestCase):

@@ -2,21 +2,11 @@
 import os
 import signal
 import threading
-import xmlrpc.client
 
-import rosgraph
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 
 TIMEOUT = 30.0  # s: generous, for a loaded 2-core machine
-
-
-def node_pid(node):
-    """The process id of ROS node `node`, asked through its XML-RPC API."""
-    uri = rosgraph.Master('/test').lookupNode(node)
-    code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/test')
-    assert code == 1, 'getPid of %s failed' % node
-    return pid
 
 
 def interrupt_main_after(seconds):

@@ -13,7 +13,8 @@ import rostest
 from jetbot_rl import EnvRejectedError, JetbotVecEnv
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Step
-from py_test_util import Diagnostics, EventList, interrupt_main_after, node_pid, resume, stop
+from jetbot_rl.process_info import node_pid
+from py_test_util import Diagnostics, EventList, interrupt_main_after, resume, stop
 
 NODE = '/jetbot_env'
 GOOD = np.full((2, 2), 5.0, dtype=np.float32)

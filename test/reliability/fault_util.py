@@ -52,15 +52,6 @@ def signal_and_wait(proc, sig, timeout=30.0):
     return time.monotonic() - started, proc.returncode, output or ''
 
 
-def rss_kb(pid):
-    """Resident set [kB] of process `pid` (VmRSS)."""
-    with open('/proc/%d/status' % pid) as f:
-        for line in f:
-            if line.startswith('VmRSS:'):
-                return int(line.split()[1])
-    raise RuntimeError('no VmRSS for pid %d' % pid)
-
-
 class DiagnosticsRecorder(object):
     """Records every /diagnostics status of env node `node` (e.g. /jetbot_env) as a dict of its
     values plus 'stamp' [s] (wall time: the node is the clock source)."""

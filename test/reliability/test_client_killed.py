@@ -18,7 +18,7 @@ import rostest
 from fault_util import PYTHON, DiagnosticsRecorder, figure, here, node_command, start
 from env_client import NODE, EnvClient, wait_for
 from ppo_test_util import StatsWatcher, read_csv, run_node
-from raw_tcpros import node_pid
+from jetbot_rl.process_info import node_pid
 
 KILLS = 6
 MAX_RESET_S = 0.5

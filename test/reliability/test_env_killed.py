@@ -15,7 +15,7 @@ import rostest
 
 from fault_util import figure, node_command, start
 from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node
-from raw_tcpros import node_pid
+from jetbot_rl.process_info import node_pid
 
 ENV = '/jetbot_env'
 STEP_TIMEOUT = 2.0  # s

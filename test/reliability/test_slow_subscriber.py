@@ -10,10 +10,11 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import DiagnosticsRecorder, figure, rate_between, rss_kb
+from fault_util import DiagnosticsRecorder, figure, rate_between
 from env_client import NODE, UNREPORTED_RECHECK, wait_for
 from jetbot_rl.msg import EnvStep
-from raw_tcpros import StalledSubscriber, node_pid
+from jetbot_rl.process_info import node_pid, rss_kb
+from raw_tcpros import StalledSubscriber
 
 STALLED = 4
 QUEUE = 16  # ~env_step's advertised queue

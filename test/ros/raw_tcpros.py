@@ -217,41 +217,6 @@ class RawServiceClient(object):
         self.sock.close()
 
 
-def node_pid(node_name):
-    """The process id of a node, from its own XML-RPC getPid."""
-    from xmlrpc.client import ServerProxy
-    uri = rosgraph.Master('/raw_tcpros').lookupNode(node_name)
-    code, msg, pid = ServerProxy(uri).getPid('/raw_tcpros')
-    if code != 1:
-        raise RuntimeError('getPid of %s failed: %s' % (node_name, msg))
-    return pid
-
-
-def _status_kb(pid, key):
-    with open('/proc/%d/status' % pid) as f:
-        for line in f:
-            if line.startswith(key + ':'):
-                return int(line.split()[1])
-    raise RuntimeError('no %s for pid %d' % (key, pid))
-
-
-def peak_rss_kb(pid):
-    """Peak resident set [kB] of process `pid` (VmHWM)."""
-    return _status_kb(pid, 'VmHWM')
-
-
-def start_peak_rss(pid):
-    """Resets the peak resident set of `pid` to its current one (Linux clear_refs 5), so that
-    a later peak_rss_kb() shows the peak since now even below an earlier peak; returns the
-    current resident set [kB], the baseline. Without the right to reset: the current peak."""
-    try:
-        with open('/proc/%d/clear_refs' % pid, 'w') as f:
-            f.write('5')
-        return _status_kb(pid, 'VmRSS')
-    except OSError:
-        return peak_rss_kb(pid)
-
-
 class StalledSubscriber(object):
     """A subscriber of `topic` (type `msg_class`) that connects straight to the TCPROS server of
     publisher node `node`, sends its connection header and never reads anything: the publisher's

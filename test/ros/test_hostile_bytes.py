@@ -16,8 +16,8 @@ import rostest
 from env_client import NODE, EventList, EnvClient, notify, wait_for
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Reset, ResetRequest, SetCommand, SetCommandRequest, Step, StepRequest
-from raw_tcpros import (FakePublisher, RawServiceClient, lying_length, node_pid, peak_rss_kb,
-                        serialize, start_peak_rss)
+from jetbot_rl.process_info import node_pid, peak_rss_kb, start_peak_rss
+from raw_tcpros import FakePublisher, RawServiceClient, lying_length, serialize
 
 GOOD = [5.0, 4.0, -3.0, 6.0]  # 2 envs x 2 wheels [rad/s]
 MAX_RSS_GROWTH_KB = 50 * 1024
