@@ -56,15 +56,15 @@ class PolicyNodelet : public ThreadNodelet {
   }
 };
 
-/// jetbot_rl_ros_bench in the manager: private parameters env (the env's name), envs (its
-/// num_envs), steps; prints the same figures.
+/// jetbot_rl_ros_bench in the manager: private parameters env_node (the env's name), num_envs
+/// (its num_envs), steps; prints the same figures.
 class LockstepBenchNodelet : public ThreadNodelet {
   void onInit() override {
     LockstepBenchOptions options;
     const ros::NodeHandle& pnh = getPrivateNodeHandle();
     std::string env = "jetbot_env";
-    readParam(pnh, "env", env);
-    readParam(pnh, "envs", options.envs);
+    readParam(pnh, "env_node", env);
+    readParam(pnh, "num_envs", options.envs);
     readParam(pnh, "steps", options.steps);
     options.env_ns = getNodeHandle().resolveName(env);
     options.answer_inline = false;  // see LockstepBenchOptions::answer_inline

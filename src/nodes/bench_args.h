@@ -1,11 +1,11 @@
 #pragma once
 
-#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
 
+#include "command_line.h"
 #include "jetbot_rl/batched_env.h"
 
 namespace jetbot_rl {
@@ -34,9 +34,6 @@ inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& 
       (option == "--urdf" ? args.urdf : args.config) = value;
       continue;
     }
-    char* end = nullptr;
-    const long number = std::strtol(value.c_str(), &end, 10);
-    const bool valid = end && *end == '\0' && !value.empty();
     int* target = option == "--envs"      ? &args.envs
                   : option == "--steps"   ? &args.steps
                   : option == "--threads" ? &args.threads
@@ -45,12 +42,10 @@ inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& 
       error = "unknown option " + option;
       return false;
     }
-    const long minimum = option == "--threads" ? 0 : 1;
-    if (!valid || number < minimum || number > 100000000) {
-      error = "invalid " + option + " = " + value;
+    if (!parseWholeNumber(option, value, option == "--threads" ? 0 : 1, 100000000, *target,
+                          error)) {
       return false;
     }
-    *target = static_cast<int>(number);
   }
   return true;
 }

@@ -1,16 +1,18 @@
-// jetbot_rl_evaluate --checkpoint PATH (a file or a run directory: its best.pt) [--task NAME] [--config YAML ...] [--envs N] [--steps S] [--seed S]
+// jetbot_rl_evaluate --checkpoint PATH (a file or a run directory: its best.pt) [--task NAME]
+// [--config YAML ...] [--envs N] [--steps S] [--seed S]
 //   [--urdf PATH]: plays a trained policy's mean action in-process on envs configured by the
 // YAML files (the env node's parameter names: task, reward, randomisation ranges, ...), and
 // prints the mean reward per step over every env step. For evaluating a policy on perturbed
 // physics (README "Sim-to-real").
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/task_factory.h"
@@ -36,10 +38,15 @@ int main(int argc, char** argv) {
   std::string checkpoint, urdf = JETBOT_RL_DEFAULT_URDF;
   std::vector<std::string> configs;
   std::string task;
-  int envs = 64, steps = 600;
-  long long seed = 1000;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string option = argv[i], value = argv[i + 1];
+  long long envs = 64, steps = 600, seed = 1000;
+  std::string error;
+  for (int i = 1; i < argc && error.empty(); i += 2) {
+    const std::string option = argv[i];
+    if (i + 1 >= argc) {
+      error = "option " + option + " needs a value";
+      break;
+    }
+    const std::string value = argv[i + 1];
     if (option == "--checkpoint") {
       checkpoint = value;
     } else if (option == "--task") {
@@ -49,20 +56,22 @@ int main(int argc, char** argv) {
     } else if (option == "--urdf") {
       urdf = value;
     } else if (option == "--envs") {
-      envs = std::atoi(value.c_str());
+      parseWholeNumber(option, value, 1, 100000, envs, error);
     } else if (option == "--steps") {
-      steps = std::atoi(value.c_str());
+      parseWholeNumber(option, value, 1, 100000000, steps, error);
     } else if (option == "--seed") {
-      seed = std::atoll(value.c_str());
+      parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
     } else {
-      std::fprintf(stderr, "jetbot_rl_evaluate: unknown option %s\n", option.c_str());
-      return 2;
+      error = "unknown option " + option;
     }
   }
-  if (checkpoint.empty() || envs < 1 || steps < 1 || seed < 0) {
-    std::fprintf(stderr,
-                 "usage: jetbot_rl_evaluate --checkpoint PATH [--task NAME] [--config YAML ...] "
-                 "[--envs N] [--steps S] [--seed S] [--urdf PATH]\n");
+  if (error.empty() && checkpoint.empty()) error = "--checkpoint is required";
+  if (!error.empty()) {
+    std::fprintf(
+        stderr,
+        "jetbot_rl_evaluate: %s\nusage: jetbot_rl_evaluate --checkpoint PATH [--task NAME] "
+        "[--config YAML ...] [--envs N] [--steps S] [--seed S] [--urdf PATH]\n",
+        error.c_str());
     return 2;
   }
   try {
@@ -75,7 +84,7 @@ int main(int argc, char** argv) {
       fieldsFromYaml(text.str(), config);
     }
     if (!task.empty()) fieldsFromYaml("task: " + task, config);
-    config.env.num_envs = envs;
+    config.env.num_envs = static_cast<int>(envs);
     config.env.num_threads = 1;
     config.env.seed = static_cast<std::uint64_t>(seed);
     config.env.validate();
@@ -86,10 +95,10 @@ int main(int argc, char** argv) {
     std::vector<float> actions;
     double reward_sum = 0.0;
     for (int s = 0; s < steps; ++s) {
-      policy.act(env.state().observations, envs, actions);
+      policy.act(env.state().observations, static_cast<int>(envs), actions);
       for (float r : env.step(actions).rewards) reward_sum += r;
     }
-    std::printf("task=%s envs=%d steps=%d\n", env.task().name().c_str(), envs, steps);
+    std::printf("task=%s envs=%lld steps=%lld\n", env.task().name().c_str(), envs, steps);
     std::printf("mean_reward_per_step=%.4f\n", reward_sum / (static_cast<double>(steps) * envs));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "jetbot_rl_evaluate: %s\n", e.what());

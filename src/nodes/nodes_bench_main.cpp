@@ -9,26 +9,36 @@
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "jetbot_rl/ros/connect_envs.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "jetbot_rl_nodes_bench", ros::init_options::AnonymousName);
   std::vector<std::string> nodes;
   int steps = 1000;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string option = argv[i], value = argv[i + 1];
+  std::string error;
+  for (int i = 1; i < argc && error.empty(); i += 2) {
+    const std::string option = argv[i];
+    if (i + 1 >= argc) {
+      error = "option " + option + " needs a value";
+      break;
+    }
+    const std::string value = argv[i + 1];
     if (option == "--nodes") {
       std::istringstream list(value);
       for (std::string name; std::getline(list, name, ',');) nodes.push_back(name);
     } else if (option == "--steps") {
-      steps = std::atoi(value.c_str());
+      jetbot_rl::parseWholeNumber(option, value, 1, 100000000, steps, error);
     } else {
-      std::fprintf(stderr, "jetbot_rl_nodes_bench: unknown option %s\n", option.c_str());
-      return 2;
+      error = "unknown option " + option;
     }
   }
-  if (nodes.empty() || steps < 1) {
-    std::fprintf(stderr, "usage: jetbot_rl_nodes_bench --nodes A[,B...] --steps S\n");
+  if (error.empty() && nodes.empty()) error = "--nodes is required";
+  if (!error.empty()) {
+    std::fprintf(
+        stderr,
+        "jetbot_rl_nodes_bench: %s\nusage: jetbot_rl_nodes_bench --nodes A[,B...] --steps S\n",
+        error.c_str());
     return 2;
   }
   try {

@@ -62,6 +62,12 @@ class TestClosedLoop(unittest.TestCase):
                  timeout=TIMEOUT, what='odometry up to %.1f s' % (start + seconds))
         return [o for o in self.odoms if start <= stamp(o) <= start + seconds]
 
+    def evaluate(self, *args):
+        """Runs jetbot_rl_evaluate with `args`; returns (exit code, stdout, stderr)."""
+        done = subprocess.run(['rosrun', 'jetbot_rl', 'jetbot_rl_evaluate'] + list(args),
+                              capture_output=True, text=True, timeout=10 * TIMEOUT)
+        return done.returncode, done.stdout, done.stderr
+
     def stop(self, proc):
         proc.send_signal(signal.SIGINT)
         self.assertEqual(proc.wait(timeout=TIMEOUT), 0)
@@ -80,6 +86,15 @@ class TestClosedLoop(unittest.TestCase):
             print('FIGURE: closed loop, velocity task: %.3f m/s = %.1f %% of the top speed'
                   % (motion.speed, 100.0 * motion.speed / TOP_SPEED))
             self.assertGreaterEqual(motion.speed, 0.9 * TOP_SPEED)
+            # The same policy on the heavier chassis on a slippery floor, in-process.
+            heavy = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
+                                 'perturbed_heavy.yaml')
+            code, out, err = self.evaluate('--checkpoint', run_dir, '--task', task,
+                                           '--config', heavy, '--envs', '16', '--steps', '300')
+            self.assertEqual(code, 0, err)
+            reward = float(out.split('mean_reward_per_step=')[1].split()[0])
+            print('FIGURE: jetbot_rl_evaluate, perturbed_heavy.yaml: %.4f m/s' % reward)
+            self.assertGreater(reward, 0.85 * TOP_SPEED)
         else:
             target = 2.0  # rad: well to the left of the start heading (0)
             command = rospy.Publisher('/robot_command', Vector3, queue_size=1, latch=True)
@@ -104,6 +119,25 @@ class TestClosedLoop(unittest.TestCase):
                   'm/s' % (max(errors), speed))
             self.assertLess(max(errors), 0.3)
             self.assertGreater(speed, 0.3)
+
+    def test_evaluator_refuses_bad_options(self):
+        """Every bad command line ends with exit code 2 and names the option and value; a
+        checkpoint that cannot be read ends with 1, naming it."""
+        cases = [(['--checkpoint', '/x', '--envs', '0'], 'invalid --envs = 0'),
+                 (['--checkpoint', '/x', '--envs', '4x'], 'invalid --envs = 4x'),
+                 (['--checkpoint', '/x', '--steps', '-1'], 'invalid --steps = -1'),
+                 (['--checkpoint', '/x', '--seed', '99999999999999999999'], 'invalid --seed'),
+                 (['--checkpoint', '/x', '--steps'], '--steps needs a value'),
+                 (['--checkpoint', '/x', '--speed', '1'], 'unknown option --speed'),
+                 (['--envs', '4'], '--checkpoint is required')]
+        for args, message in cases:
+            code, _, err = self.evaluate(*args)
+            self.assertEqual(code, 2, args)
+            self.assertIn(message, err, args)
+        missing = os.path.join(tempfile.mkdtemp(), 'none.pt')
+        code, _, err = self.evaluate('--checkpoint', missing, '--steps', '1')
+        self.assertEqual(code, 1)
+        self.assertIn(missing, err)
 
 
 if __name__ == '__main__':
