@@ -4,7 +4,9 @@
 #include <ros/transport_hints.h>
 
 #include <algorithm>
+#include <boost/make_shared.hpp>
 #include <chrono>
+#include <thread>
 
 #include "jetbot_rl/Reset.h"
 #include "jetbot_rl/ros/bounded_service.h"
@@ -18,6 +20,11 @@ namespace {
 constexpr std::uint32_t kQueueSize = 8;
 // Lockstep: resend targets that got no answer within this [s, wall] (see step()).
 constexpr double kResendAfter = 0.5;
+
+/// A callback that does nothing: queued to wake a thread waiting on the queue.
+struct WakeUp : ros::CallbackInterface {
+  CallResult call() override { return Success; }
+};
 
 std::string seconds(double s) {
   char buf[32];
@@ -106,6 +113,36 @@ void RosVecEnv::waitFor(const std::function<bool()>& done, double timeout,
   if (!waitUntil(done, timeout, what)) throw Error("no " + what + " within " + seconds(timeout));
 }
 
+void RosVecEnv::callReset(Reset& srv) {
+  // roscpp's service call has no timeout: it runs in a thread of its own while this one waits as
+  // for a step (step_timeout, stop flag); a hung env's connection is then dropped, which ends the
+  // call.
+  std::string reason;
+  bool ok = false;
+  std::atomic<bool> finished{false};
+  std::thread caller([&] {
+    ok = callBounded(reset_client_, srv, reason);
+    finished = true;
+    queue_.addCallback(boost::make_shared<WakeUp>());  // ends waitUntil's wait at once
+  });
+  const std::string what = "answer from " + reset_client_.getService();
+  bool answered = false;
+  try {
+    answered = waitUntil([&] { return finished.load(); }, timeout_, what);
+  } catch (...) {
+    reset_client_.shutdown();
+    caller.join();
+    throw;
+  }
+  if (!answered) reset_client_.shutdown();
+  caller.join();
+  if (!answered) {
+    throw Error("no " + what + " within " + seconds(timeout_) + " (env node " + env_ns_ +
+                " hung?)");
+  }
+  if (!ok) throw Error(reason);
+}
+
 const StepResult& RosVecEnv::reset(std::int64_t seed,
                                    const std::vector<std::uint32_t>& episode_steps) {
   Reset srv;
@@ -114,8 +151,7 @@ const StepResult& RosVecEnv::reset(std::int64_t seed,
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
   for (;;) {
     accepting_ = false;
-    std::string reason;
-    if (!callBounded(reset_client_, srv, reason)) throw Error(reason);
+    callReset(srv);
     if (!srv.response.success) {
       throw Error(reset_client_.getService() + " refused: " + srv.response.message);
     }

@@ -12,6 +12,7 @@
 
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
+#include "jetbot_rl/Reset.h"
 #include "jetbot_rl/WheelTargets.h"
 #include "jetbot_rl/vec_env.h"
 
@@ -40,7 +41,8 @@ class RosVecEnv : public VecEnv {
   const BatchSpec& spec() const override { return spec_; }
   /// Calls ~reset (all envs, `seed` >= 0 reseeds, `episode_steps` staggered starts) and waits
   /// until its published state arrives on ~env_step (proving the subscription is connected);
-  /// calls it again once a second until then.
+  /// calls it again once a second until then. Error naming the node when the call fails, is
+  /// refused or gets no answer within `timeout`; Interrupted when stopped meanwhile.
   const StepResult& reset(std::int64_t seed,
                           const std::vector<std::uint32_t>& episode_steps = {}) override;
   /// Publishes `actions` [rad/s] (num_envs x action_dim) for the current step.
@@ -61,6 +63,8 @@ class RosVecEnv : public VecEnv {
  private:
   void onSpec(const EnvSpec::ConstPtr& msg);
   void onEnvStep(const EnvStep::ConstPtr& msg);
+  /// ~reset with `srv`, waiting at most `timeout`; throws as reset() says.
+  void callReset(Reset& srv);
   /// Processes callbacks until `done()` (true) or `timeout` [s] (false); Interrupted when
   /// stopped.
   bool waitUntil(const std::function<bool()>& done, double timeout, const std::string& what);
