@@ -47,17 +47,16 @@ for n in "${sizes[@]}"; do
     p50_srv=$(echo "$out" | grep '^service' | field p50)
     rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
       "$core" "$e2e" "$same_run_core" "$(awk "BEGIN { print $e2e / $same_run_core }")" "$p50" "$p50_srv")")
-    echo "${rows[-1]}"
     py=$(echo "$py_out" | field env_steps_per_s)
     py_p50=$(echo "$py_out" | grep '^python' | field p50)
     py_rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
       "$e2e" "$py" "$(awk "BEGIN { print $py / $e2e }")" "$p50" "$py_p50")")
-    echo "${py_rows[-1]}"
     inproc=$(echo "$inproc_out" | field env_steps_per_s)
     inproc_p50=$(echo "$inproc_out" | grep '^topic' | field p50)
     inproc_rows+=("$(printf '| %6s | %d | %10.0f | %10.0f | %5.2f | %8.1f | %8.1f |' "$n" "$t" \
       "$e2e" "$inproc" "$(awk "BEGIN { print $inproc / $e2e }")" "$p50" "$inproc_p50")")
-    echo "${inproc_rows[-1]}"
+    # Progress on stderr; the tables follow on stdout at the end.
+    echo "N = $n, $t thread(s): core $core, over TCP $e2e, Python $py, in-process $inproc env steps/s" >&2
   done
 done
 
