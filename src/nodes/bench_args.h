@@ -23,31 +23,21 @@ struct BenchArgs {
 
 /// Parses argv into `args`; false with `error` naming the bad option or value.
 inline bool parseBenchArgs(int argc, char** argv, BenchArgs& args, std::string& error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string option = argv[i];
-    if (i + 1 >= argc) {
-      error = "option " + option + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
+  const auto take = [&args](const std::string& option, const std::string& value,
+                            std::string& error) {
     if (option == "--urdf" || option == "--config") {
       (option == "--urdf" ? args.urdf : args.config) = value;
-      continue;
+      return true;
     }
     int* target = option == "--envs"      ? &args.envs
                   : option == "--steps"   ? &args.steps
                   : option == "--threads" ? &args.threads
                                           : nullptr;
-    if (!target) {
-      error = "unknown option " + option;
-      return false;
-    }
-    if (!parseWholeNumber(option, value, option == "--threads" ? 0 : 1, 100000000, *target,
-                          error)) {
-      return false;
-    }
-  }
-  return true;
+    if (!target) return false;
+    parseWholeNumber(option, value, option == "--threads" ? 0 : 1, 100000000, *target, error);
+    return true;
+  };
+  return parseOptions(argc, argv, take, error);
 }
 
 /// The batch the programs step: `args.envs` Jetbots from `args.urdf` on `args.threads` threads,

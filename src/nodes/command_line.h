@@ -2,6 +2,7 @@
 // Option values of the programs' command lines, checked as strictly as the nodes' parameters.
 #include <cerrno>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 namespace jetbot_rl {
@@ -31,6 +32,28 @@ inline bool parseWholeNumber(const std::string& option, const std::string& value
     return false;
   }
   out = static_cast<int>(number);
+  return true;
+}
+
+/// Takes argv as `--option value` pairs: `take(option, value, error)` stores one and returns false
+/// for an option it does not know (or with `error` set for a bad value). False with `error`
+/// naming the option when one is unknown, bad or lacks its value.
+inline bool parseOptions(
+    int argc, char** argv,
+    const std::function<bool(const std::string&, const std::string&, std::string&)>& take,
+    std::string& error) {
+  for (int i = 1; i < argc; i += 2) {
+    const std::string option = argv[i];
+    if (i + 1 >= argc) {
+      error = "option " + option + " needs a value";
+      return false;
+    }
+    if (!take(option, argv[i + 1], error)) {
+      if (error.empty()) error = "unknown option " + option;
+      return false;
+    }
+    if (!error.empty()) return false;
+  }
   return true;
 }
 

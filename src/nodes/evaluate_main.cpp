@@ -40,13 +40,7 @@ int main(int argc, char** argv) {
   std::string task;
   long long envs = 64, steps = 600, seed = 1000;
   std::string error;
-  for (int i = 1; i < argc && error.empty(); i += 2) {
-    const std::string option = argv[i];
-    if (i + 1 >= argc) {
-      error = "option " + option + " needs a value";
-      break;
-    }
-    const std::string value = argv[i + 1];
+  const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
     if (option == "--checkpoint") {
       checkpoint = value;
     } else if (option == "--task") {
@@ -62,10 +56,13 @@ int main(int argc, char** argv) {
     } else if (option == "--seed") {
       parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
     } else {
-      error = "unknown option " + option;
+      return false;
     }
+    return true;
+  };
+  if (parseOptions(argc, argv, take, error) && checkpoint.empty()) {
+    error = "--checkpoint is required";
   }
-  if (error.empty() && checkpoint.empty()) error = "--checkpoint is required";
   if (!error.empty()) {
     std::fprintf(
         stderr,

@@ -17,23 +17,20 @@ int main(int argc, char** argv) {
   std::vector<std::string> nodes;
   int steps = 1000;
   std::string error;
-  for (int i = 1; i < argc && error.empty(); i += 2) {
-    const std::string option = argv[i];
-    if (i + 1 >= argc) {
-      error = "option " + option + " needs a value";
-      break;
-    }
-    const std::string value = argv[i + 1];
+  const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
     if (option == "--nodes") {
       std::istringstream list(value);
       for (std::string name; std::getline(list, name, ',');) nodes.push_back(name);
     } else if (option == "--steps") {
       jetbot_rl::parseWholeNumber(option, value, 1, 100000000, steps, error);
     } else {
-      error = "unknown option " + option;
+      return false;
     }
+    return true;
+  };
+  if (jetbot_rl::parseOptions(argc, argv, take, error) && nodes.empty()) {
+    error = "--nodes is required";
   }
-  if (error.empty() && nodes.empty()) error = "--nodes is required";
   if (!error.empty()) {
     std::fprintf(
         stderr,

@@ -52,6 +52,15 @@ def signal_and_wait(proc, sig, timeout=30.0):
     return time.monotonic() - started, proc.returncode, output or ''
 
 
+def stop_all(*procs):
+    """Kills those of `procs` (None allowed) still running and reaps them: a failed test leaves
+    no process behind."""
+    for proc in procs:
+        if proc and proc.poll() is None:
+            proc.kill()
+            proc.wait()
+
+
 class DiagnosticsRecorder(object):
     """Records every /diagnostics status of env node `node` (e.g. /jetbot_env) as a dict of its
     values plus 'stamp' [s] (wall time: the node is the clock source)."""

@@ -13,7 +13,7 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import figure, node_command, start
+from fault_util import figure, node_command, start, stop_all
 from ppo_test_util import TIMEOUT
 from jetbot_rl.msg import EnvSpec, WheelTargets
 from jetbot_rl.srv import Reset, ResetResponse
@@ -61,21 +61,23 @@ class TestEnvHung(unittest.TestCase):
     def tearDownClass(cls):
         cls.env.release()
 
-    def trainer(self, name, step_timeout):
-        return start(node_command('jetbot_ppo_trainer', name, {
+    def trainer_exit(self, name, step_timeout, after_call=lambda trainer: None):
+        """Starts a trainer against /hung_env, waits for its ~reset call, then runs
+        `after_call(trainer)`; returns (trainer, seconds from then to its exit, its output)."""
+        trainer = start(node_command('jetbot_ppo_trainer', name, {
             'envs': HUNG, 'iterations': 10, 'step_timeout': step_timeout,
             'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_env_hung_')}))
+        try:
+            self.env.wait_call()
+            started = time.monotonic()
+            after_call(trainer)
+            output, _ = trainer.communicate(timeout=TIMEOUT)
+            return trainer, time.monotonic() - started, output
+        finally:
+            stop_all(trainer)
 
     def test_reset_without_answer_ends_the_trainer(self):
-        trainer = self.trainer('trainer_timeout', STEP_TIMEOUT)
-        try:
-            called = self.env.wait_call()
-            output, _ = trainer.communicate(timeout=TIMEOUT)
-            stopped_s = time.monotonic() - called
-        finally:
-            if trainer.poll() is None:
-                trainer.kill()
-                trainer.wait()
+        trainer, stopped_s, output = self.trainer_exit('trainer_timeout', STEP_TIMEOUT)
         figure('env hung in ~reset: trainer exit status %d %.2f s after its call (step_timeout '
                '%.1f s)' % (trainer.returncode, stopped_s, STEP_TIMEOUT))
         self.assertNotEqual(trainer.returncode, 0, output)
@@ -86,17 +88,8 @@ class TestEnvHung(unittest.TestCase):
         figure('trainer error: ' + plain(errors[0]))
 
     def test_sigint_while_reset_hangs_ends_the_trainer_at_once(self):
-        trainer = self.trainer('trainer_sigint', 60.0)
-        try:
-            self.env.wait_call()
-            signalled = time.monotonic()
-            trainer.send_signal(signal.SIGINT)
-            output, _ = trainer.communicate(timeout=TIMEOUT)
-            stopped_s = time.monotonic() - signalled
-        finally:
-            if trainer.poll() is None:
-                trainer.kill()
-                trainer.wait()
+        trainer, stopped_s, output = self.trainer_exit(
+            'trainer_sigint', 60.0, lambda trainer: trainer.send_signal(signal.SIGINT))
         figure('SIGINT while ~reset hangs: trainer exit status %d after %.2f s'
                % (trainer.returncode, stopped_s))
         self.assertLess(stopped_s, 2.0, output)

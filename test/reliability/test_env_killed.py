@@ -13,7 +13,7 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import figure, node_command, start
+from fault_util import figure, node_command, start, stop_all
 from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node
 from jetbot_rl.process_info import node_pid
 
@@ -41,10 +41,7 @@ class TestEnvKilled(unittest.TestCase):
             output, _ = trainer.communicate(timeout=TIMEOUT)
             stopped_s = time.monotonic() - killed
         finally:
-            for proc in (trainer, env):
-                if proc and proc.poll() is None:
-                    proc.kill()
-                    proc.wait()
+            stop_all(trainer, env)
         figure('env node killed mid-training: trainer exit status %d after %.2f s '
                '(step_timeout %.1f s)' % (trainer.returncode, stopped_s, STEP_TIMEOUT))
         self.assertNotEqual(trainer.returncode, 0, output)
