@@ -106,4 +106,5 @@ if(CATKIN_ENABLE_TESTING)
   # Sim-to-real: a policy trained with randomisation drives the env's robot view in robot mode.
   add_rostest(test/sim2real/closed_loop_velocity.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/sim2real/closed_loop_command.test DEPENDENCIES ${_ppo_nodes})
+  add_rostest(test/sim2real/robot_mode.test DEPENDENCIES ${_ppo_nodes})
 endif()

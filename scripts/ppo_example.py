@@ -24,7 +24,8 @@ from jetbot_rl import JetbotVecEnv
 
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    p.add_argument('--node', default='/jetbot_env', help='env node (default /jetbot_env)')
+    p.add_argument('--node', nargs='+', default=['/jetbot_env'], metavar='NAME',
+                   help='env node(s), stepped as one batch (default /jetbot_env)')
     p.add_argument('--seed', type=int, default=0, help='torch seed and env reset seed')
     p.add_argument('--iterations', type=int, default=60)
     p.add_argument('--num-steps', type=int, default=16, help='steps per env per iteration')

@@ -22,9 +22,11 @@ ACTION_SETS = 8
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    parser.add_argument('--envs', type=int, required=True, help='envs of the node (num_envs)')
+    parser.add_argument('--envs', type=int, required=True,
+                        help='envs in the batch (the num_envs of the nodes together)')
     parser.add_argument('--steps', type=int, required=True, help='timed round trips')
-    parser.add_argument('--node', default='/jetbot_env', help='env node (default /jetbot_env)')
+    parser.add_argument('--node', nargs='+', default=['/jetbot_env'], metavar='NAME',
+                        help='env node(s), stepped as one batch (default /jetbot_env)')
     parser.add_argument('--timeout', type=float, default=30.0,
                         help='[s] for the node to appear and to answer (default 30)')
     args = parser.parse_args()
@@ -33,8 +35,8 @@ def main():
 
     env = JetbotVecEnv(args.node, timeout=args.timeout)
     if env.num_envs != args.envs:
-        sys.exit('python_bench.py: %s has %d envs, not --envs %d: launch it with num_envs:=%d'
-                 % (args.node, env.num_envs, args.envs, args.envs))
+        sys.exit('python_bench.py: %s: %d envs, not --envs %d: launch with num_envs:=%d'
+                 % (' '.join(args.node), env.num_envs, args.envs, args.envs))
     rng = np.random.default_rng(12345)
     actions = [rng.uniform(env.action_low, env.action_high,
                            size=(env.num_envs, env.action_dim)).astype(np.float32)

@@ -39,8 +39,8 @@ _INT64_MAX = 2 ** 63 - 1
 class JetbotVecEnv(_Base):
     """jetbot_env nodes in lockstep mode as one vector env of `num_envs` envs (gymnasium 1.x API).
 
-    `nodes`: a node name (e.g. "/jetbot_env", the env node's name, not a topic) or a list of
-    them; relative names resolve in this process's namespace. With several nodes the batch is
+    `envs`: an env node's name (e.g. "/jetbot_env", the node's name, not a topic) or a list of
+    them, as the trainer's `envs` parameter; relative names resolve in this process's namespace. With several nodes the batch is
     their envs in list order; every step goes out to all nodes before any answer is awaited.
     `timeout` [s, wall]: how long a node may take to appear or to answer.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
@@ -49,13 +49,13 @@ class JetbotVecEnv(_Base):
     metadata = {'autoreset_mode': SAME_STEP}
     render_mode = None
 
-    def __init__(self, nodes='/jetbot_env', timeout=10.0):
+    def __init__(self, envs='/jetbot_env', timeout=10.0):
         self.closed = True  # until every node is connected
         self._links = []
-        names = [nodes] if isinstance(nodes, str) else list(nodes)
+        names = [envs] if isinstance(envs, str) else list(envs)
         if not names or not all(isinstance(n, str) and n for n in names):
-            raise ValueError('JetbotVecEnv: nodes must be a node name or a non-empty list of '
-                             'them, got %r' % (nodes,))
+            raise ValueError('JetbotVecEnv: envs must be an env node name or a non-empty list '
+                             'of them, got %r' % (envs,))
         if (isinstance(timeout, bool) or not isinstance(timeout, numbers.Real)
                 or not np.isfinite(timeout) or timeout <= 0):
             raise ValueError('JetbotVecEnv: timeout must be > 0 s, got %r' % (timeout,))

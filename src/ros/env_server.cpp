@@ -86,7 +86,7 @@ void EnvServer::onSetCommand(const SetCommand::Request& req, SetCommand::Respons
   Task& task = env_.task();
   if (task.commandDim() == 0) {
     res.success = false;
-    res.message = "task '" + task.name() + "' has no command: launch with task:=command";
+    res.message = "task '" + task.name() + "' has no command";
     return;
   }
   try {

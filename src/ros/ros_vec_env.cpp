@@ -1,6 +1,7 @@
 #include "jetbot_rl/ros/ros_vec_env.h"
 
 #include <ros/console.h>
+#include <ros/this_node.h>
 #include <ros/transport_hints.h>
 
 #include <algorithm>
@@ -40,14 +41,13 @@ RosVecEnv::RosVecEnv(const std::string& env_ns, bool lockstep, double timeout,
       lockstep_(lockstep),
       timeout_(timeout),
       stop_(stop),
-      nh_(parent) {
+      nh_(parent),
+      refused_(nh_, ros::this_node::getName() + ": env client " + env_ns_, "malformed messages") {
   nh_.setCallbackQueue(&queue_);
   // Anyone can publish on these topics: a message whose lengths exceed its bytes is dropped
-  // unread (roscpp would allocate what it claims), counted and logged.
+  // unread (roscpp would allocate what it claims), counted, logged and shown on /diagnostics.
   const auto refused = [this](const std::string& reason) {
-    ++refused_;
-    ROS_WARN_THROTTLE(5.0, "%s: refused unread: %s (%llu so far)", env_ns_.c_str(), reason.c_str(),
-                      static_cast<unsigned long long>(refused_));
+    refused_.drop("refused unread: " + reason);
   };
   spec_sub_ = subscribeBounded<EnvSpec>(
       nh_, env_ns_ + "/spec", 1, [this](const EnvSpec::ConstPtr& m) { onSpec(m); }, refused);
@@ -212,7 +212,8 @@ const StepResult& RosVecEnv::stepWait() {
         throw Error("no " + what + " within " + seconds(timeout_) +
                     (step_sub_.getNumPublishers() == 0
                          ? ": the node no longer publishes " + step_sub_.getTopic() + " (dead?)"
-                         : ": were the targets rejected? see its /diagnostics"));
+                         : ": its publisher is still registered: is its host unreachable, or "
+                           "were the targets rejected (see its /diagnostics)?"));
       }
       ROS_WARN_THROTTLE(5.0,
                         "no EnvStep %llu after %.1f s: sending the targets for step %llu again",

@@ -36,6 +36,13 @@ class Hosts(object):
         self.names = {h: '%s_%s' % (self.prefix, h) for h in 'abc'}
         self.processes = []
         self.remove_stale()
+        try:
+            self.connect()
+        except BaseException:
+            self.remove_namespaces()  # a set-up that fails half-way leaves nothing behind
+            raise
+
+    def connect(self):
         for h in 'abc':
             sh('ip', 'netns', 'add', self.names[h])
             self.run(h, 'ip', 'link', 'set', 'lo', 'up')
@@ -85,8 +92,11 @@ class Hosts(object):
             except subprocess.TimeoutExpired:
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
+        self.remove_namespaces()
+
+    def remove_namespaces(self):
         for h in 'abc':
-            subprocess.run(['ip', 'netns', 'del', self.names[h]])
+            subprocess.run(['ip', 'netns', 'del', self.names[h]], stderr=subprocess.DEVNULL)
 
 
 def wait_for_master(hosts, deadline):

@@ -6,16 +6,23 @@ grows by less than 50 MB, a normal ~step sent while the lie is in flight is answ
 and the state goes on as if nothing had arrived. Also: a rospy subscriber (the Python learner side) fed lying EnvSteps
 drops them without growing."""
 import os
+import signal
+import subprocess
 import sys
+import tempfile
 import time
 import unittest
 
 import rospy
 import rostest
+from rospy.numpy_msg import numpy_msg
 
 from env_client import NODE, EventList, EnvClient, notify, wait_for
 from jetbot_rl.msg import EnvStep, WheelTargets
-from jetbot_rl.srv import Reset, ResetRequest, SetCommand, SetCommandRequest, Step, StepRequest
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Twist
+from jetbot_rl.srv import (GetRandomization, GetRandomizationRequest, Reset, ResetRequest,
+                           SetCommand, SetCommandRequest, Step, StepRequest)
 from jetbot_rl.process_info import node_pid, peak_rss_kb, start_peak_rss
 from raw_tcpros import FakePublisher, RawServiceClient, lying_length, serialize
 
@@ -24,9 +31,13 @@ MAX_RSS_GROWTH_KB = 50 * 1024
 MAX_ANSWER_S = 0.5
 
 
+CMD_VEL = 'env_0/cmd_vel'  # env 0's robot view (robot_envs 1), relative to the node's namespace
+
+
 def say(text):
-    """Figures for the test output (rostest keeps the test's stdout)."""
-    sys.stdout.write(text + '\n')
+    """Figures for the test output (rostest keeps the test's stdout), as README "Reliability"
+    quotes them."""
+    sys.stdout.write('FIGURE: ' + text + '\n')
     sys.stdout.flush()
 
 
@@ -69,17 +80,23 @@ class TestHostileBytes(unittest.TestCase):
         state = env.reset_srv(env_ids=[], seed=-1).state
         for _ in range(3):
             state = env.step_topic(state.step, GOOD)
-        fake = FakePublisher(NODE + '/wheel_targets', WheelTargets, on_connect=notify)
+        fakes = {
+            'wheel_targets': FakePublisher(NODE + '/wheel_targets', WheelTargets,
+                                           on_connect=notify),
+            CMD_VEL: FakePublisher('/' + CMD_VEL, Twist, caller_id='/raw_cmd_vel_publisher',
+                                   on_connect=notify),
+        }
         raw = {
             'step': RawServiceClient(NODE + '/step', Step),
             'reset': RawServiceClient(NODE + '/reset', Reset),
             'set_command': RawServiceClient(NODE + '/set_command', SetCommand),
+            'get_randomization': RawServiceClient(NODE + '/get_randomization', GetRandomization),
         }
-        wait_for(lambda: fake.connected(NODE) > 0,
-                 what='jetbot_env to connect to the fake publisher')
+        wait_for(lambda: all(f.connected(NODE) > 0 for f in fakes.values()),
+                 what='jetbot_env to connect to the fake publishers')
 
         def reset_request():
-            return ResetRequest(env_ids=[0, 1], seed=3)
+            return ResetRequest(env_ids=[0, 1], seed=3, episode_steps=[5, 7])
 
         # (channel, field as the reason names it, element size [bytes], grow, sample request)
         cases = [
@@ -88,11 +105,15 @@ class TestHostileBytes(unittest.TestCase):
             ('step', 'actions.header.frame_id', 1, append_char('actions.header.frame_id'), None),
             ('step', 'actions.velocities', 4, append_item('actions.velocities', 1.0), None),
             ('reset', 'env_ids', 4, append_item('env_ids', 0), reset_request),
+            ('reset', 'episode_steps', 4, append_item('episode_steps', 0), reset_request),
+            ('get_randomization', 'env_ids', 4, append_item('env_ids', 0),
+             lambda: GetRandomizationRequest(env_ids=[0, 1])),
         ]
         attacks = [(c, lie) for c in cases for lie in lies()]
-        # SetCommand has no array or string: a request cut short is refused the same way.
+        # SetCommand and Twist have no array or string: one cut short is refused the same way.
         attacks.append((('set_command', 'hold', 1, None,
                          lambda: SetCommandRequest(env_id=0, x=1.0, y=0.0, hold=True)), 'cut'))
+        attacks.append(((CMD_VEL, 'angular.z', 8, None, Twist), 'cut'))
 
         figures = []
         malformed = 0
@@ -110,14 +131,14 @@ class TestHostileBytes(unittest.TestCase):
                 rss_before = start_peak_rss(pid)
                 # The lie, then at once a normal ~step from another connection: it must not wait
                 # for the node to chew on the lie.
-                if channel == 'wheel_targets':
-                    fake.send(payload)
+                if channel in fakes:
+                    fakes[channel].send(payload)
                 else:
                     raw[channel].send(payload)
                 started = time.monotonic()
                 res = env.step_service(s, GOOD)
                 answer_s = time.monotonic() - started
-                if channel != 'wheel_targets':
+                if channel not in fakes:
                     ok, error = raw[channel].receive()
                     self.assertFalse(ok, what + ' was answered as valid')
                     self.assertTrue(error.startswith(field + ': '), '%s: %s' % (what, error))
@@ -142,7 +163,8 @@ class TestHostileBytes(unittest.TestCase):
                     '%s refused unread: %s: ' % (channel, field)), status['last malformed reason'])
                 self.assertGreaterEqual(int(status['rejected messages']), malformed)
         finally:
-            fake.close()
+            for f in fakes.values():
+                f.close()
             for client in raw.values():
                 client.close()
             if figures:
@@ -157,7 +179,8 @@ class TestHostileBytes(unittest.TestCase):
         topic = '/hostile_bytes/env_step'
         me = rospy.get_name()
         received = EventList()
-        sub = rospy.Subscriber(topic, EnvStep, received.append)
+        # numpy_msg: the deserialiser JetbotVecEnv subscribes with (src/jetbot_rl/node_link.py)
+        sub = rospy.Subscriber(topic, numpy_msg(EnvStep), received.append)
         honest = FakePublisher(topic, EnvStep, caller_id='/raw_honest_publisher',
                                on_connect=notify)
 
@@ -205,6 +228,62 @@ class TestHostileBytes(unittest.TestCase):
         finally:
             sub.unregister()
             honest.close()
+
+    def test_trainer_refuses_lying_env_steps(self):
+        """The C++ learner side (RosVecEnv in jetbot_ppo_trainer) training against the node:
+        lying EnvSteps from a fake publisher on the node's ~env_step are refused unread, counted
+        on /diagnostics, cost no memory, and training goes on until SIGINT ends it cleanly."""
+        name = '/hostile_trainer'
+        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_hostile_trainer_')
+        counts = EventList()
+
+        def on_diagnostics(msg):
+            for status in msg.status:
+                if status.name == name + ': env client ' + NODE:
+                    counts.append({kv.key: kv.value for kv in status.values})
+        diag_sub = rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
+        proc = subprocess.Popen(['rosrun', 'jetbot_rl', 'jetbot_ppo_trainer',
+                                 '__name:=' + name[1:], '_envs:=' + NODE,
+                                 '_iterations:=1000000', '_run_dir:=' + run_dir],
+                                stdout=subprocess.DEVNULL)
+        sent = 0
+        try:
+            wait_for(lambda: os.path.exists(os.path.join(run_dir, 'progress.csv')),
+                     what='the trainer to train', recheck=0.1)
+            pid = node_pid(name)
+            rss_before = start_peak_rss(pid)
+            sample = EnvStep(step=1, num_envs=2, obs_dim=3, observations=[1.0] * 6,
+                             rewards=[0.5, 0.5], terminated=[0, 0], truncated=[0, 0],
+                             episode_steps=[3, 3])
+            for field, size, grow in [('header.frame_id', 1, append_char('header.frame_id')),
+                                      ('observations', 4, append_item('observations', 0.0)),
+                                      ('episode_steps', 4, append_item('episode_steps', 0))]:
+                for lie in lies():
+                    payload, _ = lying_length(sample, grow, size, lie)
+                    fake = FakePublisher(NODE + '/env_step', EnvStep,
+                                         caller_id='/raw_env_step_publisher', on_connect=notify)
+                    try:
+                        wait_for(lambda: fake.connected(name) > 0,
+                                 what='the trainer to connect to the fake publisher')
+                        fake.send(payload)
+                        sent += 1
+                        wait_for(lambda: counts and
+                                 int(counts[-1]['malformed messages']) == sent,
+                                 what='/diagnostics counting %d malformed EnvSteps' % sent)
+                    finally:
+                        fake.close()
+            growth_kb = peak_rss_kb(pid) - rss_before
+            self.assertIn('refused unread: ', counts[-1]['last reason'])
+            say('trainer: %d lying EnvSteps refused unread, peak RSS growth %d kB'
+                % (sent, growth_kb))
+            self.assertLess(growth_kb, MAX_RSS_GROWTH_KB)
+        finally:
+            diag_sub.unregister()
+            proc.send_signal(signal.SIGINT)
+            code = proc.wait(timeout=30)
+        self.assertEqual(code, 0)
+        with open(os.path.join(run_dir, 'summary.yaml')) as f:
+            self.assertIn('status: interrupted', f.read())
 
 
 if __name__ == '__main__':

@@ -54,7 +54,9 @@ class TestClosedLoop(unittest.TestCase):
             'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=robot_policy',
             '_checkpoint:=' + run_dir, '_robot:=true', '_task:=' + task,
             '_odom_topic:=/env_0/odom', '_cmd_vel_topic:=/env_0/cmd_vel',
-            '_command_topic:=/robot_command'])
+            '_command_topic:=/robot_command',
+            # the env's robot view converts cmd_vel with the URDF's wheels: take them from there
+            '_wheel_radius:=0', '_wheel_separation:=0'])
 
     def odoms_after(self, start, seconds):
         """Odometry from `start` to `start + seconds` of simulation time."""

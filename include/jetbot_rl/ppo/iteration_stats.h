@@ -24,7 +24,7 @@ struct IterationStats {
   UpdateStats update;                 ///< Losses, entropy, KL, learning rate.
   double action_std = 0.0;            ///< Mean policy std [normalised action units].
   std::int64_t episodes = 0;          ///< Episodes completed so far.
-  /// Names of the observation components (EnvInfo::observation_names): obs_mean_<name> columns.
+  /// Names of the observation components (BatchSpec::observation_names): obs_mean_<name> columns.
   std::vector<std::string> obs_names;
   /// Per observation component: mean over the rollout's late samples (see RunnerOptions::
   /// obs_stats_from_step) [the component's unit]; NaN when the rollout had none.

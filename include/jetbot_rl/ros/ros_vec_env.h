@@ -14,6 +14,7 @@
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/Reset.h"
 #include "jetbot_rl/WheelTargets.h"
+#include "jetbot_rl/ros/drop_counter.h"
 #include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
@@ -57,8 +58,9 @@ class RosVecEnv : public VecEnv {
   }
   /// The node's name, resolved (e.g. /jetbot_env).
   const std::string& name() const { return env_ns_; }
-  /// Messages refused unread so far (array or string lengths exceeding their bytes).
-  std::uint64_t refusedMessages() const { return refused_; }
+  /// Messages refused unread so far (array or string lengths exceeding their bytes), also
+  /// counted on /diagnostics as "<this node>: env client <env>".
+  std::uint64_t refusedMessages() const { return refused_.count(); }
 
  private:
   void onSpec(const EnvSpec::ConstPtr& msg);
@@ -93,7 +95,7 @@ class RosVecEnv : public VecEnv {
   std::uint64_t observed_ = 0;  ///< Newest step passed to the observer.
   EnvStep::ConstPtr newest_;    ///< Newest EnvStep with step > step_.
   std::function<void(const EnvStep&)> observer_;
-  std::uint64_t refused_ = 0;
+  DropCounter refused_;
 };
 
 }  // namespace jetbot_rl

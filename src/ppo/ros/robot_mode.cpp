@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/ros/drop_counter.h"
 #include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ros/publication_flush.h"
@@ -18,22 +19,21 @@ namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-constexpr double kStockWheelRadius = 0.0603 / 2;  // [m] dusty-nv/jetbot_ros motors.py
-constexpr double kStockWheelSeparation = 0.1016;  // [m]
-
-/// Wheel targets -> Twist kinematics: parameters, else robot_description, else the stock Jetbot.
+/// Wheel targets -> Twist kinematics: the parameters; one given as 0 from robot_description.
 DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p) {
-  std::string urdf;
-  if ((p.wheel_radius <= 0.0 || p.wheel_separation <= 0.0) &&
-      nh.getParam("robot_description", urdf)) {
-    const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
-    return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf, packageResolver()), p.dof_names,
-                                limits, p.wheel_radius, p.wheel_separation);
+  if (p.wheel_radius > 0.0 && p.wheel_separation > 0.0) {
+    return DiffDrive(p.wheel_radius, p.wheel_separation,
+                     {p.dof_names.at(0), 0, 1.0, p.wheel_velocity_limit},
+                     {p.dof_names.at(1), 1, 1.0, p.wheel_velocity_limit});
   }
-  const double r = p.wheel_radius > 0.0 ? p.wheel_radius : kStockWheelRadius;
-  const double s = p.wheel_separation > 0.0 ? p.wheel_separation : kStockWheelSeparation;
-  return DiffDrive(r, s, {p.dof_names.at(0), 0, 1.0, p.wheel_velocity_limit},
-                   {p.dof_names.at(1), 1, 1.0, p.wheel_velocity_limit});
+  std::string urdf;
+  if (!nh.getParam("robot_description", urdf)) {
+    throwInvalid(p.wheel_radius > 0.0 ? "wheel_separation" : "wheel_radius", 0.0,
+                 "0 takes it from robot_description, which is not set");
+  }
+  const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
+  return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf, packageResolver()), p.dof_names,
+                              limits, p.wheel_radius, p.wheel_separation);
 }
 
 bool finite(const nav_msgs::Odometry& m) {
@@ -51,7 +51,11 @@ bool finite(const nav_msgs::Odometry& m) {
 class RobotDriver {
  public:
   RobotDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p)
-      : params_(p), policy_(policy), kinematics_(makeKinematics(nh, p)), task_(makeTask(p.task)) {
+      : params_(p),
+        policy_(policy),
+        kinematics_(makeKinematics(nh, p)),
+        task_(makeTask(p.task)),
+        dropped_(nh, ros::this_node::getName() + ": robot mode", "dropped odometry") {
     task_->resize(1);
     if (static_cast<int>(task_->observationNames().size()) != policy_.obsDim()) {
       throw ConfigError("task '" + task_->name() + "' observes " +
@@ -86,9 +90,8 @@ class RobotDriver {
  private:
   void onOdom(const nav_msgs::Odometry::ConstPtr& msg) {
     if (!finite(*msg)) {
-      ++dropped_;
-      ROS_WARN_THROTTLE(1.0, "dropped odometry with non-finite values (%llu so far)",
-                        static_cast<unsigned long long>(dropped_));
+      dropped_.drop("odometry on " + odom_sub_.getTopic() +
+                    " with a non-finite value or a zero quaternion: dropped");
       return;
     }
     odom_ = msg;
@@ -142,7 +145,7 @@ class RobotDriver {
   ros::WallTimer timer_;
   nav_msgs::Odometry::ConstPtr odom_;
   std::chrono::steady_clock::time_point odom_time_;
-  std::uint64_t dropped_ = 0;
+  DropCounter dropped_;
   std::vector<float> obs_, actions_;
 };
 

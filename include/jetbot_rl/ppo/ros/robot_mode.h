@@ -22,11 +22,11 @@ struct RobotModeParams {
   std::string command_topic = "~command";         ///< geometry_msgs/Vector3: command task's (x, y).
   double control_rate = 60.0;  ///< Policy steps per second [Hz] (1 / control_dt).
   double odom_timeout = 0.5;   ///< Older odometry stops the robot [s, wall].
-  /// Wheel radius [m] for wheel targets -> Twist; 0: from robot_description when it is set, else
-  /// the stock Jetbot's 0.03015 (0.0603 m wheels).
-  double wheel_radius = 0.0;
-  /// Wheel separation [m]; 0: from robot_description when set, else the stock Jetbot's 0.1016.
-  double wheel_separation = 0.0;
+  /// Wheel radius [m] for wheel targets -> Twist: the driver's, which turns the Twist back into
+  /// wheel speeds (stock Jetbot: 0.0603 m wheels); 0: from robot_description.
+  double wheel_radius = 0.0603 / 2;
+  /// Wheel separation [m], the driver's (stock Jetbot: 0.1016); 0: from robot_description.
+  double wheel_separation = 0.1016;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
   /// The wheel velocity limit the policy was trained with [rad/s]: its actions span +-this.
@@ -41,8 +41,8 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
   v("command_topic", c.command_topic, AnyValue{});
   v("control_rate", c.control_rate, positiveUpTo(10000.0, "Hz"));
   v("odom_timeout", c.odom_timeout, positive("s, wall"));
-  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: robot_description or 0.03015"));
-  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: robot_description or 0.1016"));
+  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"));
+  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: from robot_description"));
   v("dof_names", c.dof_names, NameList{});
   v("wheel_velocity_limit", c.wheel_velocity_limit, positive("rad/s"));
 }

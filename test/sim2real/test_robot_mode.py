@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""jetbot_policy_node's robot mode fed by this test's own odometry publisher: a moving Twist
+while odometry is fresh; zero Twists once it stops coming (odom_timeout); non-finite odometry
+dropped, counted on /diagnostics, the robot kept stopped; moving again on fresh odometry; after
+SIGINT a zero Twist last and exit status 0 within 2 s."""
+import math
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import rospkg
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+
+sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ros'))
+from env_client import TIMEOUT, EventList, wait_for  # noqa: E402
+
+NODE = '/robot_policy'
+ODOM_TIMEOUT = 0.3  # [s]
+NAN_ODOMS = 5
+
+
+def is_zero(twist):
+    return all(v == 0.0 for v in (twist.linear.x, twist.linear.y, twist.linear.z,
+                                  twist.angular.x, twist.angular.y, twist.angular.z))
+
+
+def odometry(vx, x=0.0):
+    msg = Odometry()
+    msg.header.frame_id = 'odom'
+    msg.child_frame_id = 'base_link'
+    msg.pose.pose.position.x = x
+    msg.pose.pose.orientation.w = 1.0
+    msg.twist.twist.linear.x = vx
+    return msg
+
+
+class OdometrySource(object):
+    """Publishes fresh odometry at 50 Hz (wall) while `running`: a robot's odometry node."""
+
+    def __init__(self, pub):
+        self.pub = pub
+        self.running = threading.Event()
+        self.thread = threading.Thread(target=self.loop, daemon=True)
+        self.thread.start()
+
+    def loop(self):
+        while not rospy.is_shutdown():
+            self.running.wait()
+            self.pub.publish(odometry(0.1))
+            time.sleep(0.02)  # a sensor's rate, not a synchronisation
+
+
+class TestRobotMode(unittest.TestCase):
+    def test_robot_mode_faults(self):
+        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_robot_mode_')
+        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                        'iterations:=1', 'run_dir:=' + run_dir, 'output:=log'],
+                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
+        twists, drops = EventList(), EventList()
+        rospy.Subscriber('/robot/cmd_vel', Twist, twists.append)
+
+        def on_diagnostics(msg):
+            for status in msg.status:
+                if status.name == NODE + ': robot mode':
+                    drops.append({kv.key: kv.value for kv in status.values})
+        rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
+        odom_pub = rospy.Publisher('/robot/odom', Odometry, queue_size=10)
+        source = OdometrySource(odom_pub)
+        proc = subprocess.Popen([
+            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=' + NODE[1:],
+            '_checkpoint:=' + run_dir, '_robot:=true', '_odom_topic:=/robot/odom',
+            '_cmd_vel_topic:=/robot/cmd_vel', '_odom_timeout:=%g' % ODOM_TIMEOUT])
+        try:
+            wait_for(lambda: odom_pub.get_num_connections() > 0, what='the node to subscribe',
+                     recheck=0.05)
+            wait_for(lambda: twists, what='Twists (no odometry yet)')
+            self.assertTrue(is_zero(twists[-1]), 'no odometry yet, yet %s' % twists[-1])
+
+            source.running.set()
+            wait_for(lambda: twists and not is_zero(twists[-1]),
+                     what='a moving Twist on fresh odometry')
+
+            source.running.clear()
+            stopped_at = time.monotonic()
+            wait_for(lambda: len(twists) >= 10 and all(is_zero(t) for t in twists[-10:]),
+                     what='10 zero Twists after the odometry stopped')
+            print('FIGURE: robot mode: zero Twists %.2f s after the odometry stopped '
+                  '(odom_timeout %.1f s)' % (time.monotonic() - stopped_at, ODOM_TIMEOUT))
+
+            count = len(twists)
+            for k in range(NAN_ODOMS):
+                odom_pub.publish(odometry(float('inf')) if k % 2
+                                 else odometry(0.1, x=float('nan')))
+            wait_for(lambda: drops and int(drops[-1]['dropped odometry']) == NAN_ODOMS,
+                     what='/diagnostics counting %d dropped odometry messages' % NAN_ODOMS)
+            self.assertIn('non-finite', drops[-1]['last reason'])
+            wait_for(lambda: len(twists) >= count + 10, what='10 more Twists')
+            self.assertTrue(all(is_zero(t) for t in twists[count:]),
+                            'non-finite odometry moved the robot')
+
+            source.running.set()
+            wait_for(lambda: not is_zero(twists[-1]), what='moving again on fresh odometry')
+            self.assertTrue(all(math.isfinite(v) for v in (twists[-1].linear.x,
+                                                           twists[-1].angular.z)))
+        finally:
+            source.running.clear()
+            signalled = time.monotonic()
+            proc.send_signal(signal.SIGINT)
+            code = proc.wait(timeout=TIMEOUT)
+            exit_s = time.monotonic() - signalled
+        print('FIGURE: robot mode: exit status %d %.2f s after SIGINT' % (code, exit_s))
+        self.assertEqual(code, 0)
+        self.assertLess(exit_s, 2.0)
+        wait_for(lambda: is_zero(twists[-1]), what='a zero Twist last after SIGINT')
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_robot_mode')
+    rostest.rosrun('jetbot_rl', 'robot_mode', TestRobotMode)
