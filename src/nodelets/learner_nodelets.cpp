@@ -60,13 +60,20 @@ class PolicyNodelet : public ThreadNodelet {
 /// (its num_envs), steps; prints the same figures.
 class LockstepBenchNodelet : public ThreadNodelet {
   void onInit() override {
-    LockstepBenchOptions options;
     const ros::NodeHandle& pnh = getPrivateNodeHandle();
-    std::string env = "jetbot_env";
-    readParam(pnh, "env_node", env);
-    readParam(pnh, "num_envs", options.envs);
-    readParam(pnh, "steps", options.steps);
-    options.env_ns = getNodeHandle().resolveName(env);
+    LockstepBenchParams params;
+    try {
+      readFields(pnh, params);
+      validateFields(params);
+    } catch (const Error& e) {
+      NODELET_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
+      return;
+    }
+    NODELET_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
+    LockstepBenchOptions options;
+    options.env_ns = getNodeHandle().resolveName(params.env_node);
+    options.envs = params.num_envs;
+    options.steps = params.steps;
     options.answer_inline = false;  // see LockstepBenchOptions::answer_inline
     start([this, options](const std::atomic<bool>&) {
       ros::NodeHandle nh = getNodeHandle();

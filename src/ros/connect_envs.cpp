@@ -5,6 +5,10 @@
 
 namespace jetbot_rl {
 
+void refuseRenamedEnvParams(const ros::NodeHandle& pnh) {
+  if (pnh.hasParam("env")) throwInvalid("env", "(set)", "was renamed envs (one name or a list)");
+}
+
 std::unique_ptr<VecEnv> connectEnvs(const std::vector<std::string>& names, bool lockstep,
                                     double timeout, const std::atomic<bool>* stop,
                                     const ros::NodeHandle& parent) {

@@ -9,11 +9,11 @@
 #include "jetbot_rl/ros/bounded_subscription.h"
 #include "jetbot_rl/ros/marker_publisher.h"
 #include "jetbot_rl/ros/msg_conversion.h"
-#include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/publication_flush.h"
+#include "jetbot_rl/ros/randomization_service.h"
+#include "jetbot_rl/ros/robot_description.h"
 #include "jetbot_rl/ros/robot_names.h"
 #include "jetbot_rl/ros/robot_state_output.h"
-#include "jetbot_rl/ros/randomization_service.h"
 #include "jetbot_rl/ros/sim_clock.h"
 #include "jetbot_rl/ros/stop_signal.h"
 #include "jetbot_rl/ros/tf_publisher.h"
@@ -214,15 +214,9 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
 
   const std::string description_param = nh.resolveName("robot_description");
-  std::string urdf;
-  if (!nh.getParam("robot_description", urdf)) {
-    ROS_FATAL("%s: parameter %s is not set or not a string: load the robot's URDF into it",
-              pnh.getNamespace().c_str(), description_param.c_str());
-    return nullptr;
-  }
   std::unique_ptr<BatchedEnv> env;
   try {
-    RobotModelConstPtr robot = RobotModel::fromUrdfString(urdf, packageResolver());
+    RobotModelConstPtr robot = loadRobotDescription(nh);
     try {
       env = std::make_unique<BatchedEnv>(robot, params.env, makeTask(params.task));
     } catch (const ConfigError& e) {  // a rule the env checks against the task or robot

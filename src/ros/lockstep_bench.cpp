@@ -20,6 +20,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/inline_callback_queue.h"
 #include "jetbot_rl/ros/node_params.h"
+#include "jetbot_rl/ros/robot_description.h"
 
 namespace jetbot_rl {
 namespace {
@@ -177,9 +178,7 @@ void printRoundTrips(const char* path, const std::vector<double>& rtt, double se
 /// env steps per second of the core with the env node's own parameters, in this process.
 double coreFigure(ros::NodeHandle& nh, const LockstepBenchOptions& o) {
   const NodeParams params = loadNodeParams(ros::NodeHandle(o.env_ns));
-  std::string urdf;
-  if (!nh.getParam("robot_description", urdf)) throw ConfigError("robot_description is not set");
-  BatchedEnv env(RobotModel::fromUrdfString(urdf), params.env, makeTask(params.task));
+  BatchedEnv env(loadRobotDescription(nh), params.env, makeTask(params.task));
   std::vector<float> actions(static_cast<std::size_t>(env.numEnvs()) * env.actionDim());
   Rng rng(12345);
   for (auto& a : actions) a = static_cast<float>(40.0 * rng.uniform() - 20.0);

@@ -4,7 +4,24 @@
 
 #include <string>
 
+#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/ros/param_reader.h"
+
 namespace jetbot_rl {
+
+/// LockstepBenchNodelet's private parameters.
+struct LockstepBenchParams {
+  std::string env_node = "jetbot_env";  ///< The env node (relative: in the nodelet's namespace).
+  int num_envs = 1024;                  ///< Its num_envs (checked against its ~spec).
+  int steps = 1000;                     ///< Timed round trips.
+};
+
+template <typename C, typename V>
+IfConfig<C, LockstepBenchParams> visitFields(C& c, V&& v) {
+  v("env_node", c.env_node, GraphName{});
+  v("num_envs", c.num_envs, inRange(1, 1000000));
+  v("steps", c.steps, inRange(1, 1000000000, "round trips"));
+}
 
 /// What jetbot_rl_ros_bench measures, and against which env node.
 struct LockstepBenchOptions {

@@ -6,11 +6,14 @@ namespace jetbot_rl {
 
 void GraphNames::check(const std::string& name, const std::vector<std::string>& names) const {
   NameList{}.check(name, names);
-  for (const std::string& graph_name : names) {
-    std::string why;
-    if (!ros::names::validate(graph_name, why)) {
-      throwInvalid(name, "'" + graph_name + "'", "is not a valid ROS name: " + why);
-    }
+  for (const std::string& graph_name : names) GraphName{}.check(name, graph_name);
+}
+
+void GraphName::check(const std::string& name, const std::string& graph_name) const {
+  std::string why;
+  if (graph_name.empty() || !ros::names::validate(graph_name, why)) {
+    throwInvalid(name, "'" + graph_name + "'",
+                 "is not a valid ROS name" + (why.empty() ? std::string() : ": " + why));
   }
 }
 

@@ -7,9 +7,28 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
+
+/// The env nodes a learner steps (jetbot_ppo_trainer, jetbot_policy_node): private parameters.
+struct EnvNodesParams {
+  /// The jetbot_env nodes whose envs form one batch, in order (one name or a list; relative
+  /// names resolve in the node's namespace); node k is reset with seed + k x 2^32.
+  std::vector<std::string> envs{"jetbot_env"};
+  double step_timeout = 10.0;  ///< Give up when an env does not answer within this [s, wall].
+};
+
+template <typename C, typename V>
+IfConfig<C, EnvNodesParams> visitFields(C& c, V&& v) {
+  v("envs", c.envs, GraphNames{});
+  v("step_timeout", c.step_timeout, positive("s, wall"));
+}
+
+/// Throws ConfigError for a parameter of an earlier version under `pnh` (`env`: now `envs`).
+void refuseRenamedEnvParams(const ros::NodeHandle& pnh);
 
 /// The env nodes `names` (relative names resolve in `parent`'s namespace) as one VecEnv: a
 /// RosVecEnv for one name, a MultiVecEnv of them for several (node k reset with seed + k x 2^32).

@@ -53,6 +53,12 @@ struct GraphNames {
   void check(const std::string& name, const std::vector<std::string>& names) const;
 };
 
+/// One valid ROS graph name (e.g. an env node).
+struct GraphName {
+  const char* unit = "";
+  void check(const std::string& name, const std::string& graph_name) const;
+};
+
 /// Reads every field of `config` (see config_fields.h) present under `pnh`; does not validate.
 template <typename C>
 void readFields(const ros::NodeHandle& pnh, C& config) {

@@ -17,6 +17,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/robot_mode.h"
 #include "jetbot_rl/ppo/ros/stop_signal.h"
+#include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/node_params.h"
 #include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ros/ros_vec_env.h"
@@ -27,14 +28,11 @@ namespace {
 
 /// Private parameters of jetbot_policy_node.
 struct PolicyParams {
-  std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
-  /// The jetbot_env nodes to drive, as one batch (one name or a list; relative names resolve in
-  /// the node's namespace); node k is reset with reset_seed + k x 2^32.
-  std::vector<std::string> envs{"jetbot_env"};
+  std::string checkpoint;    ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
+  EnvNodesParams env_nodes;  ///< The env nodes to drive as one batch, step_timeout.
   EnvMode mode = EnvMode::kRealtime;  ///< The env's mode.
   int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
   int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
-  double step_timeout = 10.0;         ///< [s, wall]
   bool robot = false;  ///< Robot mode: odometry in, cmd_vel out (RobotModeParams), no env node.
 };
 
@@ -44,11 +42,10 @@ struct PolicyParams {
 template <typename C, typename V>
 IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
   v("checkpoint", c.checkpoint, AnyValue{});
-  v("envs", c.envs, GraphNames{});
+  visitFields(c.env_nodes, v);
   v("mode", c.mode, AnyValue{});
   v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
   v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));
-  v("step_timeout", c.step_timeout, positive("s, wall"));
   v("robot", c.robot, AnyValue{});
 }
 
@@ -56,7 +53,7 @@ namespace ppo {
 namespace {
 
 PolicyParams loadParams(const ros::NodeHandle& pnh) {
-  if (pnh.hasParam("env")) throwInvalid("env", "(set)", "was renamed envs (one name or a list)");
+  refuseRenamedEnvParams(pnh);
   PolicyParams p;
   readFields(pnh, p);
   validateFields(p);
@@ -104,9 +101,9 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     std::vector<float> actions;  // the targets last published
     std::vector<std::unique_ptr<VecEnv>> parts;
     std::vector<std::unique_ptr<EpisodeTracker>> trackers;
-    for (const std::string& name : params.envs) {
+    for (const std::string& name : params.env_nodes.envs) {
       auto part = std::make_unique<RosVecEnv>(name, params.mode == EnvMode::kLockstep,
-                                              params.step_timeout, &stop, nh);
+                                              params.env_nodes.step_timeout, &stop, nh);
       trackers.push_back(std::make_unique<EpisodeTracker>(part->spec().num_envs));
       part->setObserver([&, tracker = trackers.back().get(), name](const EnvStep& msg) {
         StepResult rewards_only;
@@ -132,7 +129,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     }
     std::unique_ptr<VecEnv> env =
         parts.size() == 1 ? std::move(parts[0])
-                          : std::make_unique<MultiVecEnv>(std::move(parts), params.envs);
+                          : std::make_unique<MultiVecEnv>(std::move(parts), params.env_nodes.envs);
     const BatchSpec& info = env->spec();
     if (info.obs_dim != policy->obsDim()) {
       throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +

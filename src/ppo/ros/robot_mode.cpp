@@ -11,9 +11,9 @@
 
 #include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/ros/drop_counter.h"
-#include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/param_reader.h"
 #include "jetbot_rl/ros/publication_flush.h"
+#include "jetbot_rl/ros/robot_description.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -26,14 +26,13 @@ DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p) {
                      {p.dof_names.at(0), 0, 1.0, p.wheel_velocity_limit},
                      {p.dof_names.at(1), 1, 1.0, p.wheel_velocity_limit});
   }
-  std::string urdf;
-  if (!nh.getParam("robot_description", urdf)) {
+  if (!nh.hasParam("robot_description")) {
     throwInvalid(p.wheel_radius > 0.0 ? "wheel_separation" : "wheel_radius", 0.0,
                  "0 takes it from robot_description, which is not set");
   }
   const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
-  return DiffDrive::fromRobot(*RobotModel::fromUrdfString(urdf, packageResolver()), p.dof_names,
-                              limits, p.wheel_radius, p.wheel_separation);
+  return DiffDrive::fromRobot(*loadRobotDescription(nh), p.dof_names, limits, p.wheel_radius,
+                              p.wheel_separation);
 }
 
 bool finite(const nav_msgs::Odometry& m) {

@@ -15,8 +15,8 @@
 #include "jetbot_rl/ppo/runner.h"
 #include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/node_params.h"
-#include "jetbot_rl/ros/package_resolver.h"
 #include "jetbot_rl/ros/publication_flush.h"
+#include "jetbot_rl/ros/robot_description.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -52,19 +52,14 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
 std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& nh,
                                 const ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
   if (!params.env_in_process) {
-    return connectEnvs(params.envs, true, params.step_timeout, &stop, nh);
+    return connectEnvs(params.env_nodes.envs, true, params.env_nodes.step_timeout, &stop, nh);
   }
   const ros::NodeHandle env_pnh(pnh, "env_config");
   const NodeParams env_params = loadNodeParams(env_pnh);
   ROS_INFO_STREAM("in-process env, parameters of " << env_pnh.getNamespace() << ":\n"
                                                    << describeFields(env_params));
-  std::string urdf;
-  if (!nh.getParam("robot_description", urdf)) {
-    throw ConfigError("robot_description is not set: load the robot's URDF into it");
-  }
-  return std::make_unique<LocalVecEnv>(
-      std::make_unique<BatchedEnv>(RobotModel::fromUrdfString(urdf, packageResolver()),
-                                   env_params.env, makeTask(env_params.task)));
+  return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
+      loadRobotDescription(nh), env_params.env, makeTask(env_params.task)));
 }
 
 }  // namespace
@@ -100,7 +95,7 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
     if (params.env_in_process) {
       where << "in this process";
     } else {
-      writeValue(where, params.envs);
+      writeValue(where, params.env_nodes.envs);
     }
     ROS_INFO("environment %s: %d envs, task %s, obs_dim %d, action_dim %d, control step %.4f s",
              where.str().c_str(), spec.num_envs, spec.task.c_str(), spec.obs_dim, spec.action_dim,

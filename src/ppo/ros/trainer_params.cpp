@@ -35,7 +35,7 @@ std::string defaultRunRoot() {
 TrainerParams loadTrainerParams(const ros::NodeHandle& pnh, PpoConfig& ppo) {
   namespace fs = std::filesystem;
   TrainerParams p;
-  if (pnh.hasParam("env")) throwInvalid("env", "(set)", "was renamed envs (one name or a list)");
+  refuseRenamedEnvParams(pnh);
   readFields(pnh, ppo);
   readFields(pnh, p);
   validate(ppo);

@@ -7,6 +7,7 @@
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ros/connect_envs.h"
 #include "jetbot_rl/ros/param_reader.h"
 
 namespace jetbot_rl {
@@ -14,15 +15,12 @@ namespace ppo {
 
 /// Private parameters of jetbot_ppo_trainer besides the PPO hyper-parameters.
 struct TrainerParams {
-  RunnerOptions run;  ///< iterations, run_dir, resume, save_interval, ...
-  /// The jetbot_env nodes whose envs form the batch, in order (relative names resolve in the
-  /// node's namespace); one name or a list. Node k is reset with seed + k x 2^32.
-  std::vector<std::string> envs{"jetbot_env"};
+  RunnerOptions run;         ///< iterations, run_dir, resume, save_interval, ...
+  EnvNodesParams env_nodes;  ///< envs, step_timeout
   /// Build the env in this process (LocalVecEnv) from the parameters under ~env_config (those of
   /// jetbot_env_node) and robot_description, instead of talking to env nodes.
   bool env_in_process = false;
-  double step_timeout = 10.0;  ///< Give up when an env does not answer within this [s, wall].
-  int torch_threads = 1;       ///< libtorch intra-op threads (1: deterministic, leaves a core).
+  int torch_threads = 1;  ///< libtorch intra-op threads (1: deterministic, leaves a core).
   /// When the run has ended well (completed or interrupted), end the roslaunch that started
   /// this node cleanly (SIGINT to it) instead of leaving it to notice a required node's exit.
   bool end_launch = false;
@@ -31,9 +29,8 @@ struct TrainerParams {
 template <typename C, typename V>
 IfConfig<C, TrainerParams> visitFields(C& c, V&& v) {
   visitFields(c.run, v);
-  v("envs", c.envs, GraphNames{});
+  visitFields(c.env_nodes, v);
   v("env_in_process", c.env_in_process, AnyValue{});
-  v("step_timeout", c.step_timeout, positive("s, wall"));
   v("torch_threads", c.torch_threads, inRange(1, 256));
   v("end_launch", c.end_launch, AnyValue{});
 }
