@@ -1,10 +1,13 @@
 #!/usr/bin/python3
 """scripts/ppo_example.py trains briefly through JetbotVecEnv (100 envs, 20 iterations, seed 0),
-clearly beating the random policy of its first iteration, then plays the saved policy."""
+clearly beating the random policy of its first iteration, then plays the saved policy; Ctrl-C
+and SIGTERM mid-training save the policy and exit 0."""
 import os
 import re
+import signal
 import subprocess
 import tempfile
+import time
 import unittest
 
 import rospy
@@ -43,6 +46,35 @@ class TestPpoExample(unittest.TestCase):
             out = run('--play', policy, '--play-steps', '300')
             self.assertGreater(float(value(out, 'play_mean_reward_per_step')), 0.45)
             self.assertGreater(float(value(out, 'play_mean_episode_return')), 0.45 * 299)
+
+    def test_ctrl_c_saves_the_policy(self):
+        """SIGINT (Ctrl-C) and SIGTERM mid-training: the policy as it is is saved, exit 0."""
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            with tempfile.TemporaryDirectory() as tmp:
+                policy = os.path.join(tmp, 'policy.pt')
+                proc = subprocess.Popen(
+                    ['rosrun', 'jetbot_rl', 'ppo_example.py', '--iterations', '100000',
+                     '--save', policy], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                    text=True)
+                lines = []
+                for line in proc.stdout:  # until the first iteration is done
+                    lines.append(line)
+                    if line.startswith('iteration 1/'):
+                        break
+                signalled = time.monotonic()
+                proc.send_signal(sig)
+                rest, _ = proc.communicate(timeout=30)
+                exit_s = time.monotonic() - signalled
+                out = ''.join(lines) + rest
+                print(out)
+                print('FIGURE: ppo_example.py: exit status %d %.2f s after %s'
+                      % (proc.returncode, exit_s, sig.name))
+                self.assertEqual(proc.returncode, 0, out)
+                self.assertLess(exit_s, 2.0)
+                self.assertIn('status=interrupted', out)
+                self.assertTrue(os.path.isfile(policy))
+                out = run('--play', policy, '--play-steps', '20')
+                self.assertIn('play_mean_reward_per_step=', out)
 
 
 if __name__ == '__main__':
