@@ -198,6 +198,30 @@ Interval<T> intervalOf(Range<T> each) {
   return Interval<T>{each, each.unit};
 }
 
+/// Ranges [min, max] to draw from, one for all or one per item: two values, or pairs
+/// [min_0, max_0, min_1, max_1, ...]; in each min <= max, every value accepted by `each`. A user
+/// of the field checks the number of pairs it needs.
+template <typename T>
+struct Intervals {
+  Range<T> each;
+  const char* unit = each.unit;
+  void check(const std::string& name, const std::vector<T>& v) const {
+    bool ok = !v.empty() && v.size() % 2 == 0;
+    for (std::size_t i = 0; ok && i < v.size(); i += 2) {
+      ok = each.accepts(v[i]) && each.accepts(v[i + 1]) && v[i] <= v[i + 1];
+    }
+    if (ok) return;
+    throwInvalid(name, listText(v),
+                 "must be [min, max], or one [min, max] after another (one per dof), with "
+                 "min <= max; each value " +
+                     each.text());
+  }
+};
+template <typename T>
+Intervals<T> intervalsOf(Range<T> each) {
+  return Intervals<T>{each, each.unit};
+}
+
 /// A list of values, each accepted by `each` (any length, empty included; a user of the field
 /// checks the length it needs).
 template <typename T>

@@ -19,14 +19,24 @@ struct MotorModelConfig {
   /// Wheel speed at duty 1 [rad/s]; 0: each dof's velocity limit. The stock Jetbot's 200 rpm
   /// motors: 20.944 rad/s.
   double max_wheel_speed = 0.0;
-  std::vector<double> dead_zone{0.0, 0.0};  ///< Range of |duty| below which a wheel stops.
-  std::vector<double> trim{1.0, 1.0};       ///< Range of the per-dof factor on the duty.
+  /// Range of |duty| below which a wheel stops: [min, max] for every dof, or one [min, max] per
+  /// dof in dof order ([min_0, max_0, min_1, max_1, ...]).
+  std::vector<double> dead_zone{0.0, 0.0};
+  /// Range of the factor on the duty, likewise for all dofs or per dof (e.g. a robot whose right
+  /// motor is 5 % weaker: [1, 1, 0.95, 0.95]).
+  std::vector<double> trim{1.0, 1.0};
 
   /// True when a reset draws per-dof dead zones and trims (the model is on and a range is not
   /// its default).
   bool drawsAtReset() const {
-    return enabled &&
-           (dead_zone != std::vector<double>{0.0, 0.0} || trim != std::vector<double>{1.0, 1.0});
+    const auto all = [](const std::vector<double>& v, double x) {
+      return std::all_of(v.begin(), v.end(), [x](double y) { return y == x; });
+    };
+    return enabled && (!all(dead_zone, 0.0) || !all(trim, 1.0));
+  }
+  /// The range of `ranges` (dead_zone or trim) for dof `dof`: its own pair, or the one for all.
+  static const double* rangeOf(const std::vector<double>& ranges, int dof) {
+    return ranges.size() == 2 ? ranges.data() : ranges.data() + 2 * dof;
   }
 };
 
@@ -35,8 +45,8 @@ IfConfig<C, MotorModelConfig> visitFields(C& c, V&& v) {
   v("motor_model", c.enabled, AnyValue{});
   v("motor_max_wheel_speed", c.max_wheel_speed,
     atLeast(0.0, "rad/s", "0: each dof's velocity limit"));
-  v("motor_dead_zone", c.dead_zone, intervalOf(Range<double>{0.0, 1.0, false, true, "duty"}));
-  v("motor_trim", c.trim, intervalOf(positive()));
+  v("motor_dead_zone", c.dead_zone, intervalsOf(Range<double>{0.0, 1.0, false, true, "duty"}));
+  v("motor_trim", c.trim, intervalsOf(positive()));
 }
 
 /**

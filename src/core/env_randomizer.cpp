@@ -11,8 +11,18 @@ namespace jetbot_rl {
 namespace {
 
 /// Uniform in [range[0], range[1]]; exactly range[0] when they are equal.
-double drawIn(const std::vector<double>& range, Rng& rng) {
+double drawIn(const double* range, Rng& rng) {
   return range[0] + (range[1] - range[0]) * rng.uniform();
+}
+double drawIn(const std::vector<double>& range, Rng& rng) { return drawIn(range.data(), rng); }
+
+/// A motor range list has one [min, max] for all dofs or one per dof: ConfigError otherwise.
+void checkPerDof(const char* field, const std::vector<double>& ranges, int num_dofs) {
+  if (ranges.size() == 2 || static_cast<int>(ranges.size()) == 2 * num_dofs) return;
+  throwInvalid(field, listText(ranges),
+               "must hold one [min, max] for every dof or one per dof (" +
+                   std::to_string(num_dofs) + " dofs: " + std::to_string(2 * num_dofs) +
+                   " values)");
 }
 
 /// Uniform integer in [range[0], range[1]].
@@ -68,6 +78,8 @@ EnvRandomizer::EnvRandomizer(const EnvConfig& config, const PhysicsModel& model,
   shapes_targets_ = action_noise_std_ > 0.0 || config_.action_delay_steps[1] > 0 || motor_.enabled;
   if (draws_at_reset_) draws_.assign(num_envs_, Draw{});
   if (motor_.enabled) {
+    checkPerDof("motor_dead_zone", motor_.dead_zone, num_dofs_);
+    checkPerDof("motor_trim", motor_.trim, num_dofs_);
     dead_zone_.assign(static_cast<std::size_t>(num_envs_) * num_dofs_, 0.0);
     trim_.assign(static_cast<std::size_t>(num_envs_) * num_dofs_, 1.0);
   }
@@ -102,8 +114,8 @@ void EnvRandomizer::resetEnv(int env, Rng& rng, EnvWorld& world) {
   if (motor_.enabled) {
     for (int k = 0; k < num_dofs_; ++k) {
       const std::size_t i = static_cast<std::size_t>(env) * num_dofs_ + k;
-      dead_zone_[i] = drawIn(motor_.dead_zone, rng);
-      trim_[i] = drawIn(motor_.trim, rng);
+      dead_zone_[i] = drawIn(MotorModelConfig::rangeOf(motor_.dead_zone, k), rng);
+      trim_[i] = drawIn(MotorModelConfig::rangeOf(motor_.trim, k), rng);
     }
   }
   world.randomize(p, wheel_spin_);

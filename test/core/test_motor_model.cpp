@@ -54,6 +54,50 @@ TEST(MotorModel, TrimScalesTheWheelSpeed) {
   EXPECT_NEAR(right, 8.0, 0.2);
 }
 
+TEST(MotorModel, RangesPerDofSetEachSide) {
+  // A robot whose right motor is 5 % weaker and whose left one stalls up to duty 0.3.
+  EnvConfig c = smallConfig(4);
+  c.motor.enabled = true;
+  c.motor.trim = {1.0, 1.0, 0.95, 0.95};
+  c.motor.dead_zone = {0.3, 0.3, 0.0, 0.0};
+  BatchedEnv env(jetbot(), c);
+  for (int e = 0; e < 4; ++e) {
+    const RandomizationDraw r = env.randomization(e);
+    EXPECT_EQ(r.motor_trim, (std::vector<double>{1.0, 0.95}));
+    EXPECT_EQ(r.motor_dead_zone, (std::vector<double>{0.3, 0.0}));
+  }
+  // Duties 0.2 and 0.5: the left wheel stalls (dragged a little as the robot pivots about it,
+  // against 4 rad/s without the model), the right one turns at 0.95 x its target (within the
+  // few per cent a wheel lags in a turn).
+  const auto [left, right] = wheelSpeeds(c, 4.0f, 10.0f);
+  EXPECT_NEAR(left, 0.0, 0.5);
+  EXPECT_NEAR(right, 9.5, 0.07 * 9.5);
+  // A range per dof is drawn within its own bounds.
+  c.motor.trim = {0.5, 0.6, 0.9, 1.0};
+  c.motor.dead_zone = {0.0, 0.0};
+  BatchedEnv drawn(jetbot(), c);
+  for (int e = 0; e < 4; ++e) {
+    const RandomizationDraw r = drawn.randomization(e);
+    EXPECT_TRUE(r.motor_trim[0] >= 0.5 && r.motor_trim[0] <= 0.6) << r.motor_trim[0];
+    EXPECT_TRUE(r.motor_trim[1] >= 0.9 && r.motor_trim[1] <= 1.0) << r.motor_trim[1];
+  }
+}
+
+TEST(MotorModel, RangesForAnotherNumberOfDofsAreRefused) {
+  EnvConfig c = smallConfig(1);
+  c.motor.enabled = true;
+  c.motor.trim = {0.9, 1.0, 0.9, 1.0, 0.9, 1.0};  // three pairs for two wheels
+  try {
+    BatchedEnv env(jetbot(), c);
+    ADD_FAILURE() << "accepted three trim ranges for two dofs";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("motor_trim = [0.9, 1, 0.9, 1, 0.9, 1]"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("2 dofs: 4 values"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MotorModel, TrimsDrawnPerSideMakeTheRobotTurn) {
   EnvConfig c = smallConfig(16);
   c.motor.enabled = true;

@@ -75,6 +75,14 @@ TEST(Randomization, InvalidRangesAreRefusedNamingTheParameter) {
        [](EnvConfig& c) {
          c.motor.trim = {0.9, 0.8};
        }},
+      {"motor_trim = [1, 1, 0.9]",
+       [](EnvConfig& c) {
+         c.motor.trim = {1.0, 1.0, 0.9};
+       }},
+      {"motor_dead_zone = [0, 0.1, 0.2, 0.1]",
+       [](EnvConfig& c) {
+         c.motor.dead_zone = {0.0, 0.1, 0.2, 0.1};
+       }},
       {"motor_max_wheel_speed = -2", [](EnvConfig& c) { c.motor.max_wheel_speed = -2.0; }},
   };
   for (const auto& bad : cases) {
