@@ -103,6 +103,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ppo/determinism.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/interrupt_resume.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/refuse_start_ppo.test DEPENDENCIES ${_ppo_nodes})
+  add_rostest(test/ppo/clean_end.test DEPENDENCIES ${_ppo_nodes})
   # Sim-to-real: a policy trained with randomisation drives the env's robot view in robot mode.
   add_rostest(test/sim2real/closed_loop_velocity.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/sim2real/closed_loop_command.test DEPENDENCIES ${_ppo_nodes})

@@ -86,7 +86,8 @@ void EnvServer::onSetCommand(const SetCommand::Request& req, SetCommand::Respons
   Task& task = env_.task();
   if (task.commandDim() == 0) {
     res.success = false;
-    res.message = "task '" + task.name() + "' has no command";
+    res.message = "task '" + task.name() +
+                  "' has no command: start the env with a task that takes one (parameter task)";
     return;
   }
   try {

@@ -88,9 +88,9 @@ class TestBadInput(unittest.TestCase):
             env.set_command(1, 1.0, 0.0)
 
     def test_bad_constructor_arguments(self):
-        for nodes in ([], '', [NODE, 3]):
-            with self.assertRaisesRegex(ValueError, 'nodes'):
-                JetbotVecEnv(nodes)
+        for envs in ([], '', [NODE, 3]):
+            with self.assertRaisesRegex(ValueError, 'envs must be an env node name'):
+                JetbotVecEnv(envs)
         for timeout in (0, -1.0, float('inf'), 'x'):
             with self.assertRaisesRegex(ValueError, 'timeout'):
                 JetbotVecEnv(NODE, timeout=timeout)

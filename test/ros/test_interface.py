@@ -64,7 +64,8 @@ class TestInterface(unittest.TestCase):
         rospy.wait_for_service(NODE + '/set_command', TIMEOUT)
         res = rospy.ServiceProxy(NODE + '/set_command', SetCommand)(env_id=0, x=1.0, y=0.0)
         self.assertFalse(res.success)
-        self.assertIn('task:=command', res.message)
+        self.assertIn("task 'velocity' has no command", res.message)
+        self.assertIn('parameter task', res.message)
 
     def test_reset_reports_state(self):
         res = rospy.ServiceProxy(NODE + '/reset', Reset)(env_ids=[], seed=-1)
