@@ -212,8 +212,8 @@ const StepResult& RosVecEnv::stepWait() {
         throw Error("no " + what + " within " + seconds(timeout_) +
                     (step_sub_.getNumPublishers() == 0
                          ? ": the node no longer publishes " + step_sub_.getTopic() + " (dead?)"
-                         : ": its publisher is still registered: is its host unreachable, or "
-                           "were the targets rejected (see its /diagnostics)?"));
+                         : ": dead or unreachable (a killed node stays registered until it "
+                           "is restarted), or it rejected the targets (see its /diagnostics)"));
       }
       ROS_WARN_THROTTLE(5.0,
                         "no EnvStep %llu after %.1f s: sending the targets for step %llu again",
