@@ -114,8 +114,13 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
     const TrainingSummary summary = runner.learn();
     ROS_INFO_STREAM("final figures:\n" << describeSummary(summary));
     if (!summary.error.empty()) {
-      ROS_FATAL("%s: training failed: %s (the last completed iteration is saved in %s)",
-                pnh.getNamespace().c_str(), summary.error.c_str(), options.run_dir.c_str());
+      const std::string saved =
+          summary.iterations == 0
+              ? std::string("no iteration completed: the initial model is saved in ")
+              : "iteration " + std::to_string(summary.iterations) +
+                    ", the last completed, is saved in ";
+      ROS_FATAL("%s: training failed: %s (%s%s)", pnh.getNamespace().c_str(), summary.error.c_str(),
+                saved.c_str(), options.run_dir.c_str());
       code = 1;
     }
     if (code == 0 && params.end_launch) endParentLaunch(stop);
