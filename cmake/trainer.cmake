@@ -72,6 +72,12 @@ install(TARGETS jetbot_rl_nodelets
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+# The manager the launch files start: stops on SIGINT and SIGTERM after unloading its nodelets.
+add_executable(jetbot_rl_manager src/nodes/jetbot_rl_manager.cpp)
+target_link_libraries(jetbot_rl_manager jetbot_rl_ros ${NODELET_LIBRARY})
+target_include_directories(jetbot_rl_manager SYSTEM PRIVATE ${NODELET_INCLUDE_DIR}
+  ${PLUGINLIB_INCLUDE_DIR} ${CLASS_LOADER_INCLUDE_DIR})
+install(TARGETS jetbot_rl_manager RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 # A policy's mean reward per step on envs configured by YAML (e.g. perturbed physics), in-process.
 add_executable(jetbot_rl_evaluate src/nodes/evaluate_main.cpp)
@@ -96,7 +102,7 @@ catkin_install_python(PROGRAMS scripts/plot_learning_curve.py
 # ---- rostests: training (velocity and command tasks), determinism, Ctrl-C and resume, start-up refusals ----
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
-  set(_ppo_nodes jetbot_ppo_trainer jetbot_policy_node jetbot_env_node)
+  set(_ppo_nodes jetbot_ppo_trainer jetbot_policy_node jetbot_env_node jetbot_rl_manager)
   add_rostest(test/ppo/train.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/train_command.test DEPENDENCIES ${_ppo_nodes})
   add_rostest(test/ppo/train_tribot.test DEPENDENCIES ${_ppo_nodes})

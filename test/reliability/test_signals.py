@@ -3,7 +3,8 @@
 jetbot_env (stepping in realtime mode, markers on) sends its DELETEALL markers, which a
 subscriber receives after the last marker array; jetbot_ppo_trainer (mid-training) writes
 checkpoints/latest.pt and summary.yaml with status interrupted; jetbot_policy_node (driving in
-lockstep) stops. Prints each node's time from the signal to its exit."""
+lockstep) stops; jetbot_rl_manager with the env as a nodelet unloads it (its DELETEALL leaves)
+and exits. Prints each node's time from the signal to its exit."""
 import os
 import signal
 import tempfile
@@ -13,7 +14,7 @@ import rospy
 import rostest
 from visualization_msgs.msg import Marker, MarkerArray
 
-from fault_util import figure, node_command, signal_and_wait, start
+from fault_util import figure, node_command, signal_and_wait, start, stop_all
 from env_client import EventList, wait_for
 from jetbot_rl.msg import EnvStep
 from ppo_test_util import StatsWatcher, read_csv
@@ -110,6 +111,38 @@ class TestSignals(unittest.TestCase):
                 raise
             self.exits_cleanly('jetbot_policy_node', proc, sig)
         sub.unregister()
+
+    def test_4_nodelet_manager_unloads_and_exits(self):
+        """jetbot_rl_manager with the env as a nodelet (stepping in realtime, markers on): the
+        env's DELETEALL leaves before the manager exits 0."""
+        for sig in SIGNALS:
+            with self.subTest(signal=sig.name):
+                manager = 'signal_manager_' + sig.name.lower()
+                name = 'signal_env_nodelet_' + sig.name.lower()
+                arrays = EventList()
+                sub = rospy.Subscriber('/%s/markers' % name, MarkerArray, arrays.append)
+                proc = start(['rosrun', 'jetbot_rl', 'jetbot_rl_manager', '__name:=' + manager])
+                # The loader's private parameters become the nodelet's (same name).
+                loader = start(['rosrun', 'nodelet', 'nodelet', 'load', 'jetbot_rl/EnvNodelet',
+                                '/' + manager, '--no-bond', '__name:=' + name, '_num_envs:=4',
+                                '_tf_envs:=2', '_mode:=realtime', '_real_time_factor:=10.0',
+                                '_num_threads:=1', '_publish_clock:=false'])
+                try:
+                    wait_for(lambda: len(arrays) >= 2, what='markers of the nodelet /' + name)
+                    self.exits_cleanly('jetbot_rl_manager', proc, sig)
+                    wait_for(lambda: deleteall(arrays[-1]), timeout=10.0,
+                             what='DELETEALL as the last marker array of /%s after %s'
+                             % (name, sig.name))
+                    figure('jetbot_rl_manager %s: the env nodelet\'s DELETEALL received after %d '
+                           'marker arrays' % (sig.name, len(arrays) - 1))
+                finally:
+                    sub.unregister()
+                    loader.send_signal(signal.SIGINT)  # its manager is gone: it just ends
+                    stop_all(proc)
+                    try:
+                        loader.communicate(timeout=10)
+                    finally:
+                        stop_all(loader)
 
 
 if __name__ == '__main__':
