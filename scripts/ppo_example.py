@@ -101,94 +101,95 @@ def train(args):
     cut_at = np.arange(n) * (env.max_episode_length - 1) // n
     env_steps, target_at, start = 0, None, time.monotonic()
     obs, _ = env.reset(seed=args.seed)
-    # Ctrl-C (JetbotVecEnv leaves SIGINT to Python) and SIGTERM end training early; the policy
-    # as it is then is saved all the same.
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
-    iteration, reward_per_step, interrupted = 0, float('nan'), False
-    try:
-        for iteration in range(1, args.iterations + 1):
-            t0 = time.monotonic()
-            for t in range(steps):
-                o = torch.from_numpy(obs)
-                agent.update_normalizer(o)
-                o_n = agent.normalize(o)
-                with torch.no_grad():
-                    d = agent.dist(o_n)
-                    a = d.sample()
-                    buf_logp[t], buf_mean[t] = d.log_prob(a).sum(-1), d.mean
-                    buf_val[t] = agent.value(o_n)
-                buf_obs[t], buf_act[t] = o_n, a
-                obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
-                buf_rew[t] = torch.from_numpy(reward)
-                boot = np.zeros(n, dtype=np.float32)
-                timed_out = truncated & ~terminated
-                cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
-                with torch.no_grad():
-                    if timed_out.any():
-                        v = agent.value(agent.normalize(torch.from_numpy(infos['final_obs'])))
-                        boot[timed_out] = v.numpy()[timed_out]
-                    if cut.any():
-                        boot[cut] = agent.value(agent.normalize(torch.from_numpy(obs))).numpy()[cut]
-                if cut.any():
-                    obs, _ = env.reset(options={'reset_mask': cut})
-                buf_end[t] = torch.from_numpy(terminated | truncated | cut)
-                buf_boot[t] = torch.from_numpy(boot)
-            env_steps += steps * n
-
-            # GAE; an ended episode's next value is its bootstrap value, and nothing flows across it
+    # Ctrl-C and SIGTERM end training after the current iteration; its policy is saved.
+    stop = []
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: stop.append(True))
+    reward_per_step, interrupted = float('nan'), False
+    for iteration in range(1, args.iterations + 1):
+        if stop:
+            print('stopped by a signal after iteration %d: saving its policy' % (iteration - 1),
+                  flush=True)
+            interrupted = True
+            break
+        t0 = time.monotonic()
+        for t in range(steps):
+            o = torch.from_numpy(obs)
+            agent.update_normalizer(o)
+            o_n = agent.normalize(o)
             with torch.no_grad():
-                next_value = agent.value(agent.normalize(torch.from_numpy(obs)))
-            advantages, gae = torch.zeros(steps, n), torch.zeros(n)
-            for t in reversed(range(steps)):
-                nxt = next_value if t == steps - 1 else buf_val[t + 1]
-                nxt = torch.where(buf_end[t], buf_boot[t], nxt)
-                delta = buf_rew[t] + GAMMA * nxt - buf_val[t]
-                gae = delta + GAMMA * LAM * (~buf_end[t]).float() * gae
-                advantages[t] = gae
-            returns = advantages + buf_val
-            advantages = (advantages - advantages.mean()) / (advantages.std() + 1e-8)
+                d = agent.dist(o_n)
+                a = d.sample()
+                buf_logp[t], buf_mean[t] = d.log_prob(a).sum(-1), d.mean
+                buf_val[t] = agent.value(o_n)
+            buf_obs[t], buf_act[t] = o_n, a
+            obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
+            buf_rew[t] = torch.from_numpy(reward)
+            boot = np.zeros(n, dtype=np.float32)
+            timed_out = truncated & ~terminated
+            cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
+            with torch.no_grad():
+                if timed_out.any():
+                    v = agent.value(agent.normalize(torch.from_numpy(infos['final_obs'])))
+                    boot[timed_out] = v.numpy()[timed_out]
+                if cut.any():
+                    boot[cut] = agent.value(agent.normalize(torch.from_numpy(obs))).numpy()[cut]
+            if cut.any():
+                obs, _ = env.reset(options={'reset_mask': cut})
+            buf_end[t] = torch.from_numpy(terminated | truncated | cut)
+            buf_boot[t] = torch.from_numpy(boot)
+        env_steps += steps * n
 
-            b_obs, b_act, b_mean = (x.flatten(0, 1) for x in (buf_obs, buf_act, buf_mean))
-            b_logp, b_val, b_adv, b_ret = (x.flatten() for x in (buf_logp, buf_val, advantages,
-                                                                 returns))
-            old_std = agent.log_std.exp().detach()
-            for _ in range(EPOCHS):
-                for idx in torch.randperm(steps * n).chunk(MINIBATCHES):
-                    d = agent.dist(b_obs[idx])
-                    with torch.no_grad():  # KL(old || new) drives the learning rate (rsl_rl)
-                        kl = (torch.log(d.stddev / old_std) + (old_std ** 2 + (b_mean[idx] - d.mean)
-                              ** 2) / (2 * d.stddev ** 2) - 0.5).sum(-1).mean().item()
-                    if kl > 2 * DESIRED_KL:
-                        lr = max(MIN_LR, lr / 1.5)
-                    elif 0 < kl < DESIRED_KL / 2:
-                        lr = min(MAX_LR, lr * 1.5)
-                    for group in optimizer.param_groups:
-                        group['lr'] = lr
-                    ratio = torch.exp(d.log_prob(b_act[idx]).sum(-1) - b_logp[idx])
-                    adv = b_adv[idx]
-                    surrogate = torch.max(-adv * ratio,
-                                          -adv * ratio.clamp(1 - CLIP, 1 + CLIP)).mean()
-                    value = agent.value(b_obs[idx])
-                    clipped = b_val[idx] + (value - b_val[idx]).clamp(-CLIP, CLIP)
-                    value_loss = torch.max((value - b_ret[idx]) ** 2,
-                                           (clipped - b_ret[idx]) ** 2).mean()
-                    entropy = d.entropy().sum(-1).mean()
-                    loss = surrogate + VALUE_COEF * value_loss - ENTROPY_COEF * entropy
-                    optimizer.zero_grad()
-                    loss.backward()
-                    nn.utils.clip_grad_norm_(agent.parameters(), MAX_GRAD_NORM)
-                    optimizer.step()
+        # GAE; an ended episode's next value is its bootstrap value, and nothing flows across it
+        with torch.no_grad():
+            next_value = agent.value(agent.normalize(torch.from_numpy(obs)))
+        advantages, gae = torch.zeros(steps, n), torch.zeros(n)
+        for t in reversed(range(steps)):
+            nxt = next_value if t == steps - 1 else buf_val[t + 1]
+            nxt = torch.where(buf_end[t], buf_boot[t], nxt)
+            delta = buf_rew[t] + GAMMA * nxt - buf_val[t]
+            gae = delta + GAMMA * LAM * (~buf_end[t]).float() * gae
+            advantages[t] = gae
+        returns = advantages + buf_val
+        advantages = (advantages - advantages.mean()) / (advantages.std() + 1e-8)
 
-            reward_per_step = buf_rew.mean().item()
-            elapsed = time.monotonic() - start
-            if target_at is None and reward_per_step >= args.target:
-                target_at = (iteration, env_steps, elapsed)
-            print('iteration %d/%d | env steps %d | reward/step %.4f | %.0f env steps/s | elapsed '
-                  '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step,
-                              steps * n / (time.monotonic() - t0), elapsed), flush=True)
-    except KeyboardInterrupt:
-        interrupted = True
-        print('interrupted in iteration %d: saving the policy as it is' % iteration, flush=True)
+        b_obs, b_act, b_mean = (x.flatten(0, 1) for x in (buf_obs, buf_act, buf_mean))
+        b_logp, b_val, b_adv, b_ret = (x.flatten() for x in (buf_logp, buf_val, advantages,
+                                                             returns))
+        old_std = agent.log_std.exp().detach()
+        for _ in range(EPOCHS):
+            for idx in torch.randperm(steps * n).chunk(MINIBATCHES):
+                d = agent.dist(b_obs[idx])
+                with torch.no_grad():  # KL(old || new) drives the learning rate (rsl_rl)
+                    kl = (torch.log(d.stddev / old_std) + (old_std ** 2 + (b_mean[idx] - d.mean)
+                          ** 2) / (2 * d.stddev ** 2) - 0.5).sum(-1).mean().item()
+                if kl > 2 * DESIRED_KL:
+                    lr = max(MIN_LR, lr / 1.5)
+                elif 0 < kl < DESIRED_KL / 2:
+                    lr = min(MAX_LR, lr * 1.5)
+                for group in optimizer.param_groups:
+                    group['lr'] = lr
+                ratio = torch.exp(d.log_prob(b_act[idx]).sum(-1) - b_logp[idx])
+                adv = b_adv[idx]
+                surrogate = torch.max(-adv * ratio, -adv * ratio.clamp(1 - CLIP, 1 + CLIP)).mean()
+                value = agent.value(b_obs[idx])
+                clipped = b_val[idx] + (value - b_val[idx]).clamp(-CLIP, CLIP)
+                value_loss = torch.max((value - b_ret[idx]) ** 2,
+                                       (clipped - b_ret[idx]) ** 2).mean()
+                entropy = d.entropy().sum(-1).mean()
+                loss = surrogate + VALUE_COEF * value_loss - ENTROPY_COEF * entropy
+                optimizer.zero_grad()
+                loss.backward()
+                nn.utils.clip_grad_norm_(agent.parameters(), MAX_GRAD_NORM)
+                optimizer.step()
+
+        reward_per_step = buf_rew.mean().item()
+        elapsed = time.monotonic() - start
+        if target_at is None and reward_per_step >= args.target:
+            target_at = (iteration, env_steps, elapsed)
+        print('iteration %d/%d | env steps %d | reward/step %.4f | %.0f env steps/s | elapsed '
+              '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step,
+                          steps * n / (time.monotonic() - t0), elapsed), flush=True)
     elapsed = time.monotonic() - start
     torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim}, args.save)
     env.close()

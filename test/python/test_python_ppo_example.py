@@ -48,7 +48,8 @@ class TestPpoExample(unittest.TestCase):
             self.assertGreater(float(value(out, 'play_mean_episode_return')), 0.45 * 299)
 
     def test_ctrl_c_saves_the_policy(self):
-        """SIGINT (Ctrl-C) and SIGTERM mid-training: the policy as it is is saved, exit 0."""
+        """SIGINT (Ctrl-C) and SIGTERM mid-training: the current iteration's policy is saved,
+        exit 0."""
         for sig in (signal.SIGINT, signal.SIGTERM):
             with tempfile.TemporaryDirectory() as tmp:
                 policy = os.path.join(tmp, 'policy.pt')
