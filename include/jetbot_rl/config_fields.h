@@ -181,6 +181,17 @@ std::string listText(const std::vector<T>& v) {
   return s.str();
 }
 
+/// True when `v` is pairs [min, max] one after another (at least one), min <= max in each, every
+/// value accepted by `each`.
+template <typename T>
+bool arePairsOfRanges(const Range<T>& each, const std::vector<T>& v) {
+  if (v.empty() || v.size() % 2 != 0) return false;
+  for (std::size_t i = 0; i < v.size(); i += 2) {
+    if (!each.accepts(v[i]) || !each.accepts(v[i + 1]) || v[i] > v[i + 1]) return false;
+  }
+  return true;
+}
+
 /// A range [min, max] to draw from: two values, min <= max, each accepted by `each` (finite).
 /// [v, v] is the constant v.
 template <typename T>
@@ -188,7 +199,7 @@ struct Interval {
   Range<T> each;
   const char* unit = each.unit;
   void check(const std::string& name, const std::vector<T>& v) const {
-    if (v.size() == 2 && each.accepts(v[0]) && each.accepts(v[1]) && v[0] <= v[1]) return;
+    if (v.size() == 2 && arePairsOfRanges(each, v)) return;
     throwInvalid(name, listText(v),
                  "must be [min, max] with min <= max; each value " + each.text());
   }
@@ -206,11 +217,7 @@ struct Intervals {
   Range<T> each;
   const char* unit = each.unit;
   void check(const std::string& name, const std::vector<T>& v) const {
-    bool ok = !v.empty() && v.size() % 2 == 0;
-    for (std::size_t i = 0; ok && i < v.size(); i += 2) {
-      ok = each.accepts(v[i]) && each.accepts(v[i + 1]) && v[i] <= v[i + 1];
-    }
-    if (ok) return;
+    if (arePairsOfRanges(each, v)) return;
     throwInvalid(name, listText(v),
                  "must be [min, max], or one [min, max] after another (one per dof), with "
                  "min <= max; each value " +
