@@ -40,8 +40,9 @@ class JetbotVecEnv(_Base):
     """jetbot_env nodes in lockstep mode as one vector env of `num_envs` envs (gymnasium 1.x API).
 
     `envs`: an env node's name (e.g. "/jetbot_env", the node's name, not a topic) or a list of
-    them, as the trainer's `envs` parameter; relative names resolve in this process's namespace. With several nodes the batch is
-    their envs in list order; every step goes out to all nodes before any answer is awaited.
+    them, as the trainer's `envs` parameter; relative names resolve in this process's namespace.
+    With several nodes the batch is their envs in list order; every step goes out to all nodes
+    before any answer is awaited.
     `timeout` [s, wall]: how long a node may take to appear or to answer.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
     """

@@ -3,8 +3,10 @@
 (a fake publisher registered with the master) and its services (a raw client), for every array
 and string field: each is refused unread and counted in /diagnostics, the node's peak resident set
 grows by less than 50 MB, a normal ~step sent while the lie is in flight is answered within 0.5 s
-and the state goes on as if nothing had arrived. Also: a rospy subscriber (the Python learner side) fed lying EnvSteps
-drops them without growing."""
+and the state goes on as if nothing had arrived; a cut SetCommand request and a cut cmd_vel Twist
+likewise. Also: a rospy numpy_msg subscriber (the Python learner side) fed lying EnvSteps drops
+them without growing, and a training jetbot_ppo_trainer refuses them, counts them on
+/diagnostics and trains on."""
 import os
 import signal
 import subprocess
