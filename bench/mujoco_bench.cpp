@@ -1,9 +1,9 @@
-// MuJoCo counterpart of jetbot_rl_bench, for the speed comparison in README "Performance": the same
+// MuJoCo counterpart of jetbot_rl_bench, for the speed comparison in docs/performance.md: the same
 // robot (bench/jetbot_mujoco.xml), one mjData per env, the same loop (random wheel targets redrawn
 // every 50 control steps, 2 physics steps of 1/120 s per control step, episodes reset after 299
 // steps, body-frame velocity observation and its norm as reward), stepped in lockstep by T threads
 // over contiguous blocks. Built only with -DJETBOT_RL_MUJOCO_BENCH=ON (needs libmujoco-dev).
-//   mujoco_bench --envs N --steps S --threads T --model bench/jetbot_mujoco.xml
+//   mujoco_bench --num-envs N --steps S --threads T --model bench/jetbot_mujoco.xml
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "../src/nodes/resident_memory.h"
+#include "resident_memory.h"
 
 namespace {
 
@@ -63,7 +63,7 @@ bool parse(int argc, char** argv, Args& args) {
       args.model = value;
       continue;
     }
-    int* target = option == "--envs"      ? &args.envs
+    int* target = option == "--num-envs"  ? &args.envs
                   : option == "--steps"   ? &args.steps
                   : option == "--threads" ? &args.threads
                                           : nullptr;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   Args args;
   if (!parse(argc, argv, args)) {
     std::fprintf(stderr,
-                 "usage: mujoco_bench [--envs N] [--steps S] [--threads T] [--model MJCF]\n");
+                 "usage: mujoco_bench [--num-envs N] [--steps S] [--threads T] [--model MJCF]\n");
     return 2;
   }
   char error[1000] = "";

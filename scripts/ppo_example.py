@@ -23,9 +23,20 @@ import torch.nn as nn
 from jetbot_rl import JetbotVecEnv
 
 
+class Renamed(argparse.Action):
+    """An option that was renamed: refused (exit 2) with an error naming the new one."""
+
+    def __init__(self, option_strings, dest, new, **kwargs):
+        self.new = new
+        super().__init__(option_strings, dest, nargs='*', help=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.error('%s was renamed %s' % (option_string, self.new))
+
+
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    p.add_argument('--node', nargs='+', default=['/jetbot_env'], metavar='NAME',
+    p.add_argument('--env-nodes', nargs='+', default=['/jetbot_env'], metavar='NAME',
                    help='env node(s), stepped as one batch (default /jetbot_env)')
     p.add_argument('--seed', type=int, default=0, help='torch seed and env reset seed')
     p.add_argument('--iterations', type=int, default=60)
@@ -34,6 +45,7 @@ def parse_args():
     p.add_argument('--save', default='jetbot_ppo.pt', help='where training saves the policy')
     p.add_argument('--play', metavar='POLICY', help='play a saved policy instead of training')
     p.add_argument('--play-steps', type=int, default=600, help='steps to play')
+    p.add_argument('--node', action=Renamed, new='--env-nodes')
     return p.parse_args()
 
 
@@ -85,7 +97,7 @@ def to_env(agent_actions, low, high):
 
 def train(args):
     torch.manual_seed(args.seed)
-    env = JetbotVecEnv(args.node)
+    env = JetbotVecEnv(env_nodes=args.env_nodes)
     n, steps, obs_dim, act_dim = env.num_envs, args.num_steps, env.obs_dim, env.action_dim
     low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
     agent = Agent(obs_dim, act_dim)
@@ -210,7 +222,7 @@ def play(args):
     saved = torch.load(args.play)
     agent = Agent(saved['obs_dim'], saved['action_dim'])
     agent.load_state_dict(saved['model'])
-    env = JetbotVecEnv(args.node)
+    env = JetbotVecEnv(env_nodes=args.env_nodes)
     low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
     obs, _ = env.reset(seed=args.seed)
     episode_return, returns, rewards, at_limit = np.zeros(env.num_envs), [], 0.0, 0

@@ -44,7 +44,7 @@ struct BodyTwist {
 
 /**
  * A batch of independent Jetbot environments stepped by Bullet in parallel, with the step
- * semantics of Isaac Lab's DirectRLEnv (see README): decimated physics, time-outs at
+ * semantics of Isaac Lab's DirectRLEnv (docs/core.md): decimated physics, time-outs at
  * max_episode_length - 1, auto-reset of ended envs, observations after the reset, and the final
  * observation of every ended episode kept.
  *
@@ -99,8 +99,8 @@ class BatchedEnv {
   const std::vector<std::string>& jointNames() const { return joint_names_; }
   /// Number of envs reset because they diverged, since construction.
   std::uint64_t divergedCount() const { return diverged_count_; }
-  /// The values env `env` drew at its last reset (README "Domain randomisation"); the defaults
-  /// when randomisation is off.
+  /// The values env `env` drew at its last reset (docs/core.md, "Domain randomisation"); the
+  /// defaults when randomisation is off.
   RandomizationDraw randomization(int env) const;
 
   /// Origin of env `env` on the square grid, Isaac Lab's layout [m].

@@ -1,10 +1,13 @@
 #pragma once
 
 // One list of fields per configuration struct drives everything done with it: a struct provides
-// `visitFields(config, visitor)`, which calls `visitor(name, field, rule)` for every field in
-// order, and the functions below validate it, echo it and write and read it as YAML; the ROS
-// adapter reads it from parameters with the same list (jetbot_rl/ros/param_reader.h).
+// `visitFields(config, visitor)`, which calls `visitor(name, field, rule, meaning)` for every field
+// in order, and the functions below validate it, echo it, write and read it as YAML and document
+// it (the parameter tables of docs/ are generated from the same list); the ROS adapter reads it
+// from parameters with the same list (jetbot_rl/ros/common/param_reader.h). A struct with rules
+// between its fields declares `void checkFieldRules(const T&)` beside its visitFields.
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -68,8 +71,10 @@ E parseEnum(const std::string& field, const std::string& text) {
 /// Any value of the type (bools, free strings, enums: an enum is checked when it is parsed).
 struct AnyValue {
   const char* unit = "";
+  const char* note = "";  ///< What a value means, e.g. "empty: none".
   template <typename T>
   void check(const std::string&, const T&) const {}
+  std::string text() const { return *note ? note : ""; }
 };
 
 /// A number in [lo, hi], either end optionally open; infinite ends read as "> lo" / "<= hi".
@@ -128,6 +133,7 @@ Range<T> atLeast(T lo, const char* unit = "", const char* note = "") {
 /// A non-empty list of distinct, non-empty names.
 struct NameList {
   const char* unit = "";
+  std::string text() const { return "must be a non-empty list of distinct names"; }
   void check(const std::string& name, const std::vector<std::string>& names) const {
     if (names.empty()) throwInvalid(name, "[]", "must name at least one");
     std::set<std::string> seen;
@@ -143,6 +149,10 @@ struct IntList {
   int lo, hi;
   const char* unit = "";
   void check(const std::string& name, const std::vector<int>& values) const;
+  std::string text() const {
+    return "must be a non-empty list, each value in [" + std::to_string(lo) + ", " +
+           std::to_string(hi) + "]";
+  }
 };
 
 // ---- text of a value: the echo, YAML and error messages ----
@@ -151,8 +161,11 @@ inline void writeValue(std::ostream& s, bool v) { s << (v ? "true" : "false"); }
 inline void writeValue(std::ostream& s, int v) { s << v; }
 inline void writeValue(std::ostream& s, std::int64_t v) { s << v; }
 inline void writeValue(std::ostream& s, std::uint64_t v) { s << v; }
+/// The shortest text that reads back as the same double (0.99, not 0.98999999999999999).
 inline void writeValue(std::ostream& s, double v) {
-  s << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
+  char text[32];
+  const std::to_chars_result end = std::to_chars(text, text + sizeof(text), v);
+  s.write(text, end.ptr - text);
 }
 inline void writeValue(std::ostream& s, const std::string& v) { s << v; }
 template <typename T>
@@ -200,8 +213,10 @@ struct Interval {
   const char* unit = each.unit;
   void check(const std::string& name, const std::vector<T>& v) const {
     if (v.size() == 2 && arePairsOfRanges(each, v)) return;
-    throwInvalid(name, listText(v),
-                 "must be [min, max] with min <= max; each value " + each.text());
+    throwInvalid(name, listText(v), text());
+  }
+  std::string text() const {
+    return "must be [min, max] with min <= max; each value " + each.text();
   }
 };
 template <typename T>
@@ -218,10 +233,12 @@ struct Intervals {
   const char* unit = each.unit;
   void check(const std::string& name, const std::vector<T>& v) const {
     if (arePairsOfRanges(each, v)) return;
-    throwInvalid(name, listText(v),
-                 "must be [min, max], or one [min, max] after another (one per dof), with "
-                 "min <= max; each value " +
-                     each.text());
+    throwInvalid(name, listText(v), text());
+  }
+  std::string text() const {
+    return "must be [min, max], or one [min, max] after another (one per dof), with min <= max; "
+           "each value " +
+           each.text();
   }
 };
 template <typename T>
@@ -237,9 +254,10 @@ struct EachValue {
   const char* unit = each.unit;
   void check(const std::string& name, const std::vector<T>& v) const {
     for (T x : v) {
-      if (!each.accepts(x)) throwInvalid(name, listText(v), "every value " + each.text());
+      if (!each.accepts(x)) throwInvalid(name, listText(v), text());
     }
   }
+  std::string text() const { return "every value " + each.text(); }
 };
 
 /// Parses one YAML scalar or flow list into `v`; ConfigError naming `field` on a wrong type.
@@ -263,16 +281,30 @@ void readValue(const std::string& field, const std::string& text, E& v) {
 /// Checks every field against its rule; ConfigError naming the first invalid one and its value.
 template <typename C>
 void validateFields(const C& config) {
-  visitFields(config, [](const char* name, const auto& value, const auto& rule) {
+  visitFields(config, [](const char* name, const auto& value, const auto& rule, const char*) {
     rule.check(name, value);
   });
+}
+
+template <typename T, typename = void>
+struct HasFieldRules : std::false_type {};
+template <typename T>
+struct HasFieldRules<T, std::void_t<decltype(checkFieldRules(std::declval<const T&>()))>>
+    : std::true_type {};
+
+/// Checks every field against its rule, then the rules between fields (`checkFieldRules(config)`,
+/// declared beside the struct's visitFields, when it has any); ConfigError naming the field.
+template <typename C>
+void validateConfig(const C& config) {
+  validateFields(config);
+  if constexpr (HasFieldRules<C>::value) checkFieldRules(config);
 }
 
 /// One "name: value [unit]" line per field (the start-up echo).
 template <typename C>
 std::string describeFields(const C& config) {
   std::ostringstream s;
-  visitFields(config, [&s](const char* name, const auto& value, const auto& rule) {
+  visitFields(config, [&s](const char* name, const auto& value, const auto& rule, const char*) {
     s << name << ": ";
     writeValue(s, value);
     if (*rule.unit) s << "  # " << rule.unit;
@@ -285,7 +317,7 @@ std::string describeFields(const C& config) {
 template <typename C>
 std::string fieldsToYaml(const C& config) {
   std::ostringstream s;
-  visitFields(config, [&s](const char* name, const auto& value, const auto&) {
+  visitFields(config, [&s](const char* name, const auto& value, const auto&, const char*) {
     s << name << ": ";
     writeValue(s, value);
     s << "\n";
@@ -301,10 +333,21 @@ std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& ya
 template <typename C>
 void fieldsFromYaml(const std::string& yaml, C& config) {
   for (const auto& [key, text] : yamlLines(yaml)) {
-    visitFields(config, [&key = key, &text = text](const char* name, auto& value, const auto&) {
+    visitFields(config, [&key = key, &text = text](const char* name, auto& value, const auto&,
+                                                   const char*) {
       if (key == name) readValue(key, text, value);
     });
   }
+}
+
+/// The names of every field of `config`, in order.
+template <typename C>
+std::vector<std::string> fieldNames(const C& config) {
+  std::vector<std::string> names;
+  visitFields(config, [&names](const char* name, const auto&, const auto&, const char*) {
+    names.push_back(name);
+  });
+  return names;
 }
 
 }  // namespace jetbot_rl

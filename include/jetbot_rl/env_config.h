@@ -49,24 +49,36 @@ struct EnvConfig {
 /// The fields of EnvConfig with their rules (see config_fields.h).
 template <typename C, typename V>
 IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
-  v("num_envs", c.num_envs, inRange(1, 1000000));
-  v("env_spacing", c.env_spacing, positiveUpTo(1000.0, "m"));
-  v("physics_dt", c.physics_dt, positiveUpTo(0.1, "s"));
-  v("decimation", c.decimation, inRange(1, 1000));
-  v("episode_length_s", c.episode_length_s, positive("s"));
-  v("dof_names", c.dof_names, NameList{});
-  v("seed", c.seed, atLeast<std::uint64_t>(0));
-  v("num_threads", c.num_threads, inRange(0, 1024, "", "0: all cores"));
-  v("drive_gain", c.drive_gain, positive("N m s/rad"));
-  v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"));
-  v("solver_iterations", c.solver_iterations, inRange(1, 1000));
+  v("num_envs", c.num_envs, inRange(1, 1000000), "Environments in the batch.");
+  v("env_spacing", c.env_spacing, positiveUpTo(1000.0, "m"),
+    "Distance between env origins on the square grid.");
+  v("physics_dt", c.physics_dt, positiveUpTo(0.1, "s"), "Physics step (1/120 s).");
+  v("decimation", c.decimation, inRange(1, 1000),
+    "Physics steps per control step; control step = physics_dt x decimation.");
+  v("episode_length_s", c.episode_length_s, positive("s"),
+    "Episode length; max_episode_length = ceil(episode_length_s / control step), 2 to 1e9.");
+  v("dof_names", c.dof_names, NameList{}, "Driven joints of robot_description, in action order.");
+  v("seed", c.seed, atLeast<std::uint64_t>(0), "Seed of the per-env random streams.");
+  v("num_threads", c.num_threads, inRange(0, 1024, "", "0: all cores"), "Stepping threads.");
+  v("drive_gain", c.drive_gain, positive("N m s/rad"), "Wheel velocity drive gain.");
+  v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"),
+    "Wheel drive torque limit.");
+  v("solver_iterations", c.solver_iterations, inRange(1, 1000),
+    "Bullet constraint solver iterations per physics step.");
   v("wheel_velocity_limit", c.wheel_velocity_limit,
-    atLeast(0.0, "rad/s", "0: the URDF <limit velocity>"));
-  v("caster_friction", c.caster_friction, atLeast(0.0));
-  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: derived from the URDF"));
-  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: derived from the URDF"));
+    atLeast(0.0, "rad/s", "0: the URDF <limit velocity>"),
+    "Wheel velocity limit of every dof: the action bounds are +-this.");
+  v("caster_friction", c.caster_friction, atLeast(0.0),
+    "Friction coefficient with the ground of every body no dof drives (chassis, caster).");
+  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: derived from the URDF"),
+    "Wheel radius of the cmd_vel kinematics (DiffDrive).");
+  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: derived from the URDF"),
+    "Distance between the two wheels of the cmd_vel kinematics (DiffDrive).");
   visitFields(c.randomization, v);
   visitFields(c.motor, v);
 }
+
+/// The rules between EnvConfig's fields: an episode lasts 2 to 1e9 control steps.
+void checkFieldRules(const EnvConfig& config);
 
 }  // namespace jetbot_rl

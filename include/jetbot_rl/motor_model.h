@@ -1,6 +1,6 @@
 #pragma once
 
-// An open-loop motor (README "Domain randomisation", "Motor model"): the stock Jetbot's driver
+// An open-loop motor (docs/core.md, "The motor model"): the stock Jetbot's driver
 // (dusty-nv/jetbot_ros motors.py) turns a wheel speed into a PWM duty without encoders, so what
 // the wheel does depends on the motor: below a duty it does not turn (stiction), above 1 it
 // saturates, and two motors never run at the same speed for the same duty (trim).
@@ -42,11 +42,16 @@ struct MotorModelConfig {
 
 template <typename C, typename V>
 IfConfig<C, MotorModelConfig> visitFields(C& c, V&& v) {
-  v("motor_model", c.enabled, AnyValue{});
+  v("motor_model", c.enabled, AnyValue{},
+    "Open-loop motor between the targets and the wheels: target -> duty, dead zone, saturation "
+    "at 1, trim.");
   v("motor_max_wheel_speed", c.max_wheel_speed,
-    atLeast(0.0, "rad/s", "0: each dof's velocity limit"));
-  v("motor_dead_zone", c.dead_zone, intervalsOf(Range<double>{0.0, 1.0, false, true, "duty"}));
-  v("motor_trim", c.trim, intervalsOf(positive()));
+    atLeast(0.0, "rad/s", "0: each dof's velocity limit"),
+    "Wheel speed at duty 1 (the stock Jetbot's 200 rpm motors: 20.944).");
+  v("motor_dead_zone", c.dead_zone, intervalsOf(Range<double>{0.0, 1.0, false, true, "duty"}),
+    "Range of |duty| below which a wheel stops, drawn per wheel at every reset.");
+  v("motor_trim", c.trim, intervalsOf(positive()),
+    "Range of the factor on each wheel's duty, drawn per wheel at every reset.");
 }
 
 /**

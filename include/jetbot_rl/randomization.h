@@ -1,8 +1,8 @@
 #pragma once
 
-// Domain randomisation (README "Domain randomisation"): per-env physical parameters drawn at every
-// reset from the env's own seeded stream, noise on actions and observations, action delay. Off by
-// default: then nothing is drawn and every trajectory is bit for bit the one without it.
+// Domain randomisation (docs/core.md, "Domain randomisation"): per-env physical parameters drawn at
+// every reset from the env's own seeded stream, noise on actions and observations, action delay.
+// Off by default: then nothing is drawn and every trajectory is bit for bit the one without it.
 
 #include <vector>
 
@@ -36,17 +36,27 @@ struct RandomizationConfig {
 template <typename C, typename V>
 IfConfig<C, RandomizationConfig> visitFields(C& c, V&& v) {
   const double kInf = std::numeric_limits<double>::infinity();
-  v("mass_scale", c.mass_scale, intervalOf(positive()));
-  v("wheel_friction", c.wheel_friction, intervalOf(atLeast(0.0)));
-  v("drive_gain_scale", c.drive_gain_scale, intervalOf(positive()));
-  v("effort_limit_scale", c.effort_limit_scale, intervalOf(positive()));
-  v("wheel_radius_scale", c.wheel_radius_scale, intervalOf(Range<double>{0.0, 10.0, true}));
-  v("initial_yaw", c.initial_yaw, intervalOf(inRange(-10.0, 10.0, "rad")));
-  v("initial_speed", c.initial_speed, intervalOf(inRange(-10.0, 10.0, "m/s")));
-  v("action_delay_steps", c.action_delay_steps, intervalOf(inRange(0, 1000, "control steps")));
-  v("action_noise_std", c.action_noise_std, atLeast(0.0, "rad/s"));
+  v("mass_scale", c.mass_scale, intervalOf(positive()),
+    "Chassis (root body) mass and inertia factor, drawn per env at every reset.");
+  v("wheel_friction", c.wheel_friction, intervalOf(atLeast(0.0)),
+    "Wheel-ground friction coefficient, drawn per env at every reset.");
+  v("drive_gain_scale", c.drive_gain_scale, intervalOf(positive()),
+    "Factor on drive_gain, drawn per env at every reset.");
+  v("effort_limit_scale", c.effort_limit_scale, intervalOf(positive()),
+    "Factor on every wheel's effort limit, drawn per env at every reset.");
+  v("wheel_radius_scale", c.wheel_radius_scale, intervalOf(Range<double>{0.0, 10.0, true}),
+    "Factor on the wheels' collision shapes, drawn per env at every reset.");
+  v("initial_yaw", c.initial_yaw, intervalOf(inRange(-10.0, 10.0, "rad")),
+    "Heading at reset, drawn per env.");
+  v("initial_speed", c.initial_speed, intervalOf(inRange(-10.0, 10.0, "m/s")),
+    "Forward speed at reset, drawn per env.");
+  v("action_delay_steps", c.action_delay_steps, intervalOf(inRange(0, 1000, "control steps")),
+    "Control steps before a target acts, drawn per env at every reset.");
+  v("action_noise_std", c.action_noise_std, atLeast(0.0, "rad/s"),
+    "Gaussian noise on every wheel target before clamping.");
   v("obs_noise_std", c.obs_noise_std,
-    EachValue<double>{Range<double>{0.0, kInf, false, false, "task units", ""}});
+    EachValue<double>{Range<double>{0.0, kInf, false, false, "task units", ""}},
+    "Gaussian noise on the observations: [] none, one std for all, or one per component.");
 }
 
 /// The values one env drew at its last reset (the defaults when randomisation is off).

@@ -22,16 +22,20 @@ inline const EnumNameList<TaskKind>& enumNames(TaskKind) {
   return names;
 }
 
-/// Which task an env runs: the `task` and `reward` parameters.
+/// Which task an env runs: the `task` and `reward_variant` parameters.
 struct TaskConfig {
   TaskKind task = TaskKind::kVelocity;
-  CommandTask::Variant reward = CommandTask::Variant::kExp;  ///< Ignored by the velocity task.
+  /// The command task's reward; ignored by the velocity task.
+  CommandTask::Variant reward_variant = CommandTask::Variant::kExp;
 };
 
 template <typename C, typename V>
 IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
-  v("task", c.task, AnyValue{});
-  v("reward", c.reward, AnyValue{});
+  v("task", c.task, AnyValue{},
+    "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm) or command "
+    "(turn to a random command and drive along it).");
+  v("reward_variant", c.reward_variant, AnyValue{},
+    "Command task's reward: exp (v_x exp(dot)), sum (v_x + dot) or product (v_x dot).");
 }
 
 /// Builds the configured task.

@@ -7,14 +7,15 @@
 
 namespace jetbot_rl {
 
-void EnvConfig::validate() const {
-  validateFields(*this);
-  const double steps = episode_length_s / controlDt();
+void checkFieldRules(const EnvConfig& config) {
+  const double steps = config.episode_length_s / config.controlDt();
   if (steps < 2.0 || steps > 1e9) {
-    throwInvalid("episode_length_s", episode_length_s,
+    throwInvalid("episode_length_s", config.episode_length_s,
                  "must last between 2 and 1e9 control steps of physics_dt * decimation");
   }
 }
+
+void EnvConfig::validate() const { validateConfig(*this); }
 
 int EnvConfig::maxEpisodeLength() const {
   return static_cast<int>(std::ceil(episode_length_s / controlDt()));

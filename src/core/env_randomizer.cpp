@@ -98,7 +98,7 @@ void EnvRandomizer::reseed(int env, std::uint64_t seed) {
   if (!noise_.empty()) noise_[env] = Rng(seed, env + kNoiseStream);
 }
 
-// The order of the draws is documented in README "Domain randomisation": changing it changes
+// The order of the draws is documented in docs/core.md, "Domain randomisation": changing it changes
 // every randomised trajectory.
 void EnvRandomizer::resetEnv(int env, Rng& rng, EnvWorld& world) {
   Draw& d = draws_[env];

@@ -12,7 +12,7 @@
 namespace jetbot_rl {
 
 /**
- * A batch's domain randomisation and motor model (README "Domain randomisation"): draws each
+ * A batch's domain randomisation and motor model (docs/core.md, "Domain randomisation"): draws each
  * env's values at its resets from the env's own stream, keeps its noise stream and its delayed
  * targets, and shapes its targets and observations. Memory per env is taken only for what is on.
  * A per-env call touches only that env's slots, so threads may call it for different envs at once.

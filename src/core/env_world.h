@@ -25,8 +25,8 @@ struct alignas(64) WorkerContext {
   btMultiBodyConstraintSolver solver;
 };
 
-/// One env's physical parameters drawn at a reset (README "Domain randomisation"); the defaults
-/// are the model's own values.
+/// One env's physical parameters drawn at a reset (docs/core.md, "Domain randomisation"); the
+/// defaults are the model's own values.
 struct PhysicalDraw {
   double mass_scale = 1.0;  ///< Chassis (root body) mass and inertia factor.
   double wheel_friction = PhysicsModel::kWheelFriction;  ///< Of the bodies a dof drives.

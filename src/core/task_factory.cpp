@@ -5,7 +5,7 @@ namespace jetbot_rl {
 std::unique_ptr<Task> makeTask(const TaskConfig& config) {
   switch (config.task) {
     case TaskKind::kCommand:
-      return std::make_unique<CommandTask>(config.reward);
+      return std::make_unique<CommandTask>(config.reward_variant);
     case TaskKind::kVelocity:
       break;
   }

@@ -1,6 +1,6 @@
 """One jetbot_env node seen by a lockstep learner: its spec, its targets out, its EnvSteps in.
 
-The protocol is the README's "Writing your own learner" (and the C++ RosVecEnv's): wait for the
+The protocol is docs/training.md's "Writing your own learner" (and the C++ RosVecEnv's): wait for the
 latched `~spec`; advertise `~wheel_targets` and wait until the env subscribes; subscribe to
 `~env_step` with TCP_NODELAY; call `~reset` and wait until its state also arrives on `~env_step`;
 then each step publish WheelTargets with `step` = the current EnvStep.step and wait for the
@@ -18,9 +18,9 @@ from rospy.numpy_msg import numpy_msg
 from jetbot_rl.msg import EnvSpec, EnvStep, WheelTargets
 from jetbot_rl.srv import Reset, SetCommand, Step
 
-# Lockstep: without an answer after this long [s, wall], ask the node through ~step what became of
-# the targets (see NodeLink.wait()).
-RESEND_AFTER = 0.5
+# Lockstep: when the answer to our targets is late, NodeLink.wait() asks the node through ~step
+# after WheelTargets.RESEND_AFTER [s, wall], a constant of the protocol (msg/WheelTargets.msg) that
+# the C++ client shares.
 # After ~reset: call it again when its state has not arrived on ~env_step within this [s].
 RESET_CONFIRM = 1.0
 
@@ -266,17 +266,17 @@ class NodeLink(object):
     def wait(self, sent):
         """Waits for the EnvStep answering the targets of send() and makes it the current state.
 
-        Without an answer after RESEND_AFTER, calls ~step with the same targets: it applies them
-        when the topic message was lost (while the env's subscription was still connecting),
-        answers "stale" with the new state when they were applied and the answer is late, or
-        gives the node's reason for refusing them (raised as EnvRejectedError). TimeoutError
-        naming the node when nothing comes within the timeout.
+        Without an answer after WheelTargets.RESEND_AFTER [s], calls ~step with the same targets:
+        it applies them when the topic message was lost (while the env's subscription was still
+        connecting), answers "stale" with the new state when they were applied and the answer is
+        late, or gives the node's reason for refusing them (raised as EnvRejectedError).
+        TimeoutError naming the node when nothing comes within the timeout.
         """
         expected = self._step + 1
         deadline = self._sent_at + self.timeout
         unreachable = ''
         if sent:
-            msg = self._take_answer(min(deadline, self._sent_at + RESEND_AFTER))
+            msg = self._take_answer(min(deadline, self._sent_at + WheelTargets.RESEND_AFTER))
         else:
             msg = None
         while msg is None:
@@ -299,7 +299,8 @@ class NodeLink(object):
                         'out (its ~step service: %s)' % (self._answer.step, self._step, e),
                         'is another client stepping %s? reset() re-synchronises' % self.name)
                 unreachable = ' (its ~step service: %s)' % e
-                msg = self._take_answer(min(deadline, time.monotonic() + RESEND_AFTER))
+                msg = self._take_answer(min(deadline,
+                                            time.monotonic() + WheelTargets.RESEND_AFTER))
                 continue
             if res.success or (sent and res.state.step == expected and 'stale' in res.message):
                 msg = res.state

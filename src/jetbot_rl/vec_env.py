@@ -39,10 +39,11 @@ _INT64_MAX = 2 ** 63 - 1
 class JetbotVecEnv(_Base):
     """jetbot_env nodes in lockstep mode as one vector env of `num_envs` envs (gymnasium 1.x API).
 
-    `envs`: an env node's name (e.g. "/jetbot_env", the node's name, not a topic) or a list of
-    them, as the trainer's `envs` parameter; relative names resolve in this process's namespace.
-    With several nodes the batch is their envs in list order; every step goes out to all nodes
-    before any answer is awaited.
+    `env_nodes`: an env node's name (e.g. "/jetbot_env", the node's name, not a topic) or a list
+    of them, as the trainer's `env_nodes` parameter; relative names resolve in this process's
+    namespace. With several nodes the batch is their envs in list order; every step goes out to
+    all nodes before any answer is awaited. (The keyword was `envs` before: it is refused with a
+    TypeError naming `env_nodes`.)
     `timeout` [s, wall]: how long a node may take to appear or to answer.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
     """
@@ -50,13 +51,18 @@ class JetbotVecEnv(_Base):
     metadata = {'autoreset_mode': SAME_STEP}
     render_mode = None
 
-    def __init__(self, envs='/jetbot_env', timeout=10.0):
+    def __init__(self, env_nodes='/jetbot_env', timeout=10.0, **renamed):
         self.closed = True  # until every node is connected
         self._links = []
-        names = [envs] if isinstance(envs, str) else list(envs)
+        if 'envs' in renamed:
+            raise TypeError('JetbotVecEnv: envs was renamed env_nodes')
+        if renamed:
+            raise TypeError('JetbotVecEnv() got an unexpected keyword argument %r'
+                            % sorted(renamed)[0])
+        names = [env_nodes] if isinstance(env_nodes, str) else list(env_nodes)
         if not names or not all(isinstance(n, str) and n for n in names):
-            raise ValueError('JetbotVecEnv: envs must be an env node name or a non-empty list '
-                             'of them, got %r' % (envs,))
+            raise ValueError('JetbotVecEnv: env_nodes must be an env node name or a non-empty '
+                             'list of them, got %r' % (env_nodes,))
         if (isinstance(timeout, bool) or not isinstance(timeout, numbers.Real)
                 or not np.isfinite(timeout) or timeout <= 0):
             raise ValueError('JetbotVecEnv: timeout must be > 0 s, got %r' % (timeout,))
@@ -158,7 +164,7 @@ class JetbotVecEnv(_Base):
 
     def step(self, actions):
         """One control step of every env with `actions` [rad/s], shape (num_envs, action_dim);
-        returns (obs, rewards, terminations, truncations, infos), see the class doc and README."""
+        returns (obs, rewards, terminations, truncations, infos), see the class doc and docs/python.md."""
         self._check_open()
         a = self._check_actions(actions)
         if self._needs_reset:

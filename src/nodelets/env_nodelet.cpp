@@ -5,7 +5,7 @@
 #include <memory>
 #include <pluginlib/class_list_macros.hpp>
 
-#include "jetbot_rl/ros/env_node.h"
+#include "jetbot_rl/ros/env_node/env_node.h"
 
 namespace jetbot_rl {
 

@@ -3,21 +3,17 @@
 #include <cstdio>
 #include <numeric>
 
-#include "bench_args.h"
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/command_line.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
-  BenchArgs args;
-  args.envs = 100;
+  EnvProgramOptions args;
+  args.num_envs = 100;
   args.steps = 600;
-  std::string error;
-  if (!parseBenchArgs(argc, argv, args, error)) {
-    std::fprintf(stderr, "jetbot_rl_demo: %s\n", error.c_str());
-    return 2;
-  }
+  args.urdf = JETBOT_RL_DEFAULT_URDF;
+  if (!args.parse(argc, argv, "jetbot_rl_demo")) return 2;
   try {
-    const auto batch = makeBenchEnv(args);
+    const auto batch = args.makeEnv();
     BatchedEnv& env = *batch;
     std::printf("jetbot_rl demo: %d envs, control dt %.4f s, episodes of %d steps, %d threads\n",
                 env.numEnvs(), env.controlDt(), env.maxEpisodeLength() - 1, env.numThreads());

@@ -10,7 +10,7 @@
 
 #include <atomic>
 
-#include "jetbot_rl/ros/stop_signal.h"
+#include "jetbot_rl/ros/common/stop_signal.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "manager", ros::init_options::NoSigintHandler);

@@ -3,12 +3,13 @@
 namespace jetbot_rl {
 namespace ppo {
 
-void validate(const PpoConfig& c) {
-  validateFields(c);
+void checkFieldRules(const PpoConfig& c) {
   if (c.min_learning_rate > c.max_learning_rate) {
     throwInvalid("min_learning_rate", c.min_learning_rate, "must be <= max_learning_rate");
   }
 }
+
+void validate(const PpoConfig& c) { validateConfig(c); }
 
 std::string toYaml(const PpoConfig& config) { return fieldsToYaml(config); }
 

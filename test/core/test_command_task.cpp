@@ -64,13 +64,13 @@ TEST(CommandTask, EveryRewardVariant) {
 TEST(CommandTask, VariantNamesRoundTripAndBadOnesAreNamed) {
   for (auto v :
        {CommandTask::Variant::kExp, CommandTask::Variant::kSum, CommandTask::Variant::kProduct}) {
-    EXPECT_EQ(parseEnum<CommandTask::Variant>("reward", enumName(v)), v);
+    EXPECT_EQ(parseEnum<CommandTask::Variant>("reward_variant", enumName(v)), v);
   }
   try {
-    parseEnum<CommandTask::Variant>("reward", "max");
+    parseEnum<CommandTask::Variant>("reward_variant", "max");
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("reward = 'max'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reward_variant = 'max'"), std::string::npos) << e.what();
   }
 }
 
@@ -146,7 +146,7 @@ TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
     EXPECT_EQ(makeTask(config)->name(), name);
   }
   TaskConfig config;
-  fieldsFromYaml("task: command\nreward: sum", config);
+  fieldsFromYaml("task: command\nreward_variant: sum", config);
   EXPECT_EQ(static_cast<CommandTask&>(*makeTask(config)).variant(), CommandTask::Variant::kSum);
   try {
     fieldsFromYaml("task: maze", config);
@@ -156,7 +156,7 @@ TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(fieldsFromYaml("reward: max", config), ConfigError);
+  EXPECT_THROW(fieldsFromYaml("reward_variant: max", config), ConfigError);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The second robot (test/urdf/tribot.urdf) driven through the differential-drive kinematics, as
+// The second robot (urdf/examples/tribot.urdf) driven through the differential-drive kinematics, as
 // cmd_vel drives it: straight at r * omega, in place at 2 omega r / separation, parked still.
 #include <cmath>
 

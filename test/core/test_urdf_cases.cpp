@@ -25,7 +25,7 @@ void expectModelError(const std::function<void()>& f, const std::vector<std::str
 }
 
 const std::string kChassisCollision =
-    "<geometry><mesh filename=\"package://jetbot_rl/test/urdf/meshes/chassis.stl\" "
+    "<geometry><mesh filename=\"package://jetbot_rl/urdf/examples/meshes/chassis.stl\" "
     "scale=\"0.001 0.001 0.001\"/></geometry>\n    </collision>";
 
 /// The tribot with its chassis collision mesh given by `filename` instead.
@@ -168,7 +168,7 @@ TEST(UrdfCases, StlChassisIsItsScaledConvexHull) {
   ASSERT_EQ(base.collisions.size(), 2u);
   const CollisionGeometry& chassis = base.collisions[0];
   ASSERT_EQ(chassis.type, CollisionGeometry::Type::kMesh);
-  EXPECT_EQ(chassis.mesh_uri, "package://jetbot_rl/test/urdf/meshes/chassis.stl");
+  EXPECT_EQ(chassis.mesh_uri, "package://jetbot_rl/urdf/examples/meshes/chassis.stl");
   EXPECT_EQ(chassis.vertices.size(), 16u);  // an octagonal prism: STL's repeats are joined
   Eigen::Vector3d low = Eigen::Vector3d::Constant(1e9), high = -low;
   for (const auto& v : chassis.vertices) {
@@ -217,13 +217,13 @@ TEST(UrdfCases, ALoneMeshStandsWhereItsVerticesAre) {
 TEST(UrdfCases, PackageUriWithoutResolverNamesTheLinkAndUri) {
   expectModelError(
       [] { RobotModel::fromUrdfFile(TRIBOT_URDF); },
-      {"link 'base_link'", "package://jetbot_rl/test/urdf/meshes/chassis.stl", "resolver"});
+      {"link 'base_link'", "package://jetbot_rl/urdf/examples/meshes/chassis.stl", "resolver"});
 }
 
 TEST(UrdfCases, AResolverThatFailsIsNamed) {
   expectModelError(
       [] { RobotModel::fromUrdfFile(TRIBOT_URDF, [](const std::string&) { return ""; }); },
-      {"link 'base_link'", "package://jetbot_rl/test/urdf/meshes/chassis.stl",
+      {"link 'base_link'", "package://jetbot_rl/urdf/examples/meshes/chassis.stl",
        "could not be resolved"});
   expectModelError(
       [] {

@@ -39,7 +39,7 @@ inline std::string tribotUrdfText() {
   return text.str();
 }
 
-/// test/urdf/tribot.urdf: massless root, rotated wheel frames, no <limit>, box caster, mesh.
+/// urdf/examples/tribot.urdf: massless root, rotated wheel frames, no <limit>, box caster, mesh.
 inline RobotModelConstPtr tribot() {
   static const RobotModelConstPtr model = RobotModel::fromUrdfFile(TRIBOT_URDF, testResolver);
   return model;

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "jetbot_rl/multi_vec_env.h"
-#include "jetbot_rl/ros/connect_envs.h"
+#include "jetbot_rl/ros/client/connect_envs.h"
 
 namespace jetbot_rl {
 namespace {

@@ -2,7 +2,7 @@
 """Training over several hosts of one ROS graph, on one machine: the test makes three hosts in
 network namespaces (a bridge on host a, a veth pair to each of hosts b and c, one /24 inside the
 namespaces only), runs the master and the trainer on a and an env node on each of b and c
-(env_host.launch, ROS_MASTER_URI and ROS_IP per host, as the README's multi-host set-up says),
+(env_host.launch, ROS_MASTER_URI and ROS_IP per host, as docs/training.md's multi-host set-up says),
 and checks that the training reaches the velocity target. The namespaces and every process are
 removed whatever happens."""
 import os
@@ -123,11 +123,11 @@ class TestMultiHost(unittest.TestCase):
             hosts.start('a', ['roscore', '-p', '11311'], log)
             wait_for_master(hosts, deadline)
             for k, h in enumerate('bc'):
-                hosts.start(h, ['roslaunch', 'jetbot_rl', 'env_host.launch', 'count:=1',
+                hosts.start(h, ['roslaunch', 'jetbot_rl', 'env_host.launch', 'num_env_nodes:=1',
                                 'first:=%d' % k, 'num_envs:=50', 'num_threads:=1',
                                 'output:=log'], log)
             trainer = hosts.start('a', [
-                'roslaunch', 'jetbot_rl', 'train.launch', 'env_nodes:=0', 'envs:=' + NODES,
+                'roslaunch', 'jetbot_rl', 'train.launch', 'num_env_nodes:=0', 'env_nodes:=' + NODES,
                 'iterations:=40', 'run_dir:=' + run_dir, 'end_launch:=false', 'required:=true'],
                 log)
             trainer.wait(timeout=max(1.0, deadline - time.monotonic()))

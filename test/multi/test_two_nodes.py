@@ -5,18 +5,14 @@ checkpoint and an error naming the node; resuming with the same list continues t
 import os
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 import unittest
 
-import rospkg
 import rospy
 import rostest
 from jetbot_rl.process_info import node_pid
-
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ppo'))
-from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node, start_node  # noqa: E402
+from jetbot_rl_test.ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node, start_node
 
 NODES = ['/jetbot_env_0', '/jetbot_env_1']
 STEP_TIMEOUT = 3.0
@@ -26,7 +22,7 @@ LEARNED_AT = 30  # iterations
 
 class TestTwoNodes(unittest.TestCase):
     def test_mismatched_node_is_refused_by_name_and_field(self):
-        rospy.set_param('/trainer_odd/envs', ['/jetbot_env_0', '/jetbot_env_odd'])
+        rospy.set_param('/trainer_odd/env_nodes', ['/jetbot_env_0', '/jetbot_env_odd'])
         code, output = run_node('jetbot_ppo_trainer', 'trainer_odd', {
             'iterations': 1, 'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_odd_')})
         self.assertNotEqual(code, 0, output)
@@ -38,8 +34,8 @@ class TestTwoNodes(unittest.TestCase):
     def test_learns_then_a_killed_node_ends_the_run_and_resume_continues(self):
         run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_two_nodes_')
         stats = StatsWatcher('/trainer_two/training_stats')
-        rospy.set_param('/trainer_two/envs', NODES)  # a list: command-line params are scalars
-        rospy.set_param('/trainer_resumed/envs', NODES)
+        rospy.set_param('/trainer_two/env_nodes', NODES)  # a list: command-line params are scalars
+        rospy.set_param('/trainer_resumed/env_nodes', NODES)
         proc = start_node('jetbot_ppo_trainer', 'trainer_two', {
             'iterations': 1000000, 'run_dir': run_dir,
             'step_timeout': STEP_TIMEOUT, 'save_interval': 1000})

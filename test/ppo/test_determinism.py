@@ -8,7 +8,7 @@ import unittest
 import rospy
 import rostest
 
-from ppo_test_util import StatsWatcher, learning_columns
+from jetbot_rl_test.ppo_test_util import StatsWatcher, learning_columns
 
 
 class TestDeterminism(unittest.TestCase):

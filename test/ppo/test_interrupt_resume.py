@@ -9,7 +9,7 @@ import unittest
 import rospy
 import rostest
 
-from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node, start_node
+from jetbot_rl_test.ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node, start_node
 
 STEPS_PER_ITERATION = 16 * 16  # num_steps_per_env x num_envs
 
@@ -19,7 +19,7 @@ class TestInterruptResume(unittest.TestCase):
         run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_interrupt_')  # never shared by two runs
         stats = StatsWatcher('/trainer_a/training_stats')
         proc = start_node('jetbot_ppo_trainer', 'trainer_a', {
-            'envs': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
+            'env_nodes': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
             'save_interval': 1000})
         try:
             stats.wait_iteration(3)
@@ -38,7 +38,7 @@ class TestInterruptResume(unittest.TestCase):
 
         # Resume from the run directory (its checkpoints/latest.pt) for two more iterations.
         code, output = run_node('jetbot_ppo_trainer', 'trainer_b', {
-            'envs': '/jetbot_env', 'iterations': done + 2, 'resume': run_dir})
+            'env_nodes': '/jetbot_env', 'iterations': done + 2, 'resume': run_dir})
         self.assertEqual(code, 0, output)
         self.assertIn('resumed from', output)
         self.assertIn('at iteration %d' % done, output)

@@ -1,14 +1,18 @@
 #!/usr/bin/python3
 """jetbot_ppo_trainer and jetbot_policy_node refuse bad parameters at start-up: non-zero exit and
 a FATAL line naming the parameter and its value."""
+import os
+import tempfile
 import unittest
 
+import rospkg
 import rospy
 import rostest
 
-from ppo_test_util import run_node
+from jetbot_rl_test.ppo_test_util import run_node
 
 RUN_TIMEOUT = 60.0
+URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot.urdf')).read()
 
 
 class TestRefuseStartPpo(unittest.TestCase):
@@ -37,8 +41,30 @@ class TestRefuseStartPpo(unittest.TestCase):
         self.refuses('jetbot_ppo_trainer', {'actor_hidden_dims': 'wide'}, 'actor_hidden_dims')
 
     def test_env_node_name_invalid(self):
-        self.refuses('jetbot_ppo_trainer', {'envs': '[a, b]'}, 'envs', '[a, b]',
+        self.refuses('jetbot_ppo_trainer', {'env_nodes': '[a, b]'}, 'env_nodes', '[a, b]',
                      'not a valid ROS name')
+
+    # --- renamed parameters: the old name is refused with the new one ---
+    def test_envs_renamed(self):
+        self.refuses('jetbot_ppo_trainer', {'envs': 'jetbot_env'},
+                     'invalid envs = (set): was renamed env_nodes')
+
+    def test_player_envs_renamed(self):
+        self.refuses('jetbot_policy_node', {'checkpoint': '/x.pt', 'envs': 'jetbot_env'},
+                     'invalid envs = (set): was renamed env_nodes')
+
+    def test_in_process_env_reward_renamed(self):
+        # ~env_config holds the env node's parameters: the same rename is refused there. With a
+        # robot loaded and a small run, only the parameter can stop the trainer, whatever it reads
+        # first (and were it not refused, the run would end quickly, in a scratch directory).
+        rospy.set_param('/robot_description', URDF)
+        self.addCleanup(rospy.delete_param, '/robot_description')
+        self.refuses('jetbot_ppo_trainer',
+                     {'env_in_process': 'true', 'iterations': 1,
+                      'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_'),
+                      'env_config/num_envs': 2, 'env_config/task': 'command',
+                      'env_config/reward': 'exp'},
+                     'invalid reward = (set): was renamed reward_variant')
 
     def test_iterations_zero(self):
         self.refuses('jetbot_ppo_trainer', {'iterations': 0}, 'iterations = 0')

@@ -11,7 +11,7 @@ import rostest
 from std_msgs.msg import Float32
 
 from jetbot_rl.msg import WheelTargets
-from ppo_test_util import REQUIRED_HEADER, TIMEOUT, StatsWatcher, read_csv, run_node
+from jetbot_rl_test.ppo_test_util import REQUIRED_HEADER, TIMEOUT, StatsWatcher, read_csv, run_node
 
 RANDOM_LEVEL = 0.25   # m/s: the first iteration (std 1 noise) is about 0.13
 MAX_REWARD = 0.6      # m/s: 20 rad/s x 0.03 m

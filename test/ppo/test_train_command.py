@@ -14,7 +14,7 @@ import rostest
 
 from jetbot_rl.msg import EnvStep
 from jetbot_rl.srv import SetCommand
-from ppo_test_util import REQUIRED_HEADER, TIMEOUT, StatsWatcher, read_csv, run_node
+from jetbot_rl_test.ppo_test_util import REQUIRED_HEADER, TIMEOUT, StatsWatcher, read_csv, run_node
 
 DOT = 'obs_mean_forward_dot_command'
 VX = 'obs_mean_lin_vel_b_x'

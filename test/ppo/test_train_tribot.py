@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The second robot learns the velocity task: through train.launch with test/urdf/tribot.urdf
-and test/urdf/tribot.yaml, the mean reward per step rises from the random-policy level to near
+"""The second robot learns the velocity task: through train.launch with urdf/examples/tribot.urdf
+and urdf/examples/tribot.yaml, the mean reward per step rises from the random-policy level to near
 its top speed, the wheel velocity limit x the wheel radius (8 rad/s x 0.033 m = 0.264 m/s, read
 from the env's ~spec)."""
 import os
@@ -10,7 +10,7 @@ import rospy
 import rostest
 
 from jetbot_rl.msg import EnvSpec
-from ppo_test_util import TIMEOUT, StatsWatcher, read_csv
+from jetbot_rl_test.ppo_test_util import TIMEOUT, StatsWatcher, read_csv
 
 
 class TestTrainTribot(unittest.TestCase):

@@ -14,7 +14,7 @@ from jetbot_rl import EnvRejectedError, JetbotVecEnv
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Step
 from jetbot_rl.process_info import node_pid
-from py_test_util import Diagnostics, EventList, interrupt_main_after, resume, stop
+from jetbot_rl_test.py_test_util import Diagnostics, EventList, interrupt_main_after, resume, stop
 
 NODE = '/jetbot_env'
 GOOD = np.full((2, 2), 5.0, dtype=np.float32)
@@ -88,9 +88,18 @@ class TestBadInput(unittest.TestCase):
             env.set_command(1, 1.0, 0.0)
 
     def test_bad_constructor_arguments(self):
-        for envs in ([], '', [NODE, 3]):
-            with self.assertRaisesRegex(ValueError, 'envs must be an env node name'):
-                JetbotVecEnv(envs)
+        for env_nodes in ([], '', [NODE, 3]):
+            with self.assertRaisesRegex(ValueError, 'env_nodes must be an env node name'):
+                JetbotVecEnv(env_nodes)
+            with self.assertRaisesRegex(ValueError, 'env_nodes must be an env node name'):
+                JetbotVecEnv(env_nodes=env_nodes)
+        # the keyword's old name is refused, naming the new one, before any node is looked up
+        with self.assertRaisesRegex(TypeError, '^JetbotVecEnv: envs was renamed env_nodes$'):
+            JetbotVecEnv(envs=NODE)
+        with self.assertRaisesRegex(TypeError, 'envs was renamed env_nodes'):
+            JetbotVecEnv(envs=[NODE], timeout=1.0)
+        with self.assertRaisesRegex(TypeError, "unexpected keyword argument 'node'"):
+            JetbotVecEnv(node=NODE)
         for timeout in (0, -1.0, float('inf'), 'x'):
             with self.assertRaisesRegex(ValueError, 'timeout'):
                 JetbotVecEnv(NODE, timeout=timeout)

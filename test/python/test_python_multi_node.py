@@ -31,7 +31,7 @@ def rollout(env, seed, actions):
 class TestMultiNode(unittest.TestCase):
     def test_batch_is_the_concatenation_of_the_nodes(self):
         actions = np.random.default_rng(3).uniform(-20, 20, size=(STEPS, NA + NB, 2))
-        with JetbotVecEnv([A, B], timeout=30.0) as env:
+        with JetbotVecEnv(env_nodes=[A, B], timeout=30.0) as env:
             self.assertEqual(env.num_envs, NA + NB)
             self.assertEqual(env.nodes, [A, B])
             self.assertEqual(env.node_num_envs, [NA, NB])

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """scripts/ppo_example.py trains briefly through JetbotVecEnv (100 envs, 20 iterations, seed 0),
 clearly beating the random policy of its first iteration, then plays the saved policy; Ctrl-C
-and SIGTERM mid-training save the policy and exit 0."""
+and SIGTERM mid-training save the policy and exit 0. Its renamed options (and those of
+bench/python_bench.py, the other program on JetbotVecEnv) are refused naming the new ones."""
 import os
 import re
 import signal
@@ -46,6 +47,37 @@ class TestPpoExample(unittest.TestCase):
             out = run('--play', policy, '--play-steps', '300')
             self.assertGreater(float(value(out, 'play_mean_reward_per_step')), 0.45)
             self.assertGreater(float(value(out, 'play_mean_episode_return')), 0.45 * 299)
+
+    def test_renamed_options_are_refused(self):
+        """An old option name ends the program with exit code 2 before it looks for a node, and
+        the error names the new option; the new names are accepted."""
+        cases = [('ppo_example.py', ['--node', '/jetbot_env'], '--node was renamed --env-nodes'),
+                 ('ppo_example.py', ['--env-nodes', '/jetbot_env', '--node', '/jetbot_env'],
+                  '--node was renamed --env-nodes'),
+                 ('python_bench.py', ['--envs', '100', '--steps', '10'],
+                  '--envs was renamed --num-envs'),
+                 ('python_bench.py',
+                  ['--num-envs', '100', '--steps', '10', '--node', '/jetbot_env'],
+                  '--node was renamed --env-nodes')]
+        for program, args, message in cases:
+            out = subprocess.run(['rosrun', 'jetbot_rl', program] + args, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True, timeout=60)
+            self.assertEqual(out.returncode, 2, '%s %s:\n%s' % (program, args, out.stdout))
+            self.assertIn('error: ' + message, out.stdout, program)
+        for program in ('ppo_example.py', 'python_bench.py'):
+            out = subprocess.run(['rosrun', 'jetbot_rl', program, '--help'],
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                 timeout=60)
+            self.assertEqual(out.returncode, 0, out.stdout)
+            self.assertIn('--env-nodes', out.stdout)
+            self.assertNotIn('--node ', out.stdout)
+        # the new names work: python_bench.py steps the node of this test (100 envs)
+        out = subprocess.run(['rosrun', 'jetbot_rl', 'python_bench.py', '--num-envs', '100',
+                              '--steps', '20', '--env-nodes', '/jetbot_env'],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                             timeout=120)
+        self.assertEqual(out.returncode, 0, out.stdout)
+        self.assertIn('env_steps_per_s=', out.stdout)
 
     def test_ctrl_c_saves_the_policy(self):
         """SIGINT (Ctrl-C) and SIGTERM mid-training: the current iteration's policy is saved,

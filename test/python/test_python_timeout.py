@@ -13,7 +13,7 @@ import rostest
 from jetbot_rl import EnvRejectedError, JetbotVecEnv
 from jetbot_rl.msg import EnvSpec
 from jetbot_rl.process_info import node_pid
-from py_test_util import EventList
+from jetbot_rl_test.py_test_util import EventList
 
 NODE = '/jetbot_env'
 STEP_TIMEOUT = 3.0  # s

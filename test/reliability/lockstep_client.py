@@ -1,14 +1,9 @@
 #!/usr/bin/python3
 """A lockstep learner for the fault suite: resets jetbot_env once, then steps it as fast as it
 can until it is killed, alternating ~wheel_targets (answered on ~env_step) and ~step calls."""
-import os
-import sys
+import rospy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', 'ros'))
-
-import rospy  # noqa: E402
-
-from env_client import EnvClient  # noqa: E402
+from jetbot_rl_test.env_client import EnvClient
 
 
 def main():

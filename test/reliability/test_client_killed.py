@@ -15,10 +15,11 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import PYTHON, DiagnosticsRecorder, figure, here, node_command, start
-from env_client import NODE, EnvClient, wait_for
-from ppo_test_util import StatsWatcher, read_csv, run_node
 from jetbot_rl.process_info import node_pid
+from jetbot_rl_test.env_client import NODE, EnvClient, wait_for
+from jetbot_rl_test.fault_util import (PYTHON, DiagnosticsRecorder, figure, node_command,
+                                       package_file, start)
+from jetbot_rl_test.ppo_test_util import StatsWatcher, read_csv, run_node
 
 KILLS = 6
 MAX_RESET_S = 0.5
@@ -74,7 +75,8 @@ class TestClientKilled(unittest.TestCase):
         rng = random.Random(0)
         for k in range(KILLS):
             count = len(self.env.received())
-            proc = start([PYTHON, here('lockstep_client.py'), '__name:=client_%d' % k])
+            proc = start([PYTHON, package_file('test', 'reliability', 'lockstep_client.py'),
+                          '__name:=client_%d' % k])
             steps = rng.randint(20, 200)
             try:
                 wait_for(lambda: len(self.env.received()) > count + steps,
@@ -92,7 +94,7 @@ class TestClientKilled(unittest.TestCase):
         run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_trainer_killed_')
         stats = StatsWatcher('/trainer_a/training_stats')
         proc = start(node_command('jetbot_ppo_trainer', 'trainer_a', {
-            'envs': NODE, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 2}))
+            'env_nodes': NODE, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 2}))
         try:
             stats.wait_iteration(5)
             time.sleep(random.Random(1).uniform(0.0, 0.05))  # anywhere in an iteration
@@ -105,7 +107,7 @@ class TestClientKilled(unittest.TestCase):
         done = len(rows)  # rows written before the kill: the checkpoint may be older
 
         code, output = run_node('jetbot_ppo_trainer', 'trainer_b', {
-            'envs': NODE, 'iterations': done + 2, 'resume': run_dir, 'save_interval': 2})
+            'env_nodes': NODE, 'iterations': done + 2, 'resume': run_dir, 'save_interval': 2})
         self.assertEqual(code, 0, output)
         line = next(l for l in output.splitlines() if 'resumed from' in l)
         resumed_at = int(line.split('at iteration ')[1].split(',')[0])

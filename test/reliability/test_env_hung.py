@@ -13,10 +13,10 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import figure, node_command, start, stop_all
-from ppo_test_util import TIMEOUT
 from jetbot_rl.msg import EnvSpec, WheelTargets
 from jetbot_rl.srv import Reset, ResetResponse
+from jetbot_rl_test.fault_util import figure, node_command, start, stop_all
+from jetbot_rl_test.ppo_test_util import TIMEOUT
 
 HUNG = '/hung_env'
 STEP_TIMEOUT = 2.0  # s
@@ -65,7 +65,7 @@ class TestEnvHung(unittest.TestCase):
         """Starts a trainer against /hung_env, waits for its ~reset call, then runs
         `after_call(trainer)`; returns (trainer, seconds from then to its exit, its output)."""
         trainer = start(node_command('jetbot_ppo_trainer', name, {
-            'envs': HUNG, 'iterations': 10, 'step_timeout': step_timeout,
+            'env_nodes': HUNG, 'iterations': 10, 'step_timeout': step_timeout,
             'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_env_hung_')}))
         try:
             self.env.wait_call()

@@ -13,9 +13,9 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import figure, node_command, start, stop_all
-from ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node
 from jetbot_rl.process_info import node_pid
+from jetbot_rl_test.fault_util import figure, node_command, start, stop_all
+from jetbot_rl_test.ppo_test_util import TIMEOUT, StatsWatcher, read_csv, run_node
 
 ENV = '/jetbot_env'
 STEP_TIMEOUT = 2.0  # s
@@ -32,7 +32,7 @@ class TestEnvKilled(unittest.TestCase):
         try:
             stats = StatsWatcher('/trainer_a/training_stats')
             trainer = start(node_command('jetbot_ppo_trainer', 'trainer_a', {
-                'envs': ENV, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 1000,
+                'env_nodes': ENV, 'iterations': 1000000, 'run_dir': run_dir, 'save_interval': 1000,
                 'step_timeout': STEP_TIMEOUT}))
             stats.wait_iteration(3)
             self.assertEqual(node_pid(ENV), env.pid)
@@ -64,7 +64,7 @@ class TestEnvKilled(unittest.TestCase):
         env = start(node_command('jetbot_env_node', ENV.lstrip('/'), ENV_PARAMS))
         try:
             code, output = run_node('jetbot_ppo_trainer', 'trainer_b', {
-                'envs': ENV, 'iterations': done + 2, 'resume': run_dir})
+                'env_nodes': ENV, 'iterations': done + 2, 'resume': run_dir})
         finally:
             env.send_signal(signal.SIGINT)
             env.communicate(timeout=TIMEOUT)

@@ -14,10 +14,10 @@ import rospy
 import rostest
 from visualization_msgs.msg import Marker, MarkerArray
 
-from fault_util import figure, node_command, signal_and_wait, start, stop_all
-from env_client import EventList, wait_for
 from jetbot_rl.msg import EnvStep
-from ppo_test_util import StatsWatcher, read_csv
+from jetbot_rl_test.env_client import EventList, wait_for
+from jetbot_rl_test.fault_util import figure, node_command, signal_and_wait, start, stop_all
+from jetbot_rl_test.ppo_test_util import StatsWatcher, read_csv
 
 MAX_EXIT_S = 2.0
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
@@ -75,7 +75,7 @@ class TestSignals(unittest.TestCase):
             run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_signals_')
             stats = StatsWatcher('/%s/training_stats' % name)
             proc = start(node_command('jetbot_ppo_trainer', name, {
-                'envs': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
+                'env_nodes': '/jetbot_env', 'iterations': 1000000, 'run_dir': run_dir,
                 'save_interval': 1000}))
             try:
                 stats.wait_iteration(2)
@@ -103,7 +103,7 @@ class TestSignals(unittest.TestCase):
             name = 'signal_policy_' + sig.name.lower()
             count = len(steps)
             proc = start(node_command('jetbot_policy_node', name, {
-                'envs': '/jetbot_env', 'checkpoint': checkpoint, 'mode': 'lockstep'}))
+                'env_nodes': '/jetbot_env', 'checkpoint': checkpoint, 'mode': 'lockstep'}))
             try:
                 wait_for(lambda: len(steps) > count + 50, what=name + ' to drive 50 steps')
             except BaseException:

@@ -10,11 +10,11 @@ import unittest
 import rospy
 import rostest
 
-from fault_util import DiagnosticsRecorder, figure, rate_between
-from env_client import NODE, UNREPORTED_RECHECK, wait_for
 from jetbot_rl.msg import EnvStep
 from jetbot_rl.process_info import node_pid, rss_kb
-from raw_tcpros import StalledSubscriber
+from jetbot_rl_test.env_client import NODE, UNREPORTED_RECHECK, wait_for
+from jetbot_rl_test.fault_util import DiagnosticsRecorder, figure, rate_between
+from jetbot_rl_test.raw_tcpros import StalledSubscriber
 
 STALLED = 4
 QUEUE = 16  # ~env_step's advertised queue

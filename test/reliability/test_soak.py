@@ -1,17 +1,16 @@
 #!/usr/bin/python3
-"""Soak: scripts/soak.py against the node of soak.test: lockstep steps of 100 envs with a ~reset
+"""Soak: bench/soak.py against the node of soak.test: lockstep steps of 100 envs with a ~reset
 of one env after every step; step ids consecutive throughout, the node's resident set flat within
 2 MB after the warm-up. Prints soak.py's figures."""
-import os
 import subprocess
 import unittest
 
 import rospy
 import rostest
 
-from fault_util import PYTHON, here
+from jetbot_rl_test.fault_util import PYTHON, package_file
 
-SOAK = os.path.join(here('..'), '..', 'scripts', 'soak.py')
+SOAK = package_file('bench', 'soak.py')
 
 
 class TestSoak(unittest.TestCase):

@@ -10,10 +10,10 @@ import rospy
 import rostest
 from std_msgs.msg import Bool
 
-from fault_util import DiagnosticsRecorder, figure
-from env_client import NODE, UNREPORTED_RECHECK, EventList, wait_for
 from jetbot_rl.msg import EnvStep
 from jetbot_rl.srv import Reset
+from jetbot_rl_test.env_client import NODE, UNREPORTED_RECHECK, EventList, wait_for
+from jetbot_rl_test.fault_util import DiagnosticsRecorder, figure
 
 LEARNERS = ('/learner_a', '/learner_b')  # two_learners.test
 

@@ -21,9 +21,9 @@
 #include "jetbot_rl/SetCommand.h"
 #include "jetbot_rl/Step.h"
 #include "jetbot_rl/WheelTargets.h"
-#include "jetbot_rl/ros/bounded_deserialization.h"
-#include "jetbot_rl/ros/bounded_service.h"
-#include "jetbot_rl/ros/bounded_subscription.h"
+#include "jetbot_rl/ros/common/bounded_deserialization.h"
+#include "jetbot_rl/ros/common/bounded_service.h"
+#include "jetbot_rl/ros/common/bounded_subscription.h"
 
 namespace jetbot_rl {
 namespace {

@@ -7,7 +7,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from env_client import UNREPORTED_RECHECK, EnvClient, EventList, wait_for
+from jetbot_rl_test.env_client import UNREPORTED_RECHECK, EnvClient, EventList, wait_for
 
 STEPS = 40
 

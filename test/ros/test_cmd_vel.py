@@ -16,9 +16,9 @@ import unittest
 import rospy
 import rostest
 
-from env_client import NODE, TIMEOUT, EnvClient, wait_for
 from jetbot_rl.msg import EnvSpec, WheelTargets
-from robot_view_client import DRIVE_CADENCE, Diagnostics, Motion, RobotView, twist
+from jetbot_rl_test.env_client import NODE, TIMEOUT, EnvClient, wait_for
+from jetbot_rl_test.robot_view_client import DRIVE_CADENCE, Diagnostics, Motion, RobotView, twist
 
 
 def spec():

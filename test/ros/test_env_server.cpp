@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "jetbot_rl/ros/env_server.h"
+#include "jetbot_rl/ros/env_node/env_server.h"
 
 namespace jetbot_rl {
 namespace {

@@ -17,16 +17,16 @@ import unittest
 
 import rospy
 import rostest
-from rospy.numpy_msg import numpy_msg
-
-from env_client import NODE, EventList, EnvClient, notify, wait_for
-from jetbot_rl.msg import EnvStep, WheelTargets
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Twist
+from rospy.numpy_msg import numpy_msg
+
+from jetbot_rl.msg import EnvStep, WheelTargets
+from jetbot_rl.process_info import node_pid, peak_rss_kb, start_peak_rss
 from jetbot_rl.srv import (GetRandomization, GetRandomizationRequest, Reset, ResetRequest,
                            SetCommand, SetCommandRequest, Step, StepRequest)
-from jetbot_rl.process_info import node_pid, peak_rss_kb, start_peak_rss
-from raw_tcpros import FakePublisher, RawServiceClient, lying_length, serialize
+from jetbot_rl_test.env_client import NODE, EventList, EnvClient, notify, wait_for
+from jetbot_rl_test.raw_tcpros import FakePublisher, RawServiceClient, lying_length, serialize
 
 GOOD = [5.0, 4.0, -3.0, 6.0]  # 2 envs x 2 wheels [rad/s]
 MAX_RSS_GROWTH_KB = 50 * 1024
@@ -37,7 +37,7 @@ CMD_VEL = 'env_0/cmd_vel'  # env 0's robot view (robot_envs 1), relative to the 
 
 
 def say(text):
-    """Figures for the test output (rostest keeps the test's stdout), as README "Reliability"
+    """Figures for the test output (rostest keeps the test's stdout), as docs/reliability.md
     quotes them."""
     sys.stdout.write('FIGURE: ' + text + '\n')
     sys.stdout.flush()
@@ -245,7 +245,7 @@ class TestHostileBytes(unittest.TestCase):
                     counts.append({kv.key: kv.value for kv in status.values})
         diag_sub = rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
         proc = subprocess.Popen(['rosrun', 'jetbot_rl', 'jetbot_ppo_trainer',
-                                 '__name:=' + name[1:], '_envs:=' + NODE,
+                                 '__name:=' + name[1:], '_env_nodes:=' + NODE,
                                  '_iterations:=1000000', '_run_dir:=' + run_dir],
                                 stdout=subprocess.DEVNULL)
         sent = 0

@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "jetbot_rl/ros/inline_callback_queue.h"
+#include "jetbot_rl/ros/common/inline_callback_queue.h"
 
 namespace jetbot_rl {
 namespace {

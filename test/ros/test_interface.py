@@ -6,9 +6,9 @@ import rosgraph
 import rospy
 import rostest
 
-from env_client import UNREPORTED_RECHECK, NODE, TIMEOUT, wait_for
 from jetbot_rl.msg import EnvSpec
 from jetbot_rl.srv import Reset, SetCommand
+from jetbot_rl_test.env_client import UNREPORTED_RECHECK, NODE, TIMEOUT, wait_for
 
 
 class TestInterface(unittest.TestCase):

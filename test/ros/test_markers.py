@@ -9,8 +9,8 @@ import rospy
 import rostest
 from visualization_msgs.msg import Marker, MarkerArray
 
-from env_client import NODE, TIMEOUT, EnvClient
 from jetbot_rl.srv import SetCommand
+from jetbot_rl_test.env_client import NODE, TIMEOUT, EnvClient
 
 VISUALISED = 3  # tf_envs in markers.test
 

@@ -7,8 +7,8 @@ import unittest
 import rospy
 import rostest
 
-from env_client import NODE, TIMEOUT, EnvClient
 from jetbot_rl.srv import GetRandomization
+from jetbot_rl_test.env_client import NODE, TIMEOUT, EnvClient
 
 NUM_ENVS = 8
 

@@ -1,8 +1,8 @@
 // ~get_randomization's answers on message types, without a master.
 #include <gtest/gtest.h>
 
-#include "jetbot_rl/ros/randomization_service.h"
-#include "jetbot_rl/ros/sim_clock.h"
+#include "jetbot_rl/ros/env_node/randomization_service.h"
+#include "jetbot_rl/ros/env_node/sim_clock.h"
 
 namespace jetbot_rl {
 namespace {

@@ -9,9 +9,9 @@ import rostest
 
 from diagnostic_msgs.msg import DiagnosticArray
 
-from env_client import NODE, TIMEOUT, ConnectionListener, EventList, wait_for
 from jetbot_rl.msg import EnvStep, WheelTargets
 from jetbot_rl.srv import Step
+from jetbot_rl_test.env_client import NODE, TIMEOUT, ConnectionListener, EventList, wait_for
 
 
 class TestRealtimeBrake(unittest.TestCase):

@@ -14,7 +14,7 @@ RUN_TIMEOUT = 60.0  # s, for one node start-up on a loaded machine
 
 PACKAGE = rospkg.RosPack().get_path('jetbot_rl')
 URDF = open(os.path.join(PACKAGE, 'urdf', 'jetbot.urdf')).read()
-TRIBOT = open(os.path.join(PACKAGE, 'test', 'urdf', 'tribot.urdf')).read()
+TRIBOT = open(os.path.join(PACKAGE, 'urdf', 'examples', 'tribot.urdf')).read()
 TRIBOT_DOFS = ['wheel_left_joint', 'wheel_right_joint']
 
 
@@ -57,8 +57,13 @@ class TestRefuseStart(unittest.TestCase):
     def test_task_unknown(self):
         self.refuses(['_task:=dance'], 'task', 'dance')
 
-    def test_reward_unknown(self):
-        self.refuses(['_task:=command', '_reward:=max'], 'reward', 'max')
+    def test_reward_variant_unknown(self):
+        self.refuses(['_task:=command', '_reward_variant:=max'], 'reward_variant', 'max')
+
+    # --- renamed parameters: the old name is refused with the new one ---
+    def test_reward_renamed(self):
+        self.refuses(['_task:=command', '_reward:=exp'],
+                     'invalid reward = (set): was renamed reward_variant')
 
     def test_physics_dt_too_large(self):
         self.refuses(['_physics_dt:=0.5'], 'physics_dt = 0.5')
@@ -116,10 +121,11 @@ class TestRefuseStart(unittest.TestCase):
 
     def test_unreadable_mesh_names_the_link_and_the_path(self):
         rospy.set_param('/robot_description', TRIBOT.replace(
-            'package://jetbot_rl/test/urdf/meshes/chassis.stl',
-            'package://jetbot_rl/test/urdf/meshes/missing.stl'))
+            'package://jetbot_rl/urdf/examples/meshes/chassis.stl',
+            'package://jetbot_rl/urdf/examples/meshes/missing.stl'))
         self.refuses(['_wheel_velocity_limit:=8.0', '_effort_limit:=0.3'], "link 'base_link'",
-                     os.path.join(PACKAGE, 'test/urdf/meshes/missing.stl'), dof_names=TRIBOT_DOFS)
+                     os.path.join(PACKAGE, 'urdf/examples/meshes/missing.stl'),
+                     dof_names=TRIBOT_DOFS)
 
     def test_unknown_package_names_the_package(self):
         rospy.set_param('/robot_description', TRIBOT.replace(

@@ -6,7 +6,7 @@ import unittest
 import rospy
 import rostest
 
-from env_client import EnvClient, wait_for
+from jetbot_rl_test.env_client import EnvClient, wait_for
 
 NUM_ENVS = 4
 

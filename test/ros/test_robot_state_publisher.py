@@ -12,8 +12,8 @@ import rospy
 import rostest
 from tf2_msgs.msg import TFMessage
 
-from env_client import EventList, wait_for
-from robot_view_client import RobotView, twist
+from jetbot_rl_test.env_client import EventList, wait_for
+from jetbot_rl_test.robot_view_client import RobotView, twist
 
 PREFIX = 'env_0/'
 

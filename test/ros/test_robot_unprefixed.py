@@ -12,9 +12,9 @@ import rostest
 import tf2_ros
 from tf2_msgs.msg import TFMessage
 
-from env_client import NODE, TIMEOUT, EventList, wait_for
 from jetbot_rl.msg import EnvSpec
-from robot_view_client import RobotView, twist
+from jetbot_rl_test.env_client import NODE, TIMEOUT, EventList, wait_for
+from jetbot_rl_test.robot_view_client import RobotView, twist
 
 
 class TestRobotUnprefixed(unittest.TestCase):

@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/ros/cmd_vel_mixer.h"
-#include "jetbot_rl/ros/env_server.h"
-#include "jetbot_rl/ros/node_params.h"
-#include "jetbot_rl/ros/package_resolver.h"
-#include "jetbot_rl/ros/robot_state_output.h"
-#include "jetbot_rl/ros/tf_tree.h"
+#include "jetbot_rl/ros/common/package_resolver.h"
+#include "jetbot_rl/ros/env_node/cmd_vel_mixer.h"
+#include "jetbot_rl/ros/env_node/env_server.h"
+#include "jetbot_rl/ros/env_node/node_params.h"
+#include "jetbot_rl/ros/env_node/robot_state_output.h"
+#include "jetbot_rl/ros/env_node/tf_tree.h"
 
 namespace jetbot_rl {
 namespace {
@@ -204,14 +204,14 @@ TEST(EnvServerCmdVel, WithoutRobotEnvsCmdVelIsRejected) {
 
 TEST(RobotViewParams, DroppingThePrefixNeedsExactlyOneRobotEnv) {
   NodeParams p;
-  p.env.num_envs = 4;
+  p.setup.env.num_envs = 4;
   p.robot_envs = 2;
-  validateNodeParams(p);
+  validateConfig(p);
   EXPECT_EQ(robotEnvs(p), 2);
   EXPECT_EQ(tfEnvs(p), 4);  // tf_envs 4
   p.env_prefix = false;
   try {
-    validateNodeParams(p);
+    validateConfig(p);
     FAIL() << "env_prefix false with 2 robot envs was accepted";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("invalid env_prefix = false"), std::string::npos)
@@ -219,18 +219,18 @@ TEST(RobotViewParams, DroppingThePrefixNeedsExactlyOneRobotEnv) {
     EXPECT_NE(std::string(e.what()).find("robot_envs 1, got 2"), std::string::npos) << e.what();
   }
   p.robot_envs = 0;
-  EXPECT_THROW(validateNodeParams(p), ConfigError);
+  EXPECT_THROW(validateConfig(p), ConfigError);
   p.robot_envs = 5;  // clamped to num_envs 1
-  p.env.num_envs = 1;
-  validateNodeParams(p);
+  p.setup.env.num_envs = 1;
+  validateConfig(p);
   EXPECT_EQ(robotEnvs(p), 1);
   p.tf_envs = 0;
   EXPECT_EQ(tfEnvs(p), 1);  // robot envs always get tf
   p.odom_rate = 0.0;
-  EXPECT_THROW(validateNodeParams(p), ConfigError);
+  EXPECT_THROW(validateConfig(p), ConfigError);
   p.odom_rate = 50.0;
   p.cmd_vel_timeout = -1.0;
-  EXPECT_THROW(validateNodeParams(p), ConfigError);
+  EXPECT_THROW(validateConfig(p), ConfigError);
 }
 
 // ---- the tf tree, odom and joint_states ----
@@ -343,7 +343,8 @@ TEST(RobotState, OdometryAndJointStatesOfTheSimulatedState) {
 // ---- package:// ----
 
 TEST(PackageResolver, ResolvesPackageUrisAndNamesWhatItCannot) {
-  const std::string path = resolvePackageUri("package://jetbot_rl/test/urdf/meshes/chassis.stl");
+  const std::string path =
+      resolvePackageUri("package://jetbot_rl/urdf/examples/meshes/chassis.stl");
   EXPECT_TRUE(std::ifstream(path).good()) << path;
   try {
     resolvePackageUri("package://no_such_package_here/mesh.stl");
@@ -358,7 +359,7 @@ TEST(PackageResolver, ResolvesPackageUrisAndNamesWhatItCannot) {
   std::stringstream text;
   text << file.rdbuf();
   std::string urdf = text.str();
-  const std::string from = "package://jetbot_rl/test/urdf/meshes/chassis.stl";
+  const std::string from = "package://jetbot_rl/urdf/examples/meshes/chassis.stl";
   urdf.replace(urdf.find(from, urdf.find("<collision>")), from.size(),
                "package://no_such_package_here/chassis.stl");
   try {

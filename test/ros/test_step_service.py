@@ -9,7 +9,7 @@ import unittest
 import rospy
 import rostest
 
-from env_client import EnvClient, wait_for
+from jetbot_rl_test.env_client import EnvClient, wait_for
 
 STEPS = 320  # past one time-out (episode step 299), so auto-resets are compared too
 SEED = 7

@@ -11,17 +11,14 @@ import subprocess
 import tempfile
 import unittest
 
-import sys
-
 import rospkg
 import rospy
 import rostest
 from geometry_msgs.msg import Vector3
 from nav_msgs.msg import Odometry
 
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ros'))
-from env_client import TIMEOUT, EventList, wait_for  # noqa: E402
-from robot_view_client import Motion, stamp, yaw  # noqa: E402
+from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
+from jetbot_rl_test.robot_view_client import Motion, stamp, yaw
 
 TOP_SPEED = 20.0 * 0.03  # m/s: wheel velocity limit x wheel radius
 
@@ -93,7 +90,7 @@ class TestClosedLoop(unittest.TestCase):
             heavy = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
                                  'perturbed_heavy.yaml')
             code, out, err = self.evaluate('--checkpoint', run_dir, '--task', task,
-                                           '--config', heavy, '--envs', '16', '--steps', '300')
+                                           '--config', heavy, '--num-envs', '16', '--steps', '300')
             self.assertEqual(code, 0, err)
             reward = float(out.split('mean_reward_per_step=')[1].split()[0])
             print('FIGURE: jetbot_rl_evaluate, perturbed_heavy.yaml: %.4f m/s' % reward)
@@ -133,13 +130,14 @@ class TestClosedLoop(unittest.TestCase):
     def test_evaluator_refuses_bad_options(self):
         """Every bad command line ends with exit code 2 and names the option and value; a
         checkpoint that cannot be read ends with 1, naming it."""
-        cases = [(['--checkpoint', '/x', '--envs', '0'], 'invalid --envs = 0'),
-                 (['--checkpoint', '/x', '--envs', '4x'], 'invalid --envs = 4x'),
+        cases = [(['--checkpoint', '/x', '--num-envs', '0'], 'invalid --num-envs = 0'),
+                 (['--checkpoint', '/x', '--num-envs', '4x'], 'invalid --num-envs = 4x'),
+                 (['--checkpoint', '/x', '--envs', '4'], '--envs was renamed --num-envs'),
                  (['--checkpoint', '/x', '--steps', '-1'], 'invalid --steps = -1'),
                  (['--checkpoint', '/x', '--seed', '99999999999999999999'], 'invalid --seed'),
                  (['--checkpoint', '/x', '--steps'], '--steps needs a value'),
                  (['--checkpoint', '/x', '--speed', '1'], 'unknown option --speed'),
-                 (['--envs', '4'], '--checkpoint is required')]
+                 (['--num-envs', '4'], '--checkpoint is required')]
         for args, message in cases:
             code, _, err = self.evaluate(*args)
             self.assertEqual(code, 2, args)

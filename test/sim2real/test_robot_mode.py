@@ -4,24 +4,20 @@ while odometry is fresh; zero Twists once it stops coming (odom_timeout); non-fi
 dropped, counted on /diagnostics, the robot kept stopped; moving again on fresh odometry; after
 SIGINT a zero Twist last and exit status 0 within 2 s."""
 import math
-import os
 import signal
 import subprocess
-import sys
 import tempfile
 import threading
 import time
 import unittest
 
-import rospkg
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test', 'ros'))
-from env_client import TIMEOUT, EventList, wait_for  # noqa: E402
+from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
 
 NODE = '/robot_policy'
 ODOM_TIMEOUT = 0.3  # [s]

@@ -57,30 +57,47 @@ struct PpoConfig {
 /// (config.yaml, checkpoints) and the ROS parameter loader share.
 template <typename C, typename V>
 IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
-  v("seed", c.seed, atLeast(0));
-  v("num_steps_per_env", c.num_steps_per_env, inRange(1, 100000));
-  v("stagger_episodes", c.stagger_episodes, AnyValue{});
-  v("actor_hidden_dims", c.actor_hidden_dims, IntList{1, 4096});
-  v("critic_hidden_dims", c.critic_hidden_dims, IntList{1, 4096});
-  v("activation", c.activation, AnyValue{});
-  v("init_noise_std", c.init_noise_std, positive());
-  v("action_squash", c.action_squash, AnyValue{});
-  v("normalize_observations", c.normalize_observations, AnyValue{});
-  v("num_learning_epochs", c.num_learning_epochs, inRange(1, 1000));
-  v("num_mini_batches", c.num_mini_batches, atLeast(1));
-  v("learning_rate", c.learning_rate, positive());
-  v("schedule", c.schedule, AnyValue{});
-  v("desired_kl", c.desired_kl, positive());
-  v("min_learning_rate", c.min_learning_rate, positive());
-  v("max_learning_rate", c.max_learning_rate, positive());
-  v("gamma", c.gamma, inRange(0.0, 1.0));
-  v("lam", c.lam, inRange(0.0, 1.0));
-  v("clip_param", c.clip_param, positive());
-  v("use_clipped_value_loss", c.use_clipped_value_loss, AnyValue{});
-  v("value_loss_coef", c.value_loss_coef, atLeast(0.0));
-  v("entropy_coef", c.entropy_coef, atLeast(0.0));
-  v("max_grad_norm", c.max_grad_norm, positive());
+  v("seed", c.seed, atLeast(0),
+    "Seeds torch (weights, sampling, minibatches) and the env's reset.");
+  v("num_steps_per_env", c.num_steps_per_env, inRange(1, 100000),
+    "Control steps per env per iteration (rollout length).");
+  v("stagger_episodes", c.stagger_episodes, AnyValue{},
+    "The first reset starts env i at episode step i x (max_episode_length - 1) / num_envs, so "
+    "that episodes end at staggered steps (rsl_rl's random initial episode lengths).");
+  v("actor_hidden_dims", c.actor_hidden_dims, IntList{1, 4096}, "Policy MLP hidden widths.");
+  v("critic_hidden_dims", c.critic_hidden_dims, IntList{1, 4096}, "Value MLP hidden widths.");
+  v("activation", c.activation, AnyValue{}, "Hidden activation of both MLPs.");
+  v("init_noise_std", c.init_noise_std, positive(),
+    "Initial policy std in normalised action units (1 = the limit).");
+  v("action_squash", c.action_squash, AnyValue{},
+    "Gaussian sample -> [-1, 1] (clip or tanh), then scaled to the env's action bounds.");
+  v("normalize_observations", c.normalize_observations, AnyValue{},
+    "Running mean/std observation normaliser (saved in checkpoints).");
+  v("num_learning_epochs", c.num_learning_epochs, inRange(1, 1000), "Passes over each rollout.");
+  v("num_mini_batches", c.num_mini_batches, atLeast(1),
+    "Minibatches per epoch (<= num_steps_per_env x num_envs).");
+  v("learning_rate", c.learning_rate, positive(),
+    "Adam learning rate (the start value when schedule is adaptive).");
+  v("schedule", c.schedule, AnyValue{},
+    "adaptive: learning rate / 1.5 when KL > 2 desired_kl, x 1.5 when KL < desired_kl / 2 "
+    "(rsl_rl); fixed: constant.");
+  v("desired_kl", c.desired_kl, positive(), "Adaptive schedule's target KL per minibatch.");
+  v("min_learning_rate", c.min_learning_rate, positive(),
+    "Adaptive schedule's lower bound (<= max_learning_rate).");
+  v("max_learning_rate", c.max_learning_rate, positive(), "Adaptive schedule's upper bound.");
+  v("gamma", c.gamma, inRange(0.0, 1.0), "Discount per control step.");
+  v("lam", c.lam, inRange(0.0, 1.0), "GAE lambda.");
+  v("clip_param", c.clip_param, positive(),
+    "PPO clip of the probability ratio (and of the value change).");
+  v("use_clipped_value_loss", c.use_clipped_value_loss, AnyValue{},
+    "Clip the value change like the ratio.");
+  v("value_loss_coef", c.value_loss_coef, atLeast(0.0), "Weight of the value loss.");
+  v("entropy_coef", c.entropy_coef, atLeast(0.0), "Weight of the entropy bonus.");
+  v("max_grad_norm", c.max_grad_norm, positive(), "Global gradient-norm clip.");
 }
+
+/// The rules between PpoConfig's fields: min_learning_rate <= max_learning_rate.
+void checkFieldRules(const PpoConfig& config);
 
 /// Throws ConfigError naming the first invalid field and its value.
 void validate(const PpoConfig& config);

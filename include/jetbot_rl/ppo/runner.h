@@ -31,14 +31,21 @@ struct RunnerOptions {
 /// The parameters among RunnerOptions (extra_config is not one), with their rules.
 template <typename C, typename V>
 IfConfig<C, RunnerOptions> visitFields(C& c, V&& v) {
-  v("iterations", c.iterations, atLeast<std::int64_t>(1));
-  v("run_dir", c.run_dir, AnyValue{});
-  v("resume", c.resume, AnyValue{});
-  v("save_interval", c.save_interval, atLeast(1));
+  v("iterations", c.iterations, atLeast<std::int64_t>(1),
+    "The run ends after this many iterations (a resumed run's included).");
+  v("run_dir", c.run_dir, AnyValue{"", "empty: ~/.ros/jetbot_rl/TIME_seedSEED"},
+    "Run directory (created): progress.csv, config.yaml, checkpoints, exported policy.");
+  v("resume", c.resume, AnyValue{"", "empty: a new run"},
+    "Checkpoint file or run directory (its checkpoints/latest.pt) to continue from.");
+  v("save_interval", c.save_interval, atLeast(1),
+    "Write checkpoints/latest.pt every this many iterations (and at the end).");
   v("target_reward", c.target_reward,
-    Range<double>{-1e300, 1e300, false, false, "m/s", "reported only"});
+    Range<double>{-1e300, 1e300, false, false, "m/s", "reported only"},
+    "Reported: the first iteration whose mean reward per step reaches this.");
   v("obs_stats_from_step", c.obs_stats_from_step,
-    atLeast(-1, "control steps", "-1: max_episode_length / 2"));
+    atLeast(-1, "control steps", "-1: max_episode_length / 2"),
+    "progress.csv's obs_mean_<name> columns: mean of each observation over the rollout's "
+    "samples at this step of their episode or later.");
 }
 
 /// Episode steps that stagger num_envs starts evenly over an episode (rsl_rl randomises them):

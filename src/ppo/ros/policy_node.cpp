@@ -15,58 +15,16 @@
 #include "jetbot_rl/multi_vec_env.h"
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ros/policy_params.h"
 #include "jetbot_rl/ppo/ros/robot_mode.h"
-#include "jetbot_rl/ppo/ros/stop_signal.h"
-#include "jetbot_rl/ros/connect_envs.h"
-#include "jetbot_rl/ros/node_params.h"
-#include "jetbot_rl/ros/param_reader.h"
-#include "jetbot_rl/ros/ros_vec_env.h"
+#include "jetbot_rl/ros/client/connect_envs.h"
+#include "jetbot_rl/ros/client/ros_vec_env.h"
+#include "jetbot_rl/ros/common/param_reader.h"
+#include "jetbot_rl/ros/common/stop_signal.h"
+#include "jetbot_rl/ros/env_node/node_params.h"
 
 namespace jetbot_rl {
 namespace ppo {
-namespace {
-
-/// Private parameters of jetbot_policy_node.
-struct PolicyParams {
-  std::string checkpoint;    ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
-  EnvNodesParams env_nodes;  ///< The env nodes to drive as one batch, step_timeout.
-  EnvMode mode = EnvMode::kRealtime;  ///< The env's mode.
-  int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
-  int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
-  bool robot = false;  ///< Robot mode: odometry in, cmd_vel out (RobotModeParams), no env node.
-};
-
-}  // namespace
-}  // namespace ppo
-
-template <typename C, typename V>
-IfConfig<C, ppo::PolicyParams> visitFields(C& c, V&& v) {
-  v("checkpoint", c.checkpoint, AnyValue{});
-  visitFields(c.env_nodes, v);
-  v("mode", c.mode, AnyValue{});
-  v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"));
-  v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"));
-  v("robot", c.robot, AnyValue{});
-}
-
-namespace ppo {
-namespace {
-
-PolicyParams loadParams(const ros::NodeHandle& pnh) {
-  refuseRenamedEnvParams(pnh);
-  PolicyParams p;
-  readFields(pnh, p);
-  validateFields(p);
-  if (p.checkpoint.empty()) {
-    throwInvalid("checkpoint", "''", "name a checkpoint file or a run directory");
-  }
-  if (std::filesystem::is_directory(p.checkpoint)) {
-    p.checkpoint = (std::filesystem::path(p.checkpoint) / "checkpoints/best.pt").string();
-  }
-  return p;
-}
-
-}  // namespace
 
 int runPolicyNode() {
   const std::atomic<bool>& stop = installStopSignalHandlers();
@@ -77,16 +35,16 @@ int runPolicyNode() {
 
 int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop) {
   torch::set_num_threads(1);
-  PolicyParams params;
+  const std::optional<PolicyParams> loaded = loadPolicyParams(pnh);
+  if (!loaded) return 1;
+  const PolicyParams& params = *loaded;
   std::unique_ptr<Policy> policy;
   try {
-    params = loadParams(pnh);
     policy = std::make_unique<Policy>(params.checkpoint);
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
   }
-  ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n" << describeFields(params));
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
@@ -101,7 +59,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     std::vector<float> actions;  // the targets last published
     std::vector<std::unique_ptr<VecEnv>> parts;
     std::vector<std::unique_ptr<EpisodeTracker>> trackers;
-    for (const std::string& name : params.env_nodes.envs) {
+    for (const std::string& name : params.env_nodes.env_nodes) {
       auto part = std::make_unique<RosVecEnv>(name, params.mode == EnvMode::kLockstep,
                                               params.env_nodes.step_timeout, &stop, nh);
       trackers.push_back(std::make_unique<EpisodeTracker>(part->spec().num_envs));
@@ -128,8 +86,9 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
       parts.push_back(std::move(part));
     }
     std::unique_ptr<VecEnv> env =
-        parts.size() == 1 ? std::move(parts[0])
-                          : std::make_unique<MultiVecEnv>(std::move(parts), params.env_nodes.envs);
+        parts.size() == 1
+            ? std::move(parts[0])
+            : std::make_unique<MultiVecEnv>(std::move(parts), params.env_nodes.env_nodes);
     const BatchSpec& info = env->spec();
     if (info.obs_dim != policy->obsDim()) {
       throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +

@@ -10,10 +10,10 @@
 #include <memory>
 
 #include "jetbot_rl/diff_drive.h"
-#include "jetbot_rl/ros/drop_counter.h"
-#include "jetbot_rl/ros/param_reader.h"
-#include "jetbot_rl/ros/publication_flush.h"
-#include "jetbot_rl/ros/robot_description.h"
+#include "jetbot_rl/ros/common/drop_counter.h"
+#include "jetbot_rl/ros/common/param_reader.h"
+#include "jetbot_rl/ros/common/publication_flush.h"
+#include "jetbot_rl/ros/common/robot_description.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -150,23 +150,18 @@ class RobotDriver {
 
 }  // namespace
 
+void checkFieldRules(const RobotModeParams& p) {
+  if (p.dof_names.size() != 2) {
+    throwInvalid("dof_names", listText(p.dof_names), "must name the two wheel joints");
+  }
+}
+
 int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
                  const std::atomic<bool>& stop) {
-  RobotModeParams params;
+  const std::optional<RobotModeParams> params = loadParams<RobotModeParams>(pnh);
+  if (!params) return 1;
   try {
-    readFields(pnh, params);
-    validateFields(params);
-    if (params.dof_names.size() != 2) {
-      throwInvalid("dof_names", params.dof_names.size(), "must name the two wheel joints");
-    }
-  } catch (const Error& e) {
-    ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
-    return 1;
-  }
-  ROS_INFO_STREAM("robot mode parameters of " << pnh.getNamespace() << ":\n"
-                                              << describeFields(params));
-  try {
-    RobotDriver driver(nh, pnh, policy, params);
+    RobotDriver driver(nh, pnh, policy, *params);
     ros::AsyncSpinner spinner(1);
     spinner.start();
     // The signal handler only sets `stop`, which nothing can wait on: checked every 50 ms.

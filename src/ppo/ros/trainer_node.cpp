@@ -8,15 +8,15 @@
 #include <memory>
 #include <sstream>
 
+#include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/local_vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
-#include "jetbot_rl/ppo/ros/stop_signal.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ppo/runner.h"
-#include "jetbot_rl/ros/connect_envs.h"
-#include "jetbot_rl/ros/node_params.h"
-#include "jetbot_rl/ros/publication_flush.h"
-#include "jetbot_rl/ros/robot_description.h"
+#include "jetbot_rl/ros/client/connect_envs.h"
+#include "jetbot_rl/ros/common/publication_flush.h"
+#include "jetbot_rl/ros/common/robot_description.h"
+#include "jetbot_rl/ros/common/stop_signal.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -49,17 +49,15 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
 }
 
 /// The env the trainer trains on: env nodes, or one built in this process from ~env_config.
-std::unique_ptr<VecEnv> makeEnv(const TrainerParams& params, const ros::NodeHandle& nh,
-                                const ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
+std::unique_ptr<VecEnv> makeTrainingEnv(const TrainerParams& params, const ros::NodeHandle& nh,
+                                        const ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
   if (!params.env_in_process) {
-    return connectEnvs(params.env_nodes.envs, true, params.env_nodes.step_timeout, &stop, nh);
+    return connectEnvs(params.env_nodes.env_nodes, true, params.env_nodes.step_timeout, &stop, nh);
   }
   const ros::NodeHandle env_pnh(pnh, "env_config");
-  const NodeParams env_params = loadNodeParams(env_pnh);
-  ROS_INFO_STREAM("in-process env, parameters of " << env_pnh.getNamespace() << ":\n"
-                                                   << describeFields(env_params));
-  return std::make_unique<LocalVecEnv>(std::make_unique<BatchedEnv>(
-      loadRobotDescription(nh), env_params.env, makeTask(env_params.task)));
+  const EnvSetup setup = readParams<EnvSetup>(env_pnh);
+  echoParams(env_pnh, describeFields(setup));
+  return std::make_unique<LocalVecEnv>(makeEnv(loadRobotDescription(nh), setup));
 }
 
 }  // namespace
@@ -72,16 +70,10 @@ int runTrainerNode() {
 }
 
 int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop) {
-  PpoConfig ppo;
-  TrainerParams params;
-  try {
-    params = loadTrainerParams(pnh, ppo);
-  } catch (const Error& e) {
-    ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
-    return 1;
-  }
-  ROS_INFO_STREAM("parameters of " << pnh.getNamespace() << ":\n"
-                                   << describeFields(params) << describeFields(ppo));
+  const std::optional<TrainerConfig> config = loadTrainerConfig(pnh);
+  if (!config) return 1;
+  const TrainerParams& params = config->trainer;
+  const PpoConfig& ppo = config->ppo;
   torch::set_num_threads(params.torch_threads);
 
   // Latched: a late subscriber (a test, rqt_plot started later) still gets the newest row.
@@ -89,13 +81,13 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
       pnh.advertise<std_msgs::Float32MultiArray>("training_stats", 10, /*latch=*/true);
   int code = 0;
   try {
-    const std::unique_ptr<VecEnv> env = makeEnv(params, nh, pnh, stop);
+    const std::unique_ptr<VecEnv> env = makeTrainingEnv(params, nh, pnh, stop);
     const BatchSpec& spec = env->spec();
     std::ostringstream where;
     if (params.env_in_process) {
       where << "in this process";
     } else {
-      writeValue(where, params.env_nodes.envs);
+      writeValue(where, params.env_nodes.env_nodes);
     }
     ROS_INFO("environment %s: %d envs, task %s, obs_dim %d, action_dim %d, control step %.4f s",
              where.str().c_str(), spec.num_envs, spec.task.c_str(), spec.obs_dim, spec.action_dim,
@@ -127,7 +119,7 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
   } catch (const Interrupted& e) {
     ROS_WARN("stopped before training started: %s", e.what());
   } catch (const ConfigError& e) {
-    ROS_FATAL("%s: parameter error: %s", pnh.getNamespace().c_str(), e.what());
+    logParamError(pnh, e);
     code = 1;
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());

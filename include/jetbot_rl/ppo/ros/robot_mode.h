@@ -36,16 +36,25 @@ struct RobotModeParams {
 template <typename C, typename V>
 IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
   visitFields(c.task, v);
-  v("odom_topic", c.odom_topic, AnyValue{});
-  v("cmd_vel_topic", c.cmd_vel_topic, AnyValue{});
-  v("command_topic", c.command_topic, AnyValue{});
-  v("control_rate", c.control_rate, positiveUpTo(10000.0, "Hz"));
-  v("odom_timeout", c.odom_timeout, positive("s, wall"));
-  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"));
-  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: from robot_description"));
-  v("dof_names", c.dof_names, NameList{});
-  v("wheel_velocity_limit", c.wheel_velocity_limit, positive("rad/s"));
+  v("odom_topic", c.odom_topic, AnyValue{}, "nav_msgs/Odometry of the robot.");
+  v("cmd_vel_topic", c.cmd_vel_topic, AnyValue{}, "geometry_msgs/Twist the robot's driver takes.");
+  v("command_topic", c.command_topic, AnyValue{},
+    "geometry_msgs/Vector3: the command task's command (x, y).");
+  v("control_rate", c.control_rate, positiveUpTo(10000.0, "Hz"),
+    "Policy steps per second (1 / the control step the policy was trained with).");
+  v("odom_timeout", c.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
+  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
+    "Wheel radius for wheel targets -> Twist: the driver's (stock Jetbot: 0.0603 m wheels).");
+  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: from robot_description"),
+    "Wheel separation for wheel targets -> Twist: the driver's (stock Jetbot: 0.1016 m).");
+  v("dof_names", c.dof_names, NameList{},
+    "The two wheel joints in the policy's action order (used with robot_description).");
+  v("wheel_velocity_limit", c.wheel_velocity_limit, positive("rad/s"),
+    "The wheel velocity limit the policy was trained with: its actions span +-this.");
 }
+
+/// dof_names must name two wheel joints.
+void checkFieldRules(const RobotModeParams& params);
 
 /// Runs the robot mode until `stop` or ROS shutdown: reads the parameters above under `pnh`,
 /// then at control_rate turns the newest odometry into the task's observation, acts with the

@@ -2,13 +2,14 @@
 
 #include <ros/node_handle.h>
 
+#include <optional>
 #include <string>
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner.h"
-#include "jetbot_rl/ros/connect_envs.h"
-#include "jetbot_rl/ros/param_reader.h"
+#include "jetbot_rl/ros/client/connect_envs.h"
+#include "jetbot_rl/ros/common/param_reader.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -16,7 +17,7 @@ namespace ppo {
 /// Private parameters of jetbot_ppo_trainer besides the PPO hyper-parameters.
 struct TrainerParams {
   RunnerOptions run;         ///< iterations, run_dir, resume, save_interval, ...
-  EnvNodesParams env_nodes;  ///< envs, step_timeout
+  EnvNodesParams env_nodes;  ///< env_nodes, step_timeout
   /// Build the env in this process (LocalVecEnv) from the parameters under ~env_config (those of
   /// jetbot_env_node) and robot_description, instead of talking to env nodes.
   bool env_in_process = false;
@@ -30,15 +31,34 @@ template <typename C, typename V>
 IfConfig<C, TrainerParams> visitFields(C& c, V&& v) {
   visitFields(c.run, v);
   visitFields(c.env_nodes, v);
-  v("env_in_process", c.env_in_process, AnyValue{});
-  v("torch_threads", c.torch_threads, inRange(1, 256));
-  v("end_launch", c.end_launch, AnyValue{});
+  v("env_in_process", c.env_in_process, AnyValue{},
+    "Build the env in this process from the parameters under ~env_config (those of "
+    "jetbot_env_node's EnvSetup) and robot_description, instead of stepping env nodes.");
+  v("torch_threads", c.torch_threads, inRange(1, 256),
+    "libtorch intra-op threads; 1 is deterministic and leaves a core to the env.");
+  v("end_launch", c.end_launch, AnyValue{},
+    "When the run has ended well, end the roslaunch that started this node cleanly (SIGINT).");
 }
 
-/// Reads the private parameters from `pnh` (defaults for absent ones) into `ppo` and the
-/// returned TrainerParams, resolves run_dir and resume, and validates everything. Throws
-/// ConfigError naming the parameter and its value.
-TrainerParams loadTrainerParams(const ros::NodeHandle& pnh, PpoConfig& ppo);
+/// Every private parameter of jetbot_ppo_trainer: its own, then the PPO hyper-parameters.
+struct TrainerConfig {
+  TrainerParams trainer;
+  PpoConfig ppo;
+};
+
+template <typename C, typename V>
+IfConfig<C, TrainerConfig> visitFields(C& c, V&& v) {
+  visitFields(c.trainer, v);
+  visitFields(c.ppo, v);
+}
+
+/// PpoConfig's rules between fields.
+inline void checkFieldRules(const TrainerConfig& c) { checkFieldRules(c.ppo); }
+
+/// Reads, validates and echoes the trainer's private parameters under `pnh` (loadParams), with
+/// resume resolved to a checkpoint file and run_dir to a created directory (resume's run, or
+/// ~/.ros/jetbot_rl/TIME_seedSEED when empty). std::nullopt after ROS_FATAL naming a bad one.
+std::optional<TrainerConfig> loadTrainerConfig(const ros::NodeHandle& pnh);
 
 /// `~/.ros/jetbot_rl` ($ROS_HOME/jetbot_rl when ROS_HOME is set).
 std::string defaultRunRoot();

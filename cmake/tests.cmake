@@ -1,0 +1,104 @@
+# Every test of the package, registered from here (docs/testing.md): gtests of the ROS-free
+# libraries (no master), gtests of the ROS adapter, and one rostest per scenario (.test files
+# sharing launch/jetbot_env.launch).
+if(NOT CATKIN_ENABLE_TESTING)
+  return()
+endif()
+find_package(rostest REQUIRED)
+set(_robots JETBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot.urdf"
+  TRIBOT_URDF="${PROJECT_SOURCE_DIR}/urdf/examples/tribot.urdf")
+
+# ---- core (ROS-free) ----
+catkin_add_gtest(test_core
+  test/core/test_main.cpp
+  test/core/test_robot_model.cpp
+  test/core/test_env_config.cpp
+  test/core/test_env_setup.cpp
+  test/core/test_kinematics.cpp
+  test/core/test_step_semantics.cpp
+  test/core/test_bad_input.cpp
+  test/core/test_command_task.cpp
+  test/core/test_determinism.cpp
+  test/core/test_thread_pool.cpp
+  test/core/test_diff_drive.cpp
+  test/core/test_urdf_cases.cpp
+  test/core/test_tribot.cpp
+  test/core/test_multi_vec_env.cpp
+  test/core/test_randomization_off.cpp
+  test/core/test_randomization.cpp
+  test/core/test_randomization_config.cpp
+  test/core/test_motor_model.cpp
+)
+target_link_libraries(test_core jetbot_rl_core)
+target_include_directories(test_core PRIVATE src/core)
+target_compile_definitions(test_core PRIVATE ${_robots} JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+# ---- PPO (ROS-free) ----
+catkin_add_gtest(test_ppo
+  test/ppo/test_main.cpp
+  test/ppo/test_gae.cpp
+  test/ppo/test_checkpoint.cpp
+  test/ppo/test_config.cpp
+  test/ppo/test_runner.cpp
+  test/ppo/test_update.cpp
+  test/ppo/test_in_process.cpp
+)
+target_link_libraries(test_ppo jetbot_rl_ppo)
+target_compile_definitions(test_ppo PRIVATE ${_robots})
+
+# ---- ROS adapter without a master ----
+catkin_add_gtest(test_ros_adapter
+  test/ros/test_main.cpp
+  test/ros/test_inline_callback_queue.cpp
+  test/ros/test_env_server.cpp
+  test/ros/test_bounded_deserialization.cpp
+  test/ros/test_robot_view.cpp
+  test/ros/test_randomization_service.cpp
+)
+target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
+target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
+
+# ---- the env node (rostest) ----
+foreach(_scenario interface lockstep step_service reset rejection realtime_hz realtime_brake clock
+    markers refuse_start hostile_bytes cmd_vel_drive cmd_vel_tribot cmd_vel_lockstep cmd_vel_brake
+    cmd_vel_nan robot_state_publisher robot_unprefixed randomization)
+  add_rostest(test/ros/${_scenario}.test)
+endforeach()
+add_rostest_gtest(test_tf test/ros/tf.test test/ros/test_tf.cpp)
+target_link_libraries(test_tf ${catkin_LIBRARIES})
+target_include_directories(test_tf PRIVATE ${catkin_INCLUDE_DIRS})
+add_dependencies(test_tf ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# ---- the programs the rostests below start ----
+set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_rl_manager
+  jetbot_rl_env_nodelet jetbot_rl_learner_nodelets)
+
+# ---- several env nodes as one batch ----
+add_rostest_gtest(test_concatenation test/multi/concatenation.test test/multi/test_concatenation.cpp)
+target_link_libraries(test_concatenation jetbot_rl_client)
+add_rostest(test/multi/two_nodes.test DEPENDENCIES ${_nodes})
+add_rostest(test/multi/multi_host.test DEPENDENCIES ${_nodes})
+
+# ---- the Python client ----
+foreach(_scenario vec_env determinism bad_input timeout multi_node ppo_example)
+  add_rostest(test/python/python_${_scenario}.test)
+endforeach()
+
+# ---- training, determinism, Ctrl-C and resume, start-up refusals ----
+foreach(_scenario train train_command train_tribot determinism interrupt_resume refuse_start_ppo
+    clean_end)
+  add_rostest(test/ppo/${_scenario}.test DEPENDENCIES ${_nodes})
+endforeach()
+
+# ---- sim-to-real: a policy trained with randomisation drives the env's robot view ----
+foreach(_scenario closed_loop_velocity closed_loop_command robot_mode)
+  add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
+endforeach()
+
+# ---- the fault suite (docs/reliability.md): peers that die or misbehave, signals, a soak ----
+foreach(_scenario signals client_killed env_killed env_hung two_learners slow_subscriber soak)
+  add_rostest(test/reliability/${_scenario}.test DEPENDENCIES ${_nodes})
+endforeach()
+
+# ---- the docs: parameter tables, config files and launch defaults against the C++ defaults ----
+add_rostest(test/docs/param_docs.test DEPENDENCIES jetbot_rl_param_docs)

@@ -1,0 +1,100 @@
+#include "jetbot_rl/ros/common/msg_conversion.h"
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace {
+
+void checkSize(const char* field, std::size_t size, std::size_t expected, std::uint64_t step) {
+  if (size != expected) {
+    throw Error("EnvStep " + std::to_string(step) + ": " + field + " has " + std::to_string(size) +
+                " values, expected " + std::to_string(expected));
+  }
+}
+
+}  // namespace
+
+void toMsg(const StepResult& r, int num_envs, int obs_dim, const ros::Time& stamp, EnvStep& msg) {
+  msg.header.stamp = stamp;
+  msg.step = r.step;
+  msg.num_envs = static_cast<std::uint32_t>(num_envs);
+  msg.obs_dim = static_cast<std::uint32_t>(obs_dim);
+  // assign() of contiguous ranges: one memcpy each, capacity kept between steps.
+  msg.observations.assign(r.observations.begin(), r.observations.end());
+  msg.rewards.assign(r.rewards.begin(), r.rewards.end());
+  msg.terminated.assign(r.terminated.begin(), r.terminated.end());
+  msg.truncated.assign(r.truncated.begin(), r.truncated.end());
+  msg.episode_steps.assign(r.episode_steps.begin(), r.episode_steps.end());
+  msg.reset_env_ids.assign(r.reset_env_ids.begin(), r.reset_env_ids.end());
+  msg.final_observations.assign(r.final_observations.begin(), r.final_observations.end());
+}
+
+void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
+  const auto n = static_cast<std::size_t>(spec.num_envs);
+  const auto obs_dim = static_cast<std::size_t>(spec.obs_dim);
+  checkSize("num_envs", msg.num_envs, n, msg.step);
+  checkSize("obs_dim", msg.obs_dim, obs_dim, msg.step);
+  checkSize("observations", msg.observations.size(), n * obs_dim, msg.step);
+  checkSize("rewards", msg.rewards.size(), n, msg.step);
+  checkSize("terminated", msg.terminated.size(), n, msg.step);
+  checkSize("truncated", msg.truncated.size(), n, msg.step);
+  checkSize("episode_steps", msg.episode_steps.size(), n, msg.step);
+  checkSize("final_observations", msg.final_observations.size(), msg.reset_env_ids.size() * obs_dim,
+            msg.step);
+  for (std::uint32_t id : msg.reset_env_ids) {
+    if (id >= n) {
+      throw Error("EnvStep " + std::to_string(msg.step) + ": reset_env_ids holds " +
+                  std::to_string(id) + ", out of range [0, " + std::to_string(n) + ")");
+    }
+  }
+  r.step = msg.step;
+  r.observations.assign(msg.observations.begin(), msg.observations.end());
+  r.rewards.assign(msg.rewards.begin(), msg.rewards.end());
+  r.terminated.assign(msg.terminated.begin(), msg.terminated.end());
+  r.truncated.assign(msg.truncated.begin(), msg.truncated.end());
+  r.episode_steps.assign(msg.episode_steps.begin(), msg.episode_steps.end());
+  r.reset_env_ids.assign(msg.reset_env_ids.begin(), msg.reset_env_ids.end());
+  r.final_observations.assign(msg.final_observations.begin(), msg.final_observations.end());
+  r.divergences.clear();
+}
+
+EnvSpec toMsg(const BatchSpec& spec) {
+  EnvSpec msg;
+  msg.num_envs = static_cast<std::uint32_t>(spec.num_envs);
+  msg.obs_dim = static_cast<std::uint32_t>(spec.obs_dim);
+  msg.action_dim = static_cast<std::uint32_t>(spec.action_dim);
+  msg.action_low = spec.action_low;
+  msg.action_high = spec.action_high;
+  msg.control_dt = spec.control_dt;
+  msg.max_episode_length = static_cast<std::uint32_t>(spec.max_episode_length);
+  msg.task = spec.task;
+  msg.observation_names = spec.observation_names;
+  msg.action_names = spec.action_names;
+  return msg;
+}
+
+BatchSpec fromMsg(const EnvSpec& msg) {
+  if (msg.num_envs < 1 || msg.obs_dim < 1 || msg.action_dim < 1 ||
+      msg.action_low.size() != msg.action_dim || msg.action_high.size() != msg.action_dim ||
+      msg.max_episode_length < 2 || !(msg.control_dt > 0.0)) {
+    throw Error("inconsistent EnvSpec: num_envs " + std::to_string(msg.num_envs) + ", obs_dim " +
+                std::to_string(msg.obs_dim) + ", action_dim " + std::to_string(msg.action_dim) +
+                " with " + std::to_string(msg.action_low.size()) + "/" +
+                std::to_string(msg.action_high.size()) + " bounds, max_episode_length " +
+                std::to_string(msg.max_episode_length));
+  }
+  BatchSpec spec;
+  spec.num_envs = static_cast<int>(msg.num_envs);
+  spec.obs_dim = static_cast<int>(msg.obs_dim);
+  spec.action_dim = static_cast<int>(msg.action_dim);
+  spec.action_low = msg.action_low;
+  spec.action_high = msg.action_high;
+  spec.control_dt = msg.control_dt;
+  spec.max_episode_length = static_cast<int>(msg.max_episode_length);
+  spec.task = msg.task;
+  spec.observation_names = msg.observation_names;
+  spec.action_names = msg.action_names;
+  return spec;
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,261 @@
+#include "jetbot_rl/ros/env_node/env_node.h"
+
+#include <ros/callback_queue.h>
+#include <ros/console.h>
+#include <ros/transport_hints.h>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/common/bounded_service.h"
+#include "jetbot_rl/ros/common/bounded_subscription.h"
+#include "jetbot_rl/ros/common/msg_conversion.h"
+#include "jetbot_rl/ros/common/param_reader.h"
+#include "jetbot_rl/ros/common/publication_flush.h"
+#include "jetbot_rl/ros/common/robot_description.h"
+#include "jetbot_rl/ros/common/stop_signal.h"
+#include "jetbot_rl/ros/env_node/marker_publisher.h"
+#include "jetbot_rl/ros/env_node/randomization_service.h"
+#include "jetbot_rl/ros/env_node/robot_names.h"
+#include "jetbot_rl/ros/env_node/robot_state_output.h"
+#include "jetbot_rl/ros/env_node/sim_clock.h"
+#include "jetbot_rl/ros/env_node/tf_publisher.h"
+
+namespace jetbot_rl {
+namespace {
+
+// A lockstep learner has one message in flight.
+constexpr std::uint32_t kQueueSize = 16;
+// How often the spinner looks at the stop flag [s]; how long the last markers may take to be
+// written [s]: SIGINT and SIGTERM end the node within their sum and a little.
+constexpr double kStopCheck = 0.1;
+constexpr double kFlushTimeout = 0.5;
+
+}  // namespace
+
+EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params,
+                 std::unique_ptr<BatchedEnv> env, std::optional<DiffDrive> drive)
+    : params_(params),
+      env_(std::move(env)),
+      server_(*env_, params.mode, params.action_timeout),
+      nh_(nh),
+      pnh_(pnh),
+      diagnostics_(nh_, pnh_.getNamespace().substr(1) + ": environment", enumName(params.mode),
+                   env_->numEnvs()) {
+  const int robot_envs = robotEnvs(params_);
+  if (robot_envs > 0) {
+    if (!drive) throw ConfigError("robot_envs > 0 needs the robot's differential drive");
+    server_.enableCmdVel(*drive, robot_envs, params_.cmd_vel_timeout);
+  }
+  EnvSpec spec = toMsg(env_->spec());
+  if (drive) {
+    spec.wheel_radius = drive->wheelRadius();
+    spec.wheel_separation = drive->wheelSeparation();
+  }
+  spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
+  spec_pub_.publish(spec);
+  const RobotNames names(params_.env_prefix);
+  outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_));
+  if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
+  outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
+                                                      names, params_.publish_link_tf));
+  outputs_.push_back(
+      std::make_unique<RobotStateOutput>(nh_, *env_, robot_envs, params_.odom_rate, names));
+  outputs_.push_back(std::make_unique<EnvMarkerPublisher>(pnh_, *env_, params_.tf_envs,
+                                                          params_.tf_rate, params_.markers));
+  {
+    std::unique_lock<std::mutex> lock(state_mutex_);
+    publish(lock, /*reset=*/true);  // initial /clock, EnvStep and tf batch
+  }
+
+  ros::NodeHandle inline_pnh(pnh_);
+  inline_pnh.setCallbackQueue(&inline_queue_);
+  // Anyone can send bytes: a message or request whose array or string lengths exceed its bytes
+  // is refused before roscpp allocates for it, and counted.
+  const auto refused = [this](const std::string& what) -> RefusalHandler {
+    return [this, what](const std::string& reason) {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      server_.countMalformed(what + " refused unread: " + reason);
+    };
+  };
+  targets_sub_ = subscribeBounded<WheelTargets>(
+      inline_pnh, "wheel_targets", kQueueSize,
+      [this](const WheelTargets::ConstPtr& msg) { onWheelTargets(msg); }, refused("wheel_targets"),
+      ros::TransportHints().tcpNoDelay());
+  step_srv_ = advertiseServiceBounded<Step>(
+      inline_pnh, "step", [this](Step::Request& q, Step::Response& r) { return onStep(q, r); },
+      refused("step"));
+  reset_srv_ = advertiseServiceBounded<Reset>(
+      inline_pnh, "reset", [this](Reset::Request& q, Reset::Response& r) { return onReset(q, r); },
+      refused("reset"));
+  set_command_srv_ = advertiseServiceBounded<SetCommand>(
+      inline_pnh, "set_command",
+      [this](SetCommand::Request& q, SetCommand::Response& r) { return onSetCommand(q, r); },
+      refused("set_command"));
+  ros::NodeHandle inline_nh(nh_);  // the robot view's topics: in the node's namespace
+  inline_nh.setCallbackQueue(&inline_queue_);
+  for (int e = 0; e < robot_envs; ++e) {
+    const std::string topic = names.topic(e, "cmd_vel");
+    cmd_vel_subs_.push_back(subscribeBounded<geometry_msgs::Twist>(
+        inline_nh, topic, kQueueSize,
+        [this, e](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(e, msg); },
+        refused(topic)));
+  }
+  // ---- domain randomisation: the values each env drew (docs/core.md, "Domain randomisation") ----
+  get_randomization_srv_ =
+      advertiseGetRandomization(inline_pnh, *env_, state_mutex_, refused("get_randomization"));
+  // ----
+  if (params_.mode == EnvMode::kRealtime) {
+    const double period = env_->controlDt() / params_.real_time_factor;
+    realtime_timer_ =
+        nh_.createWallTimer(ros::WallDuration(period), &EnvNode::onRealtimeTimer, this);
+  }
+  diagnostics_timer_ =
+      nh_.createWallTimer(ros::WallDuration(1.0), &EnvNode::onDiagnosticsTimer, this);
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    diagnostics_.publish(server_.counters(), env_->state().step);
+  }
+  ROS_INFO(
+      "jetbot_env ready: %d envs, obs_dim %d, action_dim %d, control step %.6f s, %d threads, "
+      "%s mode",
+      env_->numEnvs(), env_->obsDim(), env_->actionDim(), env_->controlDt(), env_->numThreads(),
+      enumName(params_.mode).c_str());
+}
+
+std::uint64_t EnvNode::step() const {
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  return env_->state().step;
+}
+
+void EnvNode::shutdown(double flush_timeout) {
+  realtime_timer_.stop();
+  diagnostics_timer_.stop();
+  targets_sub_.shutdown();
+  for (auto& sub : cmd_vel_subs_) sub.shutdown();
+  step_srv_.shutdown();
+  reset_srv_.shutdown();
+  set_command_srv_.shutdown();
+  get_randomization_srv_.shutdown();
+  {
+    // After any call in flight; a later one (already past roscpp) publishes nothing.
+    std::lock_guard<std::mutex> state_lock(state_mutex_);
+    std::lock_guard<std::mutex> publish_lock(publish_mutex_);
+    finished_ = true;
+    for (auto& output : outputs_) output->finish();
+  }
+  if (!flushPublications(flush_timeout) && ros::ok()) {
+    ROS_WARN(
+        "%s: the last messages were not all written within %.1f s (a subscriber that reads "
+        "nothing?)",
+        pnh_.getNamespace().c_str(), flush_timeout);
+  }
+}
+
+void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
+  if (finished_) return;
+  const EnvStep::ConstPtr& msg = server_.state();
+  // Taken before the capture: another thread's send() may still read what capture() overwrites
+  // (a ~reset call during realtime ticks).
+  std::lock_guard<std::mutex> publish_lock(publish_mutex_);
+  for (auto& output : outputs_) output->capture(*env_, msg, reset);
+  state_lock.unlock();
+  for (auto& output : outputs_) output->send();
+}
+
+void EnvNode::onWheelTargets(const WheelTargets::ConstPtr& msg) {
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  if (server_.onWheelTargets(*msg, std::chrono::steady_clock::now())) publish(lock, false);
+}
+
+void EnvNode::onCmdVel(int env, const geometry_msgs::Twist::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  server_.onCmdVel(env, *msg, std::chrono::steady_clock::now());
+}
+
+bool EnvNode::onStep(Step::Request& req, Step::Response& res) {
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  if (server_.onStep(req, res)) publish(lock, false);
+  return true;
+}
+
+bool EnvNode::onReset(Reset::Request& req, Reset::Response& res) {
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  if (server_.onReset(req, res)) publish(lock, true);
+  return true;
+}
+
+bool EnvNode::onSetCommand(SetCommand::Request& req, SetCommand::Response& res) {
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  server_.onSetCommand(req, res);
+  return true;
+}
+
+void EnvNode::onRealtimeTimer(const ros::WallTimerEvent&) {
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  server_.onTick(std::chrono::steady_clock::now());
+  publish(lock, false);
+}
+
+void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  const EnvCounters counters = server_.counters();
+  const std::uint64_t step = env_->state().step;
+  lock.unlock();
+  diagnostics_.publish(counters, step);
+}
+
+std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  const std::optional<NodeParams> loaded = loadParams<NodeParams>(pnh);
+  if (!loaded) return nullptr;
+  const NodeParams& params = *loaded;
+
+  const std::string description_param = nh.resolveName("robot_description");
+  std::unique_ptr<BatchedEnv> env;
+  try {
+    RobotModelConstPtr robot = loadRobotDescription(nh);
+    try {
+      env = makeEnv(robot, params.setup);
+    } catch (const ConfigError& e) {  // a rule the env checks against the task or robot
+      logParamError(pnh, e);
+      return nullptr;
+    } catch (const ModelError& e) {
+      ROS_FATAL("%s: %s does not fit the parameters: %s", pnh.getNamespace().c_str(),
+                description_param.c_str(), e.what());
+      return nullptr;
+    }
+  } catch (const Error& e) {
+    ROS_FATAL("%s: cannot use %s: %s", pnh.getNamespace().c_str(), description_param.c_str(),
+              e.what());
+    return nullptr;
+  }
+  for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
+  // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
+  std::optional<DiffDrive> drive;
+  try {
+    drive = DiffDrive::fromEnv(*env);
+    ROS_INFO("differential drive: %s", drive->describe().c_str());
+  } catch (const Error& e) {
+    if (robotEnvs(params) > 0) {
+      ROS_FATAL("%s: robot_envs = %d needs a differential drive of %s: %s (or set robot_envs 0)",
+                pnh.getNamespace().c_str(), params.robot_envs, description_param.c_str(), e.what());
+      return nullptr;
+    }
+    ROS_INFO("no differential drive (robot_envs 0: not needed): %s", e.what());
+  }
+  return std::make_unique<EnvNode>(nh, pnh, params, std::move(env), drive);
+}
+
+int runEnvNode() {
+  const std::atomic<bool>& stop = installStopSignalHandlers();
+  ros::NodeHandle pnh("~");
+  const std::unique_ptr<EnvNode> node = makeEnvNode(ros::NodeHandle(), pnh);
+  if (!node) return 1;
+  // Timers run here; topics and services in roscpp's network thread (inline_queue_).
+  ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
+  while (ros::ok() && !stop.load()) queue.callAvailable(ros::WallDuration(kStopCheck));
+  if (stop.load()) ROS_INFO("%s: stopped by a signal", pnh.getNamespace().c_str());
+  node->shutdown(kFlushTimeout);
+  ros::shutdown();
+  return 0;
+}
+
+}  // namespace jetbot_rl

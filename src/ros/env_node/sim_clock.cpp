@@ -1,0 +1,23 @@
+#include "jetbot_rl/ros/env_node/sim_clock.h"
+
+#include <cmath>
+
+namespace jetbot_rl {
+
+ros::Time simTime(std::uint64_t step, double control_dt) {
+  // From the step count, rounded to the nanosecond: no accumulated error however long it runs.
+  const long double ns = static_cast<long double>(step) * control_dt * 1e9L;
+  ros::Time t;
+  t.fromNSec(static_cast<std::uint64_t>(std::llround(ns)));
+  return t;
+}
+
+ClockOutput::ClockOutput(ros::NodeHandle& nh)
+    : pub_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)) {}
+
+void ClockOutput::send() {
+  if (due_) pub_.publish(msg_);
+  due_ = false;
+}
+
+}  // namespace jetbot_rl

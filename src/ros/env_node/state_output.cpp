@@ -1,0 +1,32 @@
+#include "jetbot_rl/ros/env_node/state_output.h"
+
+namespace jetbot_rl {
+namespace {
+
+// Small bounded queue: a lockstep learner has one message in flight, and a slow subscriber only
+// loses old messages.
+constexpr std::uint32_t kQueueSize = 16;
+
+}  // namespace
+
+EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh)
+    : pub_(pnh.advertise<EnvStep>("env_step", kQueueSize)) {}
+
+void EnvStepOutput::send() {
+  if (msg_) pub_.publish(msg_);
+  msg_.reset();
+}
+
+bool SimRateGate::due(const ros::Time& stamp, bool reset) {
+  if (sent_ && stamp == last_) {
+    pending_ = pending_ || reset;
+    return false;
+  }
+  if (!reset && !pending_ && sent_ && stamp - last_ < period_) return false;
+  pending_ = false;
+  last_ = stamp;
+  sent_ = true;
+  return true;
+}
+
+}  // namespace jetbot_rl

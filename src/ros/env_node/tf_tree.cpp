@@ -1,0 +1,71 @@
+#include "jetbot_rl/ros/env_node/tf_tree.h"
+
+#include <algorithm>
+#include <string>
+
+namespace jetbot_rl {
+
+void toTransform(const Eigen::Isometry3d& pose, geometry_msgs::Transform& t) {
+  const Eigen::Vector3d p = pose.translation();
+  // Bullet's single-precision rotations are orthonormal to 1e-7: normalised here to double
+  const Eigen::Quaterniond q = Eigen::Quaterniond(pose.rotation()).normalized();
+  t.translation.x = p.x();
+  t.translation.y = p.y();
+  t.translation.z = p.z();
+  t.rotation.x = q.x();
+  t.rotation.y = q.y();
+  t.rotation.z = q.z();
+  t.rotation.w = q.w();
+}
+
+TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool link_tf)
+    : envs_(std::clamp(envs, 0, env.numEnvs())), link_tf_(link_tf) {
+  // The links in linkPoses() order (bodies in order, each with its fixed links), and their parents.
+  std::vector<std::string> links, parents;
+  for (const BodyModel& body : env.robot().bodies()) {
+    for (const AttachedLink& link : body.links) {
+      links.push_back(link.name);
+      parents.push_back(link.parent);
+    }
+  }
+  for (const std::string& parent : parents) {
+    const auto it = std::find(links.begin(), links.end(), parent);
+    parent_.push_back(it == links.end() ? -1 : static_cast<int>(it - links.begin()));
+  }
+  for (int e = 0; e < envs_; ++e) {
+    geometry_msgs::TransformStamped origin;
+    origin.header.frame_id = kWorldFrame;
+    origin.child_frame_id = names.frame(e, kOdomFrame);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = env.envOrigin(e);
+    toTransform(pose, origin.transform);
+    statics_.push_back(origin);
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      if (parent_[k] >= 0 && !link_tf_) continue;
+      geometry_msgs::TransformStamped t;
+      t.header.frame_id = names.frame(e, parent_[k] < 0 ? kOdomFrame : links[parent_[k]]);
+      t.child_frame_id = names.frame(e, links[k]);
+      transforms_.push_back(t);
+    }
+  }
+}
+
+void TfTree::update(const BatchedEnv& env, const ros::Time& stamp) {
+  std::size_t k = 0;
+  for (int e = 0; e < envs_; ++e) {
+    // The root relative to the env's origin is the odometry; the others relative to their parent.
+    const std::vector<LinkPose> poses = env.linkPoses(e);
+    Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+    origin.translation() = env.envOrigin(e);
+    for (std::size_t l = 0; l < poses.size(); ++l) {
+      const int parent = parent_[l];
+      if (parent >= 0 && !link_tf_) continue;
+      geometry_msgs::TransformStamped& t = transforms_[k++];
+      t.header.stamp = stamp;
+      const Eigen::Isometry3d& reference = parent < 0 ? origin : poses[parent].pose;
+      toTransform(reference.inverse() * poses[l].pose, t.transform);
+    }
+  }
+}
+
+}  // namespace jetbot_rl
