@@ -1,6 +1,11 @@
 # The ROS-free core (Bullet, Eigen, urdfdom, assimp) and its programs; included by CMakeLists.txt
 # after catkin_package().
 pkg_check_modules(ASSIMP REQUIRED assimp)
+# The Gazebo blocks of a robot description (tinyxml2, as urdfdom), map_server's map YAML
+# (yaml-cpp, as map_server) and its PGM or PNG image (stb_image).
+pkg_check_modules(TINYXML2 REQUIRED tinyxml2)
+pkg_check_modules(STB REQUIRED stb)
+find_package(yaml-cpp REQUIRED)
 add_library(jetbot_rl_core
   src/core/batched_env.cpp
   src/core/command_task.cpp
@@ -11,16 +16,21 @@ add_library(jetbot_rl_core
   src/core/env_randomizer.cpp
   src/core/env_setup.cpp
   src/core/env_world.cpp
+  src/core/gazebo_blocks.cpp
+  src/core/laser_scanner.cpp
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
   src/core/mesh_loader.cpp
   src/core/multi_vec_env.cpp
+  src/core/occupancy_map.cpp
   src/core/physics_model.cpp
   src/core/randomization.cpp
   src/core/robot_model.cpp
   src/core/task_factory.cpp
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp
+  src/core/world_model.cpp
+  src/core/world_shapes.cpp
 )
 target_include_directories(jetbot_rl_core PUBLIC include)
 # Bullet's headers are not -Wextra clean: system headers.
@@ -30,8 +40,9 @@ target_include_directories(jetbot_rl_core SYSTEM PUBLIC ${BULLET_INCLUDE_DIRS} $
 target_include_directories(jetbot_rl_core PRIVATE src/core)
 target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
 target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
-target_include_directories(jetbot_rl_core PRIVATE ${ASSIMP_INCLUDE_DIRS})
-target_link_libraries(jetbot_rl_core PRIVATE ${ASSIMP_LIBRARIES})
+target_include_directories(jetbot_rl_core PRIVATE ${ASSIMP_INCLUDE_DIRS} ${TINYXML2_INCLUDE_DIRS})
+target_link_libraries(jetbot_rl_core PRIVATE ${ASSIMP_LIBRARIES} ${TINYXML2_LIBRARIES}
+  ${STB_LIBRARIES} yaml-cpp)
 
 # Headless demo of the batched core.
 add_executable(jetbot_rl_demo src/nodes/demo_main.cpp)

@@ -23,10 +23,12 @@ add_library(jetbot_rl_env_node
   src/ros/env_node/env_diagnostics.cpp
   src/ros/env_node/env_node.cpp
   src/ros/env_node/env_server.cpp
+  src/ros/env_node/map_publisher.cpp
   src/ros/env_node/marker_publisher.cpp
   src/ros/env_node/node_params.cpp
   src/ros/env_node/randomization_service.cpp
   src/ros/env_node/robot_state_output.cpp
+  src/ros/env_node/scan_output.cpp
   src/ros/env_node/sim_clock.cpp
   src/ros/env_node/state_output.cpp
   src/ros/env_node/tf_publisher.cpp

@@ -28,8 +28,11 @@ catkin_add_gtest(test_core
   test/core/test_randomization.cpp
   test/core/test_randomization_config.cpp
   test/core/test_motor_model.cpp
+  test/core/test_occupancy_map.cpp
+  test/core/test_laser_scanner.cpp
+  test/core/test_world.cpp
 )
-target_link_libraries(test_core jetbot_rl_core)
+target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
 target_compile_definitions(test_core PRIVATE ${_robots} JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
@@ -68,6 +71,10 @@ add_rostest_gtest(test_tf test/ros/tf.test test/ros/test_tf.cpp)
 target_link_libraries(test_tf ${catkin_LIBRARIES})
 target_include_directories(test_tf PRIVATE ${catkin_INCLUDE_DIRS})
 add_dependencies(test_tf ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# ---- the world and the laser scanner ----
+add_rostest(test/world/world_scan.test)
+add_rostest(test/world/world_view.test)
 
 # ---- the programs the rostests below start ----
 set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_rl_manager

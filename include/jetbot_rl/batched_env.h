@@ -10,10 +10,12 @@
 
 #include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
+#include "jetbot_rl/laser_scanner.h"
 #include "jetbot_rl/randomization.h"
 #include "jetbot_rl/robot_model.h"
 #include "jetbot_rl/step_result.h"
 #include "jetbot_rl/task.h"
+#include "jetbot_rl/world_model.h"
 
 namespace jetbot_rl {
 
@@ -21,6 +23,7 @@ class EnvRandomizer;
 class EnvWorld;
 class PhysicsModel;
 class ThreadPool;
+class WorldShapes;
 struct WorkerContext;
 
 /// Pose of one URDF link in the world frame (env origin included).
@@ -122,6 +125,23 @@ class BatchedEnv {
   /// rootState()'s position and orientation).
   BodyTwist rootTwist(int env) const;
 
+  // ---- the world and the laser scanner (docs/world.md) ----
+  /// The world every env shares (map, walls, region); nullptr when none is configured.
+  const WorldModel* world() const { return world_.get(); }
+  /// Env `env`'s layout of its current episode: start and obstacles.
+  const EnvLayout& layout(int env) const;
+  /// True when env `env`'s robot touched the map, a wall or an obstacle during the last step.
+  bool collided(int env) const;
+  /// Obstacles left out since construction because they did not fit (world/placement_tries).
+  std::uint64_t obstaclesGivenUp() const { return given_up_; }
+  /// The scanner in use, if any.
+  const std::optional<ScannerSpec>& scanner() const { return scanner_; }
+  /// Env `env`'s latest scan: scanner()->samples ranges [m] (REP 117: +inf beyond range_max,
+  /// -inf below range_min); nullptr without a scanner.
+  const float* scan(int env) const;
+  /// True when env `env` took a new scan in the last step() or reset().
+  bool scanned(int env) const;
+
  private:
   /// The envs of a worker's block not yet taken in the current step: [front, back) packed into
   /// one word (front in the low half), so that the owner (front) and helpers (back) claim envs
@@ -135,6 +155,8 @@ class BatchedEnv {
   /// Steps env `env` with the stepping thread's scratch.
   void stepEnv(int env, WorkerContext& context);
   void resetEnv(int env);
+  /// Casts env `env`'s scan from its robot's current pose.
+  void scanEnv(int env);
   int firstEnvOf(int worker) const;
 
   RobotModelConstPtr robot_;
@@ -158,6 +180,17 @@ class BatchedEnv {
   std::vector<std::string> diverged_;  // per env divergence reason of the current step
   StepResult result_;
   std::uint64_t diverged_count_ = 0;
+  // The world (when configured) and the scanner (when the robot has one).
+  std::shared_ptr<const WorldModel> world_;
+  std::unique_ptr<WorldShapes> world_shapes_;
+  std::vector<EnvLayout> layouts_;          // per env
+  std::vector<std::uint8_t> collided_;      // per env: in the last step
+  std::atomic<std::uint64_t> given_up_{0};  // obstacles left out
+  std::optional<ScannerSpec> scanner_;
+  std::vector<float> scans_;             // per env: samples ranges
+  std::vector<std::uint32_t> scan_age_;  // per env: control steps since its last scan
+  std::vector<std::uint8_t> scanned_;    // per env: a new scan in the last step or reset
+  std::vector<Rng> scan_noise_;          // per env
 };
 
 }  // namespace jetbot_rl

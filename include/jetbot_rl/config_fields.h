@@ -130,12 +130,16 @@ Range<T> atLeast(T lo, const char* unit = "", const char* note = "") {
   return {lo, hi, false, false, unit, note};
 }
 
-/// A non-empty list of distinct, non-empty names.
+/// A non-empty list of distinct, non-empty names (or, when allowed, an empty one).
 struct NameList {
   const char* unit = "";
-  std::string text() const { return "must be a non-empty list of distinct names"; }
+  bool allow_empty = false;
+  std::string text() const {
+    return allow_empty ? "must be a list of distinct names"
+                       : "must be a non-empty list of distinct names";
+  }
   void check(const std::string& name, const std::vector<std::string>& names) const {
-    if (names.empty()) throwInvalid(name, "[]", "must name at least one");
+    if (names.empty() && !allow_empty) throwInvalid(name, "[]", "must name at least one");
     std::set<std::string> seen;
     for (const auto& n : names) {
       if (n.empty()) throwInvalid(name, "''", "names must not be empty");
@@ -325,7 +329,8 @@ std::string fieldsToYaml(const C& config) {
   return s.str();
 }
 
-/// "key: value" lines of flat YAML (comments dropped), in order.
+/// "key: value" lines of YAML (comments dropped), in order; a line of a block ("world:" and its
+/// indented lines) is "world/key".
 std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& yaml);
 
 /// Reads the fields present in `yaml` (fieldsToYaml's format) over `config`; unknown keys are

@@ -8,6 +8,7 @@ namespace jetbot_rl {
 enum class LimitSource {
   kUrdf,       ///< The joint's <limit> in the URDF.
   kParameter,  ///< The configuration (`wheel_velocity_limit`, `effort_limit`), which wins.
+  kGazebo,     ///< The Gazebo diff drive plugin's <wheelTorque>, which wins over the URDF.
 };
 
 /// A driven joint's limits in use and where they come from (for the start-up echo).

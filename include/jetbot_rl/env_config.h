@@ -7,8 +7,26 @@
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/motor_model.h"
 #include "jetbot_rl/randomization.h"
+#include "jetbot_rl/scanner_config.h"
+#include "jetbot_rl/world_config.h"
 
 namespace jetbot_rl {
+
+/// How a wheel's drive follows its velocity target.
+enum class DriveMode {
+  kAuto,     ///< kVelocityLoop for a robot whose description has a Gazebo diff drive plugin.
+  kDamping,  ///< Isaac Lab's velocity drive: torque drive_gain x error, up to the effort limit.
+  /// A velocity servo as Gazebo's diff drive plugin or diff_drive_controller on a real base: up
+  /// to the effort limit, with integral action, so that it holds the target in steady state.
+  kVelocityLoop,
+};
+
+inline const EnumNameList<DriveMode>& enumNames(DriveMode) {
+  static const EnumNameList<DriveMode> names{{DriveMode::kAuto, "auto"},
+                                             {DriveMode::kDamping, "damping"},
+                                             {DriveMode::kVelocityLoop, "velocity_loop"}};
+  return names;
+}
 
 /// Configuration of a batch of environments; defaults are the Isaac Lab Jetbot seed's.
 struct EnvConfig {
@@ -17,10 +35,13 @@ struct EnvConfig {
   double physics_dt = 1.0 / 120.0;  ///< Physics step [s].
   int decimation = 2;               ///< Physics steps per control step.
   double episode_length_s = 5.0;    ///< Episode length [s].
-  std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  std::uint64_t seed = 0;      ///< Seed of the per-env random streams.
-  int num_threads = 0;         ///< Worker threads; 0 means all cores.
-  double drive_gain = 10.0;    ///< Velocity drive gain [N m s/rad].
+  /// Driven joints in action order; empty: the Gazebo diff drive plugin's [leftJoint,
+  /// rightJoint], else [left_wheel_joint, right_wheel_joint] (resolvedDofNames()).
+  std::vector<std::string> dof_names;
+  std::uint64_t seed = 0;              ///< Seed of the per-env random streams.
+  int num_threads = 0;                 ///< Worker threads; 0 means all cores.
+  double drive_gain = 10.0;            ///< Velocity drive gain [N m s/rad].
+  DriveMode drive = DriveMode::kAuto;  ///< How the wheels follow their targets.
   double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
   int solver_iterations = 10;  ///< Bullet constraint solver iterations per physics step.
   /// Wheel (dof) velocity limit [rad/s] for every dof; 0 takes the URDF <limit velocity>.
@@ -35,6 +56,10 @@ struct EnvConfig {
   RandomizationConfig randomization;
   /// Open-loop motor model between the targets and the wheels' drives (off by default).
   MotorModelConfig motor;
+  /// Each env's world: map, walls, random obstacles (none by default).
+  WorldConfig world;
+  /// The laser scanner (the robot description's Gazebo ray sensor, if it has one).
+  ScannerConfig scan;
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;
@@ -45,6 +70,11 @@ struct EnvConfig {
   /// Thread count after resolving 0 to the number of cores.
   int resolvedThreads() const;
 };
+
+class RobotModel;
+/// dof_names, or when it is empty the robot's Gazebo diff drive plugin's wheel joints, else
+/// [left_wheel_joint, right_wheel_joint].
+std::vector<std::string> resolvedDofNames(const EnvConfig& config, const RobotModel& robot);
 
 /// The fields of EnvConfig with their rules (see config_fields.h).
 template <typename C, typename V>
@@ -57,10 +87,17 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
     "Physics steps per control step; control step = physics_dt x decimation.");
   v("episode_length_s", c.episode_length_s, positive("s"),
     "Episode length; max_episode_length = ceil(episode_length_s / control step), 2 to 1e9.");
-  v("dof_names", c.dof_names, NameList{}, "Driven joints of robot_description, in action order.");
+  v("dof_names", c.dof_names, NameList{"", true},
+    "Driven joints of robot_description, in action order; []: the Gazebo diff drive plugin's "
+    "[leftJoint, rightJoint], else [left_wheel_joint, right_wheel_joint].");
   v("seed", c.seed, atLeast<std::uint64_t>(0), "Seed of the per-env random streams.");
   v("num_threads", c.num_threads, inRange(0, 1024, "", "0: all cores"), "Stepping threads.");
   v("drive_gain", c.drive_gain, positive("N m s/rad"), "Wheel velocity drive gain.");
+  v("drive", c.drive, AnyValue{},
+    "damping: Isaac Lab's velocity drive (torque drive_gain x error up to the effort limit; the "
+    "Jetbot's); velocity_loop: a servo with integral action that holds the target in steady "
+    "state within the effort limit (Gazebo's diff drive plugin, diff_drive_controller); auto: "
+    "velocity_loop for a robot description with a Gazebo diff drive plugin, else damping.");
   v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"),
     "Wheel drive torque limit.");
   v("solver_iterations", c.solver_iterations, inRange(1, 1000),
@@ -76,9 +113,12 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
     "Distance between the two wheels of the cmd_vel kinematics (DiffDrive).");
   visitFields(c.randomization, v);
   visitFields(c.motor, v);
+  visitFields(c.world, v);
+  visitFields(c.scan, v);
 }
 
-/// The rules between EnvConfig's fields: an episode lasts 2 to 1e9 control steps.
+/// The rules between EnvConfig's fields: an episode lasts 2 to 1e9 control steps; the world's and
+/// the scanner's.
 void checkFieldRules(const EnvConfig& config);
 
 }  // namespace jetbot_rl

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/gazebo_blocks.h"
 #include "jetbot_rl/mesh_loader.h"
 
 namespace jetbot_rl {
@@ -87,12 +88,23 @@ class RobotModel {
   /// Height of the root link frame above the ground at rest, so that the lowest collision
   /// point touches the ground at zero joint angles [m].
   double restHeight() const { return rest_height_; }
+  /// Radius of a vertical cylinder about the root link origin that holds every collision shape
+  /// at rest (the robot's footprint, for clearances) [m].
+  double footprintRadius() const { return footprint_radius_; }
+  /// The <gazebo> blocks the description holds (ray sensor, diff drive plugin); their link and
+  /// joints are checked against the URDF.
+  const GazeboBlocks& gazebo() const { return gazebo_; }
+  /// The body URDF link `link` belongs to and the link's pose in that body's link frame; false
+  /// when the URDF has no such link.
+  bool findLink(const std::string& link, int& body, Eigen::Isometry3d& offset) const;
 
  private:
   RobotModel() = default;
   std::string name_;
   std::vector<BodyModel> bodies_;
   double rest_height_ = 0.0;
+  double footprint_radius_ = 0.0;
+  GazeboBlocks gazebo_;
 };
 
 using RobotModelConstPtr = std::shared_ptr<const RobotModel>;

@@ -9,10 +9,22 @@
 #include "jetbot_rl/errors.h"
 #include "physics_model.h"
 #include "thread_pool.h"
+#include "world_shapes.h"
 
 namespace jetbot_rl {
 
 namespace {
+
+// Scan noise of env e: the stream of env id e + kScanStream (another than its noise stream's).
+constexpr std::uint64_t kScanStream = 1ULL << 41;
+
+Eigen::Isometry3d toEigen(const btTransform& t) {
+  const btQuaternion q = t.getRotation();
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).toRotationMatrix();
+  out.translation() << t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z();
+  return out;
+}
 
 constexpr std::uint64_t pack(int front, int back) {
   return static_cast<std::uint64_t>(static_cast<std::uint32_t>(back)) << 32 |
@@ -41,9 +53,16 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   config_.validate();
   if (!robot_) throw ModelError("no robot model given");
   if (!task_) throw ConfigError("invalid task = null: a task object is required");
+  config_.dof_names = resolvedDofNames(config_, *robot_);
   obs_dim_ = static_cast<int>(task_->observationNames().size());
   physics_ = std::make_unique<PhysicsModel>(robot_, config_);
   randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
+  if (config_.world.enabled()) {
+    world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
+    world_shapes_ = std::make_unique<WorldShapes>(*world_);
+  }
+  scanner_ = resolveScanner(config_.scan, *robot_, config_.controlDt());
+  const int num_obstacles = config_.world.num_boxes + config_.world.num_cylinders;
 
   const int n = config_.num_envs;
   const int workers = std::min(config_.resolvedThreads(), n);
@@ -53,10 +72,11 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   worlds_.resize(n);
   // Each thread builds its scratch and its block's worlds, in parallel, so that their memory comes
   // from its own allocator arena and is first touched by the thread that steps it.
-  pool_->run(workers, [this](int w) {
+  pool_->run(workers, [this, num_obstacles](int w) {
     contexts_[w] = std::make_unique<WorkerContext>();
     for (int e = firstEnvOf(w); e < firstEnvOf(w + 1); ++e) {
-      worlds_[e] = std::make_unique<EnvWorld>(*physics_, *contexts_[w]);
+      worlds_[e] =
+          std::make_unique<EnvWorld>(*physics_, *contexts_[w], world_shapes_.get(), num_obstacles);
     }
   });
   for (const auto& dof : physics_->dofs()) {
@@ -85,6 +105,14 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   result_.reset_env_ids.reserve(n);
   result_.final_observations.reserve(static_cast<std::size_t>(n) * obs_dim_);
   for (int e = 0; e < n; ++e) rngs_.emplace_back(config_.seed, e);
+  layouts_.resize(n);
+  collided_.assign(n, 0);
+  if (scanner_) {
+    scans_.assign(static_cast<std::size_t>(n) * scanner_->samples, kNoReturn);
+    scan_age_.assign(n, 0);
+    scanned_.assign(n, 0);
+    for (int e = 0; e < n; ++e) scan_noise_.emplace_back(config_.seed, e + kScanStream);
+  }
   reset();
 }
 
@@ -167,8 +195,14 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   float* targets = &targets_[static_cast<std::size_t>(e) * a];
   if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
   world.setTargets(targets);
+  world.clearCollided();
   for (int k = 0; k < config_.decimation; ++k) world.step(config_.physics_dt);
   ++result_.episode_steps[e];
+  collided_[e] = world.collided();
+  if (scanner_) {
+    scanned_[e] = 0;
+    if (++scan_age_[e] >= static_cast<std::uint32_t>(scanner_->update_every)) scanEnv(e);
+  }
 
   // Isaac Lab order: dones, then rewards, then reset, then observations.
   RootState state = world.rootState();
@@ -199,10 +233,30 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
 }
 
 void BatchedEnv::resetEnv(int env) {
-  worlds_[env]->reset();
-  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], *worlds_[env]);
+  EnvWorld& world = *worlds_[env];
+  world.reset();
+  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], world);
+  if (world_) {
+    // The start first, then the obstacles around it, from the env's own stream.
+    EnvLayout& layout = layouts_[env];
+    world_->drawStart(rngs_[env], layout);
+    world.moveRobot(layout.start);
+    world_->drawObstacles(rngs_[env], {layout.start}, layout);
+    world.setObstacles(layout.obstacles);
+    given_up_ += static_cast<std::uint64_t>(layout.given_up);
+  }
   result_.episode_steps[env] = 0;
   task_->resetEnv(env, rngs_[env]);
+  if (scanner_) scanEnv(env);
+}
+
+void BatchedEnv::scanEnv(int env) {
+  const Eigen::Isometry3d sensor =
+      toEigen(worlds_[env]->linkPose(scanner_->body)) * scanner_->pose_in_body;
+  castScan(*scanner_, world_.get(), layouts_[env].obstacles, sensor, scan_noise_[env],
+           &scans_[static_cast<std::size_t>(env) * scanner_->samples]);
+  scan_age_[env] = 0;
+  scanned_[env] = 1;
 }
 
 const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
@@ -236,11 +290,13 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
                        ": must be <= " + std::to_string(last_start) + " (max_episode_length - 2)");
     }
   }
+  if (scanner_) std::fill(scanned_.begin(), scanned_.end(), 0);
   for (int e = 0; e < n; ++e) {
     if (!selected[e]) continue;
     if (seed) {
       rngs_[e] = Rng(*seed, e);
       randomizer_->reseed(e, *seed);
+      if (scanner_) scan_noise_[e] = Rng(*seed, e + kScanStream);
     }
     resetEnv(e);
   }
@@ -368,6 +424,26 @@ void BatchedEnv::jointStates(int env, JointStates& out) const {
 RandomizationDraw BatchedEnv::randomization(int env) const {
   checkEnv(env);
   return randomizer_->values(env);
+}
+
+const EnvLayout& BatchedEnv::layout(int env) const {
+  checkEnv(env);
+  return layouts_[env];
+}
+
+bool BatchedEnv::collided(int env) const {
+  checkEnv(env);
+  return collided_[env] != 0;
+}
+
+const float* BatchedEnv::scan(int env) const {
+  checkEnv(env);
+  return scanner_ ? &scans_[static_cast<std::size_t>(env) * scanner_->samples] : nullptr;
+}
+
+bool BatchedEnv::scanned(int env) const {
+  checkEnv(env);
+  return scanner_ && scanned_[env] != 0;
 }
 
 BodyTwist BatchedEnv::rootTwist(int env) const {

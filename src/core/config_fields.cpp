@@ -78,7 +78,12 @@ void readValue(const std::string& field, const std::string& text, double& v) {
   if (!(s >> v) || !(s >> std::ws).eof()) badValue(field, text, "a number");
 }
 
-void readValue(const std::string&, const std::string& text, std::string& v) { v = text; }
+void readValue(const std::string&, const std::string& text, std::string& v) {
+  // A quoted scalar ('' or "...") stands for its contents.
+  const bool quoted = text.size() >= 2 && (text.front() == '\'' || text.front() == '"') &&
+                      text.back() == text.front();
+  v = quoted ? text.substr(1, text.size() - 2) : text;
+}
 
 // All items are read before `v` changes: a bad item leaves it as it was.
 template <typename T>
@@ -113,6 +118,7 @@ void readValue(const std::string& field, const std::string& text, std::vector<st
 
 std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& yaml) {
   std::vector<std::pair<std::string, std::string>> lines;
+  std::vector<std::pair<std::size_t, std::string>> parents;  // indentation, key of open blocks
   std::istringstream in(yaml);
   std::string line;
   while (std::getline(in, line)) {
@@ -120,7 +126,16 @@ std::vector<std::pair<std::string, std::string>> yamlLines(const std::string& ya
     if (hash != std::string::npos) line.erase(hash);
     const auto colon = line.find(':');
     if (colon == std::string::npos) continue;
-    lines.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+    const std::size_t indent = line.find_first_not_of(" \t");
+    while (!parents.empty() && parents.back().first >= indent) parents.pop_back();
+    std::string key = trim(line.substr(0, colon));
+    for (auto p = parents.rbegin(); p != parents.rend(); ++p) key = p->second + "/" + key;
+    const std::string value = trim(line.substr(colon + 1));
+    if (value.empty()) {  // a block: its indented lines are "key/child"
+      parents.emplace_back(indent, trim(line.substr(0, colon)));
+      continue;
+    }
+    lines.emplace_back(key, value);
   }
   return lines;
 }

@@ -106,6 +106,19 @@ DiffDrive DiffDrive::fromRobot(const RobotModel& robot, const std::vector<std::s
   if (!std::isfinite(wheel_separation) || wheel_separation < 0.0) {
     throwInvalid("wheel_separation", wheel_separation, "must be >= 0 m (0: derived from the URDF)");
   }
+  // The Gazebo diff drive plugin's wheels give the defaults of its own joints.
+  std::string radius_source = "parameter", separation_source = "parameter";
+  if (const auto& plugin = robot.gazebo().diff_drive;
+      plugin && dof_names[0] == plugin->left_joint && dof_names[1] == plugin->right_joint) {
+    if (wheel_radius == 0.0 && plugin->wheel_diameter > 0.0) {
+      wheel_radius = 0.5 * plugin->wheel_diameter;
+      radius_source = "Gazebo diff drive plugin's wheelDiameter";
+    }
+    if (wheel_separation == 0.0 && plugin->wheel_separation > 0.0) {
+      wheel_separation = plugin->wheel_separation;
+      separation_source = "Gazebo diff drive plugin's wheelSeparation";
+    }
+  }
   const std::vector<Eigen::Isometry3d> poses = restPoses(robot);
   struct Found {
     const BodyModel* body;
@@ -148,7 +161,6 @@ DiffDrive DiffDrive::fromRobot(const RobotModel& robot, const std::vector<std::s
   const Found& l = found[0];
   const Found& r = found[1];
 
-  std::string radius_source = "parameter", separation_source = "parameter";
   if (wheel_radius == 0.0) {
     double radii[2];
     for (int i = 0; i < 2; ++i) {

@@ -12,7 +12,7 @@ void describeLimit(std::ostream& s, const char* what, double value, const char* 
     s << "URDF)";
     return;
   }
-  s << parameter << "; URDF: ";
+  s << (source == LimitSource::kGazebo ? "Gazebo diff drive plugin" : parameter) << "; URDF: ";
   if (urdf > 0.0) {
     s << urdf << ' ' << unit << ", overridden)";
   } else {

@@ -4,10 +4,13 @@
 #include <thread>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/robot_model.h"
 
 namespace jetbot_rl {
 
 void checkFieldRules(const EnvConfig& config) {
+  checkFieldRules(config.world);
+  checkFieldRules(config.scan);
   const double steps = config.episode_length_s / config.controlDt();
   if (steps < 2.0 || steps > 1e9) {
     throwInvalid("episode_length_s", config.episode_length_s,
@@ -16,6 +19,15 @@ void checkFieldRules(const EnvConfig& config) {
 }
 
 void EnvConfig::validate() const { validateConfig(*this); }
+
+std::vector<std::string> resolvedDofNames(const EnvConfig& config, const RobotModel& robot) {
+  if (!config.dof_names.empty()) return config.dof_names;
+  const auto& plugin = robot.gazebo().diff_drive;
+  if (plugin && !plugin->left_joint.empty() && !plugin->right_joint.empty()) {
+    return {plugin->left_joint, plugin->right_joint};
+  }
+  return {"left_wheel_joint", "right_wheel_joint"};
+}
 
 int EnvConfig::maxEpisodeLength() const {
   return static_cast<int>(std::ceil(episode_length_s / controlDt()));

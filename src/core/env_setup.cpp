@@ -1,5 +1,6 @@
 #include "jetbot_rl/env_setup.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -16,10 +17,16 @@ void readEnvSetupFiles(const std::vector<std::string>& paths, EnvSetup& setup) {
     std::ostringstream text;
     text << file.rdbuf();
     if (!file) throw ConfigError("cannot read the parameter file " + path);
+    const std::string map_before = setup.env.world.map;
     try {
       fieldsFromYaml(text.str(), setup);
     } catch (const ConfigError& e) {
       throw ConfigError(path + ": " + e.what());
+    }
+    // A map this file names by a relative path lies beside the file (as a map YAML's image).
+    std::string& map = setup.env.world.map;
+    if (map != map_before && !map.empty() && std::filesystem::path(map).is_relative()) {
+      map = (std::filesystem::path(path).parent_path() / map).string();
     }
   }
 }

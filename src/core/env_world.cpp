@@ -1,14 +1,29 @@
 #include "env_world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace jetbot_rl {
 namespace {
 
-// Robots collide with the ground only: never with each other's parts.
+// Robots collide with the ground and the world (map, walls, obstacles): never with each other's
+// parts; the world's parts never with each other.
 constexpr int kRobotGroup = btBroadphaseProxy::CharacterFilter;
 constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
+constexpr int kWorldGroup = 64;
+constexpr int kWorldUserIndex = 1;  // marks the world's collision objects
+// A contact point this close or closer counts as a collision [m] (Bullet keeps points up to its
+// breaking threshold apart).
+constexpr btScalar kTouching = 1e-3f;
+// Where an obstacle left out of an episode waits, far below the ground (it touches nothing).
+constexpr btScalar kParked = -1000;
+// The velocity loop's integral gain [1/s] and the largest correction, as a fraction of the
+// velocity limit: Bullet's solver leaves a wheel a few per cent below its target at low speed
+// (10 iterations do not converge the motor against the tyre's friction), which the integral
+// removes within a few tenths of a second.
+constexpr double kLoopIntegralGain = 20.0;
+constexpr double kLoopMaxCorrection = 0.2;
 constexpr btScalar kGravity = -9.81;            // [m/s^2]
 constexpr btScalar kGroundFriction = 1.0;       // multiplied with each body's friction
 constexpr double kMaxPosition = 1000.0;         // [m] from the env origin
@@ -21,15 +36,19 @@ btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.
 
 }  // namespace
 
-EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
+EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
+                   int num_obstacles)
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1)),
+      broadphase_(new btSimpleBroadphase(
+          static_cast<int>(model.bodies().size()) + 1 +
+          (shapes ? static_cast<int>(shapes->statics().size()) + num_obstacles : 0))),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           model.collisionConfiguration())),
       ground_(new btCollisionObject()),
-      targets_(model.dofs().size(), 0.0f) {
+      targets_(model.dofs().size(), 0.0f),
+      integral_(model.dofs().size(), 0.0) {
   world_->setGravity(btVector3(0, 0, kGravity));
   world_->getSolverInfo().m_numIterations = model.solverIterations();
   // Without warm-starting the joint motors from the last step, 10 iterations leave a parked
@@ -40,6 +59,31 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
   ground_->setCollisionShape(const_cast<btCollisionShape*>(model.groundShape()));
   ground_->setFriction(kGroundFriction);
   world_->addCollisionObject(ground_.get(), kGroundGroup, kRobotGroup);
+  const auto addStatic = [this](btCollisionShape* shape, const btTransform& pose) {
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shape);
+    object->setWorldTransform(pose);
+    object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT);
+    object->setFriction(kGroundFriction);
+    object->setUserIndex(kWorldUserIndex);
+    world_->addCollisionObject(object.get(), kWorldGroup, kRobotGroup);
+    return object;
+  };
+  if (shapes) {
+    for (const PlacedShape& s : shapes->statics()) {
+      statics_.push_back(addStatic(const_cast<btCollisionShape*>(s.shape), s.pose));
+    }
+    // Obstacle slots: a placeholder shape until the first layout.
+    for (int i = 0; i < num_obstacles; ++i) {
+      Obstacle parked;
+      parked.half_extents = {0.1, 0.1};
+      parked.height = 0.1;
+      btTransform pose;
+      obstacle_shapes_.push_back(makeObstacleShape(parked, pose));
+      pose.getOrigin().setZ(kParked);
+      obstacles_.push_back(addStatic(obstacle_shapes_.back().get(), pose));
+    }
+  }
 
   const auto& bodies = model.bodies();
   const int links = static_cast<int>(bodies.size()) - 1;
@@ -57,7 +101,7 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
   robot_->setAngularDamping(0);
   robot_->setMaxCoordinateVelocity(1e4);
   robot_->setHasSelfCollision(false);
-  world_->addMultiBody(robot_.get(), kRobotGroup, kGroundGroup);
+  world_->addMultiBody(robot_.get(), kRobotGroup, kGroundGroup | kWorldGroup);
 
   if (model.scalesWheels()) scaled_shapes_.resize(bodies.size());
   for (int b = 0; b <= links; ++b) {
@@ -69,7 +113,7 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context)
       collider->setCollisionShape(bodies[b].shape);
     }
     collider->setFriction(bodies[b].friction);
-    world_->addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
+    world_->addCollisionObject(collider.get(), kRobotGroup, kGroundGroup | kWorldGroup);
     if (b == 0) {
       robot_->setBaseCollider(collider.get());
     } else {
@@ -97,6 +141,49 @@ EnvWorld::~EnvWorld() {
   for (auto& c : colliders_) world_->removeCollisionObject(c.get());
   world_->removeMultiBody(robot_.get());
   world_->removeCollisionObject(ground_.get());
+  for (auto& o : statics_) world_->removeCollisionObject(o.get());
+  for (auto& o : obstacles_) world_->removeCollisionObject(o.get());
+}
+
+void EnvWorld::moveRobot(const Eigen::Vector2d& offset) {
+  btTransform base = robot_->getBaseWorldTransform();
+  base.getOrigin() +=
+      btVector3(static_cast<btScalar>(offset.x()), static_cast<btScalar>(offset.y()), 0);
+  robot_->setBaseWorldTransform(base);
+  syncColliders();
+}
+
+void EnvWorld::setObstacles(const std::vector<Obstacle>& obstacles) {
+  for (std::size_t i = 0; i < obstacles_.size(); ++i) {
+    btCollisionObject& object = *obstacles_[i];
+    btTransform pose;
+    if (i < obstacles.size() && obstacles[i].placed) {
+      obstacle_shapes_[i] = makeObstacleShape(obstacles[i], pose);
+    } else {
+      pose = object.getWorldTransform();
+      pose.getOrigin().setZ(kParked);
+    }
+    // Its old contacts go with its old shape.
+    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
+        object.getBroadphaseHandle(), dispatcher_.get());
+    object.setCollisionShape(obstacle_shapes_[i].get());
+    object.setWorldTransform(pose);
+    world_->updateSingleAabb(&object);
+  }
+}
+
+bool EnvWorld::touchesWorld() const {
+  for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
+    if (m->getBody0()->getUserIndex() != kWorldUserIndex &&
+        m->getBody1()->getUserIndex() != kWorldUserIndex) {
+      continue;
+    }
+    for (int c = 0; c < m->getNumContacts(); ++c) {
+      if (m->getContactPoint(c).getDistance() <= kTouching) return true;
+    }
+  }
+  return false;
 }
 
 void EnvWorld::syncColliders() {
@@ -127,6 +214,8 @@ void EnvWorld::reset() {
     }
   }
   std::fill(targets_.begin(), targets_.end(), 0.0f);
+  std::fill(integral_.begin(), integral_.end(), 0.0);
+  collided_ = false;
 }
 
 void EnvWorld::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
@@ -172,19 +261,35 @@ void EnvWorld::setTargets(const float* targets) {
 
 void EnvWorld::step(double dt) {
   const auto& dofs = model_.dofs();
+  const bool loop = model_.velocityLoop();
   for (size_t d = 0; d < dofs.size(); ++d) {
+    const double effort = dofs[d].effort_limit * effort_scale_;
+    if (loop) {
+      // A servo: the target plus its integral correction, with all the torque the motor has.
+      motors_[d]->setVelocityTarget(static_cast<btScalar>(targets_[d] + integral_[d]));
+      motors_[d]->setMaxAppliedImpulse(static_cast<btScalar>(effort * dt));
+      continue;
+    }
     // Velocity drive: torque = gain * (target - velocity), limited by the effort limit; solved
     // as a velocity constraint so it never overshoots the target (stable at any gain).
     const double error = targets_[d] - dofVelocity(static_cast<int>(d));
     // The scales are 1 unless randomised (x 1.0 is exact: the same torque bit for bit).
-    const double torque = std::min(dofs[d].effort_limit * effort_scale_,
-                                   model_.driveGain() * gain_scale_ * std::abs(error));
+    const double torque = std::min(effort, model_.driveGain() * gain_scale_ * std::abs(error));
     motors_[d]->setVelocityTarget(targets_[d]);
     motors_[d]->setMaxAppliedImpulse(static_cast<btScalar>(torque * dt));
   }
   world_->stepSimulation(static_cast<btScalar>(dt), 0);
   last_dt_ = dt;
   stepped_ = true;
+  if (loop) {
+    for (size_t d = 0; d < dofs.size(); ++d) {
+      const double limit = kLoopMaxCorrection * dofs[d].velocity_limit;
+      integral_[d] = std::clamp(
+          integral_[d] + kLoopIntegralGain * dt * (targets_[d] - dofVelocity(static_cast<int>(d))),
+          -limit, limit);
+    }
+  }
+  if (!statics_.empty() || !obstacles_.empty()) collided_ = collided_ || touchesWorld();
 }
 
 btTransform EnvWorld::comPose(int body) const {

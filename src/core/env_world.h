@@ -13,8 +13,10 @@
 #include <vector>
 
 #include "jetbot_rl/task.h"
+#include "jetbot_rl/world_model.h"
 #include "lean_dispatcher.h"
 #include "physics_model.h"
+#include "world_shapes.h"
 
 namespace jetbot_rl {
 
@@ -45,7 +47,10 @@ struct PhysicalDraw {
  */
 class EnvWorld {
  public:
-  EnvWorld(const PhysicsModel& model, WorkerContext& context);
+  /// With `shapes`, the world's static geometry (map, walls) is added, and `num_obstacles`
+  /// obstacle slots for setObstacles().
+  EnvWorld(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes = nullptr,
+           int num_obstacles = 0);
   ~EnvWorld();
   EnvWorld(const EnvWorld&) = delete;
   EnvWorld& operator=(const EnvWorld&) = delete;
@@ -56,6 +61,15 @@ class EnvWorld {
   /// wheels lift the robot so that they start on the ground). `wheel_spin` [rad/m]: per dof, the
   /// joint velocity per m/s of forward speed at wheel_radius_scale 1 (empty: speed 0).
   void randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin);
+  /// Moves the robot by `offset` in the ground plane, keeping its heading and velocities (the
+  /// world's start, after reset() and randomize()).
+  void moveRobot(const Eigen::Vector2d& offset);
+  /// Places the obstacles of a layout (as many as the slots; one not placed is left out).
+  void setObstacles(const std::vector<Obstacle>& obstacles);
+  /// True when the robot touched the map, a wall or an obstacle in a physics step since the last
+  /// clearCollided() (reset() clears it too).
+  bool collided() const { return collided_; }
+  void clearCollided() { collided_ = false; }
   /// Makes the next step()s use `context`'s solver (the stepping thread's own).
   void useContext(WorkerContext& context);
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
@@ -90,6 +104,8 @@ class EnvWorld {
   /// World transform of body `body`'s principal COM frame.
   btTransform comPose(int body) const;
   void syncColliders();
+  /// True when a contact of the last collision detection joins the robot and the world.
+  bool touchesWorld() const;
 
   const PhysicsModel& model_;
   WorkerContext* context_;
@@ -105,8 +121,13 @@ class EnvWorld {
   std::vector<std::unique_ptr<btCollisionShape>> scaled_shapes_;
   double gain_scale_ = 1.0, effort_scale_ = 1.0;  // of the draw in force
   std::vector<float> targets_;
-  double last_dt_ = 0.0;  // [s] of the last step(), for efforts
+  std::vector<double> integral_;  // per dof: the velocity loop's integral correction [rad/s]
+  double last_dt_ = 0.0;          // [s] of the last step(), for efforts
   bool stepped_ = false;
+  // The world's static geometry (shapes shared) and this env's obstacles (shapes its own).
+  std::vector<std::unique_ptr<btCollisionObject>> statics_, obstacles_;
+  std::vector<std::unique_ptr<btCollisionShape>> obstacle_shapes_;
+  bool collided_ = false;
 };
 
 }  // namespace jetbot_rl

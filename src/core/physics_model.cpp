@@ -37,6 +37,8 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
       ground_(new btStaticPlaneShape(btVector3(0, 0, 1), 0)),
       collision_configuration_(new btDefaultCollisionConfiguration(tinyPools())),
       drive_gain_(config.drive_gain),
+      velocity_loop_(config.drive == DriveMode::kVelocityLoop ||
+                     (config.drive == DriveMode::kAuto && robot_->gazebo().diff_drive)),
       solver_iterations_(config.solver_iterations) {
   const auto& models = robot_->bodies();
   std::vector<bool> driven(models.size(), false);
@@ -120,8 +122,17 @@ PhysicsModel::PhysicsModel(RobotModelConstPtr robot, const EnvConfig& config)
         config.wheel_velocity_limit > 0.0 ? LimitSource::kParameter : LimitSource::kUrdf;
     d.velocity_limit =
         config.wheel_velocity_limit > 0.0 ? config.wheel_velocity_limit : m.velocity_limit;
-    d.effort_source = config.effort_limit > 0.0 ? LimitSource::kParameter : LimitSource::kUrdf;
-    d.effort_limit = config.effort_limit > 0.0 ? config.effort_limit : m.effort_limit;
+    // The effort: the parameter, else the Gazebo diff drive plugin's wheel torque for its
+    // wheels (what Gazebo applies), else the URDF's.
+    const auto& plugin = robot_->gazebo().diff_drive;
+    const bool plugin_wheel = plugin && plugin->wheel_torque > 0.0 &&
+                              (name == plugin->left_joint || name == plugin->right_joint);
+    d.effort_source = config.effort_limit > 0.0 ? LimitSource::kParameter
+                      : plugin_wheel            ? LimitSource::kGazebo
+                                                : LimitSource::kUrdf;
+    d.effort_limit = config.effort_limit > 0.0 ? config.effort_limit
+                     : plugin_wheel            ? plugin->wheel_torque
+                                               : m.effort_limit;
     if (!(std::isfinite(d.velocity_limit) && d.velocity_limit > 0.0)) {
       std::ostringstream s;
       s << "needs <limit velocity> > 0 [rad/s] to clamp targets, got " << d.velocity_limit

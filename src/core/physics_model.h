@@ -73,6 +73,8 @@ class PhysicsModel {
     return collision_configuration_.get();
   }
   double driveGain() const { return drive_gain_; }
+  /// True when the wheels' drives are velocity loops (EnvConfig::drive, auto resolved).
+  bool velocityLoop() const { return velocity_loop_; }
   int solverIterations() const { return solver_iterations_; }
   /// True when the wheels' shapes are scaled per env (wheel_radius_scale is not [1, 1]).
   bool scalesWheels() const { return scales_wheels_; }
@@ -90,6 +92,7 @@ class PhysicsModel {
   std::vector<Joint> joints_;
   std::vector<Dof> dofs_;
   double drive_gain_;
+  bool velocity_loop_ = false;
   int solver_iterations_;
   bool scales_wheels_ = false;
 };

@@ -303,6 +303,28 @@ class BodyBuilder {
   const MeshResolver& resolver_;
 };
 
+/// Farthest horizontal distance from the root link origin that geometry `g` (posed by
+/// `body_pose` in the root link frame) can reach: its centre's plus its bounding radius [m].
+double horizontalReach(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose) {
+  const Eigen::Isometry3d pose = body_pose * g.origin;
+  double radius = 0.0;
+  switch (g.type) {
+    case CollisionGeometry::Type::kBox:
+      radius = 0.5 * g.size.norm();
+      break;
+    case CollisionGeometry::Type::kCylinder:
+      radius = std::hypot(g.size.x(), 0.5 * g.size.y());
+      break;
+    case CollisionGeometry::Type::kSphere:
+      radius = g.size.x();
+      break;
+    case CollisionGeometry::Type::kMesh:
+      for (const auto& v : g.vertices) radius = std::max(radius, v.norm());
+      break;
+  }
+  return pose.translation().head<2>().norm() + radius;
+}
+
 }  // namespace
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& urdf_xml,
@@ -328,7 +350,39 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
   }
   if (!std::isfinite(lowest)) throw ModelError("URDF has no collision shapes to stand on");
   model->rest_height_ = -lowest;
+  for (std::size_t b = 0; b < model->bodies_.size(); ++b) {
+    for (const auto& g : model->bodies_[b].collisions) {
+      model->footprint_radius_ = std::max(model->footprint_radius_, horizontalReach(g, poses[b]));
+    }
+  }
+  model->gazebo_ = parseGazeboBlocks(urdf_xml);
+  int body = 0;
+  Eigen::Isometry3d offset;
+  if (const auto& ray = model->gazebo_.ray; ray && !model->findLink(ray->link, body, offset)) {
+    throw ModelError("ray sensor '" + ray->name + "': link '" + ray->link + "' is not in the URDF");
+  }
+  if (const auto& drive = model->gazebo_.diff_drive) {
+    for (const std::string& joint : {drive->left_joint, drive->right_joint}) {
+      if (!joint.empty() && model->bodyOfJoint(joint) < 0) {
+        throw ModelError("diff drive plugin: joint '" + joint +
+                         "' is not a moving joint of the URDF");
+      }
+    }
+  }
   return model;
+}
+
+bool RobotModel::findLink(const std::string& link, int& body, Eigen::Isometry3d& offset) const {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    for (const auto& l : bodies_[b].links) {
+      if (l.name == link) {
+        body = static_cast<int>(b);
+        offset = l.offset;
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,

@@ -82,7 +82,9 @@ std::vector<Row> rowsWithout(std::vector<Row> all, const C& without) {
 }
 
 std::vector<Row> envRows() {
-  return rowsWithout(rowsWithout(rowsOf(EnvConfig{}), RandomizationConfig{}), MotorModelConfig{});
+  std::vector<Row> rows = rowsWithout(rowsOf(EnvConfig{}), RandomizationConfig{});
+  rows = rowsWithout(std::move(rows), MotorModelConfig{});
+  return rowsWithout(rowsWithout(std::move(rows), WorldConfig{}), ScannerConfig{});
 }
 
 /// The tables of docs/, by ID (the markers' names).
@@ -92,6 +94,8 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"task", [] { return rowsOf(TaskConfig{}); }},
       {"randomization", [] { return rowsOf(RandomizationConfig{}); }},
       {"motor", [] { return rowsOf(MotorModelConfig{}); }},
+      {"world", [] { return rowsOf(WorldConfig{}); }},
+      {"scan", [] { return rowsOf(ScannerConfig{}); }},
       {"env_node", [] { return rowsWithout(rowsOf(NodeParams{}), EnvSetup{}); }},
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},
       {"ppo", [] { return rowsOf(ppo::PpoConfig{}); }},

@@ -41,7 +41,6 @@ TEST(EnvConfig, EveryInvalidFieldIsNamed) {
       {"decimation = 0", [](EnvConfig& c) { c.decimation = 0; }},
       {"episode_length_s = -5", [](EnvConfig& c) { c.episode_length_s = -5.0; }},
       {"episode_length_s = 0.01", [](EnvConfig& c) { c.episode_length_s = 0.01; }},
-      {"dof_names", [](EnvConfig& c) { c.dof_names.clear(); }},
       {"dof_names = left_wheel_joint",
        [](EnvConfig& c) {
          c.dof_names = {"left_wheel_joint", "left_wheel_joint"};

@@ -25,6 +25,7 @@ LAUNCH_NODES = {
     'train.launch': ['jetbot_ppo_trainer', 'jetbot_env_node'],
     'play.launch': ['jetbot_policy_node', 'jetbot_env_node'],
     'bench_nodelets.launch': ['lockstep_bench_nodelet', 'jetbot_env_node'],
+    'world_view.launch': ['jetbot_env_node'],
 }
 # Parameter files that hold a node's defaults (every value set or commented out must be it).
 DEFAULTS_FILES = {'config/jetbot_env.yaml': 'jetbot_env_node', 'config/ppo.yaml': 'jetbot_ppo_trainer'}
@@ -38,7 +39,10 @@ def run(*args):
 
 
 def number_or_text(value):
-    """YAML 1.1 reads 1e-05 (no dot) as text: the C++ writes doubles as their shortest form."""
+    """YAML 1.1 reads 1e-05 (no dot) as text: the C++ writes doubles as their shortest form; an
+    empty string is written as nothing."""
+    if value is None:
+        return ''
     if isinstance(value, str):
         try:
             return float(value)
@@ -49,6 +53,30 @@ def number_or_text(value):
 
 def defaults(node):
     return {k: number_or_text(v) for k, v in yaml.safe_load(run('defaults', node)).items()}
+
+
+def flatten(tree, prefix=''):
+    """{'world': {'map': x}} -> {'world/map': x}: parameter names as the nodes read them."""
+    out = {}
+    for key, value in (tree or {}).items():
+        if isinstance(value, dict):
+            out.update(flatten(value, prefix + key + '/'))
+        else:
+            out[prefix + key] = value
+    return out
+
+
+def settings(path, commented=False):
+    """The parameters a file sets; with `commented`, also the defaults it shows commented out
+    ("# drive_gain: 10.0", "# world:" and its indented "#   map: ''")."""
+    lines = []
+    for line in open(path):
+        shown = re.match(r'^# ( *\w+:.*)$', line.rstrip('\n')) if commented else None
+        if shown:
+            lines.append(shown.group(1))
+        elif not line.startswith('#'):
+            lines.append(line.rstrip('\n'))
+    return flatten(yaml.safe_load('\n'.join(lines)))
 
 
 def same(a, b):
@@ -79,16 +107,13 @@ class TestParamDocs(unittest.TestCase):
         checked = 0
         for path, node in DEFAULTS_FILES.items():
             cpp = defaults(node)
-            for line in open(os.path.join(PKG, path)):
-                # a set value, or a default shown commented out ("# drive_gain: 10.0  # ...")
-                m = re.match(r'^(?:# )?(\w+): ([^#]+?)\s*(?:#.*)?$', line.rstrip('\n'))
-                if not m or m.group(1) not in cpp:
+            for key, value in settings(os.path.join(PKG, path), commented=True).items():
+                if key not in cpp:
                     continue
-                value = number_or_text(yaml.safe_load(m.group(2)))
-                self.assertTrue(same(value, cpp[m.group(1)]), '%s: %s is %r, the C++ default %r'
-                                % (path, m.group(1), value, cpp[m.group(1)]))
+                self.assertTrue(same(number_or_text(value), cpp[key]),
+                                '%s: %s is %r, the C++ default %r' % (path, key, value, cpp[key]))
                 checked += 1
-        self.assertGreater(checked, 60)
+        self.assertGreater(checked, 80)
 
     def test_every_key_of_a_parameter_file_is_a_parameter(self):
         known = {}
@@ -98,7 +123,7 @@ class TestParamDocs(unittest.TestCase):
             glob.glob(os.path.join(PKG, 'urdf', '**', '*.yaml'), recursive=True)
         self.assertGreater(len(files), 5)
         for path in files:
-            for key in (yaml.safe_load(open(path)) or {}):
+            for key in settings(path):
                 self.assertIn(key, known, '%s: %s is no parameter of the package' % (path, key))
 
     def test_launch_defaults_are_the_cpp_defaults(self):

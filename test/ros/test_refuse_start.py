@@ -47,6 +47,50 @@ class TestRefuseStart(unittest.TestCase):
         self.assertNotIn('jetbot_env ready', proc.stdout)
         return fatal[0]
 
+    # --- the world and the scanner: bad files and values named ---
+    def test_map_file_missing(self):
+        self.refuses([], 'world/map', 'no_such_map.yaml', 'cannot be read',
+                     **{'world/map': '/tmp/no_such_map.yaml'})
+
+    def test_map_field_missing(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, 'map.yaml'), 'w') as f:
+            f.write('image: map.pgm\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n'
+                    'free_thresh: 0.196\n')
+        self.refuses([], 'world/map', "missing field 'resolution'",
+                     **{'world/map': os.path.join(folder, 'map.yaml')})
+
+    def test_map_image_undecodable(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, 'map.pgm'), 'w') as f:
+            f.write('not an image')
+        with open(os.path.join(folder, 'map.yaml'), 'w') as f:
+            f.write('image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
+                    'occupied_thresh: 0.65\nfree_thresh: 0.196\n')
+        self.refuses([], 'image', 'cannot be read as an image',
+                     **{'world/map': os.path.join(folder, 'map.yaml')})
+
+    def test_map_thresholds_out_of_order(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, 'map.yaml'), 'w') as f:
+            f.write('image: %s\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
+                    'occupied_thresh: 0.3\nfree_thresh: 0.5\n'
+                    % os.path.join(PACKAGE, 'maps', 'office.pgm'))
+        self.refuses([], 'free_thresh = 0.5', **{'world/map': os.path.join(folder, 'map.yaml')})
+
+    def test_world_without_a_free_start(self):
+        self.refuses([], 'world/random_start = false', **{'world/arena_size': [0.3, 0.3]})
+
+    def test_scan_link_not_in_the_urdf(self):
+        self.refuses([], "scan/link = 'laser'", **{'scan/link': 'laser'})
+
+    def test_scan_angles_out_of_order(self):
+        self.refuses([], 'scan/angles = [1, -1]',
+                     **{'scan/link': 'base_link', 'scan/angles': [1.0, -1.0]})
+
+    def test_scan_samples_negative(self):
+        self.refuses([], 'scan/samples = -4', **{'scan/samples': -4})
+
     # --- parameters ---
     def test_num_envs_zero(self):
         self.refuses(['_num_envs:=0'], 'num_envs = 0')

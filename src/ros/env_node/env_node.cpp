@@ -16,6 +16,7 @@
 #include "jetbot_rl/ros/env_node/randomization_service.h"
 #include "jetbot_rl/ros/env_node/robot_names.h"
 #include "jetbot_rl/ros/env_node/robot_state_output.h"
+#include "jetbot_rl/ros/env_node/scan_output.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
 #include "jetbot_rl/ros/env_node/tf_publisher.h"
 
@@ -52,13 +53,17 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   }
   spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
   spec_pub_.publish(spec);
-  const RobotNames names(params_.env_prefix);
+  const RobotNames names(params_.env_prefix, params_.robot_prefix);
   outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_));
   if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
   outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
                                                       names, params_.publish_link_tf));
   outputs_.push_back(
       std::make_unique<RobotStateOutput>(nh_, *env_, robot_envs, params_.odom_rate, names));
+  outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_envs, names));
+  if (env_->world() && env_->world()->map()) {
+    map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
+  }
   outputs_.push_back(std::make_unique<EnvMarkerPublisher>(pnh_, *env_, params_.tf_envs,
                                                           params_.tf_rate, params_.markers));
   {
@@ -228,6 +233,8 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     return nullptr;
   }
   for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
+  if (const auto& scanner = env->scanner()) ROS_INFO("%s", describeScanner(*scanner).c_str());
+  if (const WorldModel* world = env->world()) ROS_INFO("%s", describeWorld(*world).c_str());
   // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
   std::optional<DiffDrive> drive;
   try {

@@ -113,6 +113,19 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
       array_.markers.push_back(arrow);
     }
   }
+  // The world's walls and obstacles, per env: placed at every capture from its layout.
+  if (const WorldModel* world = env.world()) {
+    std_msgs::ColorRGBA grey;
+    grey.r = grey.g = grey.b = 0.55f;
+    grey.a = 0.8f;
+    const int per_env = static_cast<int>(world->walls().size() + env.layout(0).obstacles.size());
+    for (int e = 0; e < envs_; ++e) {
+      for (int k = 0; k < per_env; ++k) {
+        array_.markers.push_back(
+            marker("world", e * per_env + k, visualization_msgs::Marker::CUBE, grey));
+      }
+    }
+  }
 }
 
 void EnvMarkerPublisher::finish() {
@@ -152,6 +165,26 @@ void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr&
       arrow_marker.header.stamp = stamp;
       setPose(arrow_marker.pose, arrow_base + Eigen::Vector3d(0, 0, 0.01 * (a + 1)),
               yawQuaternion(std::atan2(c.y(), c.x())));
+    }
+  }
+  if (const WorldModel* world = env.world()) {
+    for (int e = 0; e < envs_; ++e) {
+      const auto place = [&](const Obstacle& o) {
+        auto& m = array_.markers[k++];
+        m.header.stamp = stamp;
+        m.type = o.shape == Obstacle::Shape::kBox ? visualization_msgs::Marker::CUBE
+                                                  : visualization_msgs::Marker::CYLINDER;
+        const bool box = o.shape == Obstacle::Shape::kBox;
+        m.scale.x = box ? 2 * o.half_extents.x() : 2 * o.radius;
+        m.scale.y = box ? 2 * o.half_extents.y() : 2 * o.radius;
+        m.scale.z = o.height;
+        m.action = o.placed ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+        const Eigen::Vector3d c =
+            env.envOrigin(e) + Eigen::Vector3d(o.center.x(), o.center.y(), 0.5 * o.height);
+        setPose(m.pose, c, yawQuaternion(o.yaw));
+      };
+      for (const Obstacle& w : world->walls()) place(w);
+      for (const Obstacle& o : env.layout(e).obstacles) place(o);
     }
   }
   due_ = true;

@@ -1,5 +1,7 @@
 #include "jetbot_rl/ros/env_node/node_params.h"
 
+#include <ros/names.h>
+
 namespace jetbot_rl {
 
 void checkFieldRules(const NodeParams& p) {
@@ -9,6 +11,13 @@ void checkFieldRules(const NodeParams& p) {
                  "drops the env_0/ prefix of a single robot env: needs robot_envs 1, got " +
                      std::to_string(p.robot_envs) + " with num_envs " +
                      std::to_string(p.setup.env.num_envs));
+  }
+  std::string why;
+  if (!p.robot_prefix.empty() && (p.robot_prefix.front() == '/' || p.robot_prefix.front() == '~' ||
+                                  !ros::names::validate(p.robot_prefix, why))) {
+    throwInvalid("robot_prefix", "'" + p.robot_prefix + "'",
+                 "must be empty or a relative ROS name (e.g. jetbot_env_1/)" +
+                     (why.empty() ? std::string() : ": " + why));
   }
 }
 

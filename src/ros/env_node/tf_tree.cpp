@@ -32,14 +32,24 @@ TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool li
     const auto it = std::find(links.begin(), links.end(), parent);
     parent_.push_back(it == links.end() ? -1 : static_cast<int>(it - links.begin()));
   }
+  const bool map = env.world() && env.world()->map();
   for (int e = 0; e < envs_; ++e) {
+    // world -> odom at the env's origin; with a map, world -> map there and map -> odom the
+    // identity (the simulated odometry does not drift).
     geometry_msgs::TransformStamped origin;
     origin.header.frame_id = kWorldFrame;
-    origin.child_frame_id = names.frame(e, kOdomFrame);
+    origin.child_frame_id = names.frame(e, map ? kMapFrame : kOdomFrame);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = env.envOrigin(e);
     toTransform(pose, origin.transform);
     statics_.push_back(origin);
+    if (map) {
+      geometry_msgs::TransformStamped odom;
+      odom.header.frame_id = names.frame(e, kMapFrame);
+      odom.child_frame_id = names.frame(e, kOdomFrame);
+      toTransform(Eigen::Isometry3d::Identity(), odom.transform);
+      statics_.push_back(odom);
+    }
     for (std::size_t k = 0; k < links.size(); ++k) {
       if (parent_[k] >= 0 && !link_tf_) continue;
       geometry_msgs::TransformStamped t;

@@ -17,6 +17,7 @@
 #include "jetbot_rl/ros/common/inline_callback_queue.h"
 #include "jetbot_rl/ros/env_node/env_diagnostics.h"
 #include "jetbot_rl/ros/env_node/env_server.h"
+#include "jetbot_rl/ros/env_node/map_publisher.h"
 #include "jetbot_rl/ros/env_node/node_params.h"
 #include "jetbot_rl/ros/env_node/state_output.h"
 
@@ -74,6 +75,7 @@ class EnvNode {
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
   ros::ServiceServer get_randomization_srv_;  // domain randomisation (randomization_service.h)
   ros::WallTimer realtime_timer_, diagnostics_timer_;
+  std::unique_ptr<MapPublisher> map_publisher_;  // /map, when the world has a map
   EnvDiagnostics diagnostics_;
 };
 

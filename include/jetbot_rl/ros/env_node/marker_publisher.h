@@ -12,9 +12,10 @@ namespace jetbot_rl {
  * visualization_msgs/MarkerArray on ~markers (latched, frame `world`) for the first `envs` envs:
  * the chassis as a box, an arrow along the robot's forward direction and one per direction the
  * task draws (Task::arrowNames: the command task's command, the walkthrough's second arrow);
- * coloured per env. Sent at most `rate` Hz of simulation time (with the tf batches). When
- * disabled, and at finish() (the node's end), it publishes DELETEALL so that RViz drops stale
- * markers.
+ * coloured per env; with a world, its walls and the obstacles of each env's current layout (grey
+ * boxes and cylinders; an obstacle left out of the episode is hidden). Sent at most `rate` Hz of
+ * simulation time (with the tf batches). When disabled, and at finish() (the node's end), it
+ * publishes DELETEALL so that RViz drops stale markers.
  */
 class EnvMarkerPublisher : public StateOutput {
  public:

@@ -42,6 +42,9 @@ struct NodeParams {
   double odom_rate = 50.0;       ///< Largest odom and joint_states rate [Hz of simulation time].
   /// tf of the links below the root link; false leaves them to robot_state_publisher.
   bool publish_link_tf = true;
+  /// Before the robot view's topics and frames (e.g. "jetbot_env_1/"): several env nodes' robots
+  /// in one graph keep apart.
+  std::string robot_prefix;
 };
 
 /// Envs with the robot view: robot_envs clamped to num_envs.
@@ -81,6 +84,10 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
     "Largest odom and joint_states rate.");
   v("publish_link_tf", c.publish_link_tf, AnyValue{},
     "tf of the links below the root link; false leaves them to robot_state_publisher.");
+  v("robot_prefix", c.robot_prefix, AnyValue{"", "empty: none"},
+    "Before the robot view's topics and tf frames (e.g. jetbot_env_1/ gives "
+    "jetbot_env_1/env_0/cmd_vel and frame jetbot_env_1/env_0/odom): several env nodes in one "
+    "graph keep their robots apart (env_nodes.launch sets it to each node's name).");
 }
 
 /// The rules between fields (EnvConfig's, and env_prefix against robot_envs).

@@ -13,7 +13,8 @@ namespace jetbot_rl {
 /**
  * The tf tree of envs 0..envs-1, one tree per env hanging from `world`:
  *
- *     world -> env_<i>/odom               static: the env's origin on the grid
+ *     world -> env_<i>/odom               static: the env's origin on the grid (with a map:
+ *                                         world -> env_<i>/map there, map -> odom identity)
  *           -> env_<i>/<root link>        the root link's pose in the env (the odometry)
  *           -> env_<i>/<link> ...         every other link relative to its URDF parent link
  *
@@ -24,7 +25,8 @@ class TfTree {
  public:
   /// `envs` clamped to the batch.
   TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool link_tf);
-  /// world -> odom of every env (stamp 0: static transforms hold at any time).
+  /// world -> odom (or map, and map -> odom) of every env (stamp 0: static transforms hold at any
+  /// time).
   const std::vector<geometry_msgs::TransformStamped>& statics() const { return statics_; }
   /// Sets the dynamic transforms to `env`'s current state, stamped `stamp`.
   void update(const BatchedEnv& env, const ros::Time& stamp);

@@ -1,0 +1,79 @@
+#pragma once
+
+// Each env's world (docs/world.md): a map_server occupancy map shared by every env, arena walls,
+// and random boxes and cylinders placed per env at every reset from the env's own stream. Off by
+// default: then an env is the robot alone on an empty plane, bit for bit as without this.
+
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/config_fields.h"
+
+namespace jetbot_rl {
+
+/// The `world/...` parameters (a `world:` block in a parameter file).
+struct WorldConfig {
+  std::string map;                         ///< map_server map YAML; empty: none.
+  std::vector<double> arena_size;          ///< [x, y]: walls around each env origin [m]; []: none.
+  double wall_thickness = 0.05;            ///< [m]
+  double obstacle_height = 0.5;            ///< Of walls, obstacles and map cells [m].
+  int num_boxes = 0;                       ///< Random boxes per env.
+  std::vector<double> box_size{0.2, 0.5};  ///< [min, max] of each side [m].
+  int num_cylinders = 0;                   ///< Random cylinders per env.
+  std::vector<double> cylinder_radius{0.1, 0.25};  ///< [min, max] [m].
+  /// [x_min, y_min, x_max, y_max] where obstacles and random starts are drawn, in the env frame
+  /// [m]; []: inside the arena walls, else the map's extent.
+  std::vector<double> region;
+  double start_clearance = 0.4;  ///< Free radius around the start (and a task's free points) [m].
+  double obstacle_gap = 0.0;     ///< Least distance between two obstacles [m].
+  bool allow_overlap = false;    ///< Obstacles may overlap each other (obstacle_gap ignored).
+  bool random_start = false;     ///< Draw the start in free space at every reset; else the origin.
+  int placement_tries = 200;     ///< Draws per start or obstacle before it is given up.
+
+  /// True when the env has any world: a map, walls or obstacles.
+  bool enabled() const {
+    return !map.empty() || !arena_size.empty() || num_boxes > 0 || num_cylinders > 0;
+  }
+};
+
+template <typename C, typename V>
+IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
+  const Range<double> length = positiveUpTo(1000.0, "m");
+  v("world/map", c.map, AnyValue{"", "empty: none"},
+    "map_server map YAML (image, resolution, origin, negate, occupied_thresh, free_thresh, mode) "
+    "placed in every env's frame as map_server places it; its image is read relative to the "
+    "YAML.");
+  v("world/arena_size", c.arena_size, EachValue<double>{length},
+    "[x, y]: walls of a rectangle this size centred on each env origin; []: none.");
+  v("world/wall_thickness", c.wall_thickness, length, "Thickness of the arena walls.");
+  v("world/obstacle_height", c.obstacle_height, length,
+    "Height of the walls, the obstacles and the map's occupied cells.");
+  v("world/num_boxes", c.num_boxes, inRange(0, 1000),
+    "Random boxes per env, placed at every reset.");
+  v("world/box_size", c.box_size, intervalOf(length),
+    "Range of each box's side lengths (drawn per side) and yaw drawn in [-pi, pi).");
+  v("world/num_cylinders", c.num_cylinders, inRange(0, 1000),
+    "Random cylinders per env, placed at every reset.");
+  v("world/cylinder_radius", c.cylinder_radius, intervalOf(length), "Range of their radii.");
+  v("world/region", c.region, EachValue<double>{Range<double>{-1e4, 1e4, false, false, "m"}},
+    "[x_min, y_min, x_max, y_max] where obstacles and random starts are drawn, in the env frame; "
+    "[]: inside the arena walls, else the map's extent.");
+  v("world/start_clearance", c.start_clearance, atLeast(0.0, "m"),
+    "No obstacle, wall or occupied cell within this distance of the start, nor of a point a task "
+    "keeps free (a goal).");
+  v("world/obstacle_gap", c.obstacle_gap, atLeast(0.0, "m"),
+    "Least distance between two obstacles' bounding circles.");
+  v("world/allow_overlap", c.allow_overlap, AnyValue{}, "Obstacles may overlap each other.");
+  v("world/random_start", c.random_start, AnyValue{},
+    "Draw each env's start position in free space at every reset (its heading: initial_yaw); "
+    "false: the env origin.");
+  v("world/placement_tries", c.placement_tries, inRange(1, 100000),
+    "Draws for a start or an obstacle before it is given up (an obstacle given up is left out "
+    "of that episode and counted).");
+}
+
+/// The rules between WorldConfig's fields: arena_size has 2 values, region 4 (min < max),
+/// obstacles need somewhere to go.
+void checkFieldRules(const WorldConfig& config);
+
+}  // namespace jetbot_rl
