@@ -8,6 +8,8 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# Installed, the inputs lie in the package's share folder, not beside this script.
+[ -f "$here/world_map.yaml" ] || here="$(rospack find jetbot_rl)/bench"
 bench=${JETBOT_RL_BENCH:-$(command -v jetbot_rl_bench || echo "rosrun jetbot_rl jetbot_rl_bench")}
 n=${1:-256}
 steps=${2:-300}

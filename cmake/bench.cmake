@@ -36,8 +36,10 @@ install(TARGETS jetbot_rl_bench jetbot_rl_ros_bench jetbot_rl_nodes_bench
 install(PROGRAMS bench/bench.sh bench/bench16.sh bench/bench_nodes.sh bench/bench_world.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # Sourced by the bench scripts from their own folder: installed beside them, not as a program.
-install(FILES bench/bench_common.sh bench/world_obstacles.yaml bench/world_map.yaml
-  bench/scan_24.yaml bench/scan_360.yaml DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(FILES bench/bench_common.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# bench_world.sh's inputs (world_map.yaml names ../maps/office.yaml: beside the installed maps).
+install(FILES bench/world_obstacles.yaml bench/world_map.yaml bench/scan_24.yaml bench/scan_360.yaml
+  DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
 install(FILES bench/bench_nodelets.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
 catkin_install_python(PROGRAMS bench/python_bench.py bench/soak.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -22,6 +22,7 @@ add_library(jetbot_rl_core
   src/core/local_vec_env.cpp
   src/core/mesh_loader.cpp
   src/core/multi_vec_env.cpp
+  src/core/navigation_task.cpp
   src/core/occupancy_map.cpp
   src/core/physics_model.cpp
   src/core/randomization.cpp

@@ -31,6 +31,7 @@ catkin_add_gtest(test_core
   test/core/test_occupancy_map.cpp
   test/core/test_laser_scanner.cpp
   test/core/test_world.cpp
+  test/core/test_navigation.cpp
 )
 target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
@@ -92,13 +93,13 @@ foreach(_scenario vec_env determinism bad_input timeout multi_node ppo_example)
 endforeach()
 
 # ---- training, determinism, Ctrl-C and resume, start-up refusals ----
-foreach(_scenario train train_command train_tribot determinism interrupt_resume refuse_start_ppo
+foreach(_scenario train train_command train_navigation train_tribot determinism interrupt_resume refuse_start_ppo
     clean_end)
   add_rostest(test/ppo/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 
 # ---- sim-to-real: a policy trained with randomisation drives the env's robot view ----
-foreach(_scenario closed_loop_velocity closed_loop_command robot_mode)
+foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation robot_mode)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

@@ -27,6 +27,7 @@ target_include_directories(jetbot_rl_ppo SYSTEM PUBLIC ${TORCH_INCLUDE_DIRS})
 target_link_libraries(jetbot_rl_ppo PUBLIC jetbot_rl_core ${TORCH_LIBRARIES})
 
 add_library(jetbot_rl_ppo_ros
+  src/ppo/ros/navigation_driver.cpp
   src/ppo/ros/policy_node.cpp
   src/ppo/ros/policy_params.cpp
   src/ppo/ros/robot_mode.cpp

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/laser_scanner.h"
@@ -83,7 +84,7 @@ class BatchedEnv {
 
   int numEnvs() const { return config_.num_envs; }
   int obsDim() const { return obs_dim_; }
-  int actionDim() const { return static_cast<int>(config_.dof_names.size()); }
+  int actionDim() const { return static_cast<int>(action_low_.size()); }
   int numThreads() const;
   double controlDt() const { return config_.controlDt(); }
   int maxEpisodeLength() const { return config_.maxEpisodeLength(); }
@@ -93,7 +94,8 @@ class BatchedEnv {
   const Task& task() const { return *task_; }
   Task& task() { return *task_; }
   const RobotModel& robot() const { return *robot_; }
-  /// Lower and upper action bounds per dof: -/+ its velocity limit [rad/s] (see dofLimits()).
+  /// Lower and upper action bounds: per dof -/+ its velocity limit [rad/s] (see dofLimits()),
+  /// or with action_space twist -/+ the fastest v [m/s] and omega [rad/s] the wheels allow.
   const std::vector<float>& actionLow() const { return action_low_; }
   const std::vector<float>& actionHigh() const { return action_high_; }
   /// Limits of every dof in action order, and whether each came from the URDF or a parameter.
@@ -155,6 +157,8 @@ class BatchedEnv {
   /// Steps env `env` with the stepping thread's scratch.
   void stepEnv(int env, WorkerContext& context);
   void resetEnv(int env);
+  /// Gives the task env `env`'s senses (scan, contact, last action).
+  void senseEnv(int env);
   /// Casts env `env`'s scan from its robot's current pose.
   void scanEnv(int env);
   int firstEnvOf(int worker) const;
@@ -171,6 +175,11 @@ class BatchedEnv {
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<Rng> rngs_;
   std::vector<float> action_low_, action_high_;
+  std::vector<float> wheel_low_, wheel_high_;  // per dof: its velocity limits
+  std::vector<std::string> action_names_;      // the dofs', or linear_x, angular_z
+  std::unique_ptr<DiffDrive> drive_;           // action_space twist: twist -> wheel targets
+  std::vector<float> actions_;                 // per env: its last action (zeros after a reset)
+  std::vector<std::uint8_t> outcome_;          // per env: how its ended episode ended
   std::vector<DofLimits> dof_limits_;
   std::vector<std::string> joint_names_;
   std::vector<int> dof_of_joint_;      // per jointNames() entry: its dof, or -1

@@ -28,6 +28,18 @@ inline const EnumNameList<DriveMode>& enumNames(DriveMode) {
   return names;
 }
 
+/// What an action is.
+enum class ActionSpace {
+  kWheels,  ///< A velocity target per dof [rad/s].
+  kTwist,   ///< (v [m/s], omega [rad/s]) of a differential drive, as a base's cmd_vel takes.
+};
+
+inline const EnumNameList<ActionSpace>& enumNames(ActionSpace) {
+  static const EnumNameList<ActionSpace> names{{ActionSpace::kWheels, "wheels"},
+                                               {ActionSpace::kTwist, "twist"}};
+  return names;
+}
+
 /// Configuration of a batch of environments; defaults are the Isaac Lab Jetbot seed's.
 struct EnvConfig {
   int num_envs = 100;               ///< Number of environments in the batch.
@@ -38,10 +50,11 @@ struct EnvConfig {
   /// Driven joints in action order; empty: the Gazebo diff drive plugin's [leftJoint,
   /// rightJoint], else [left_wheel_joint, right_wheel_joint] (resolvedDofNames()).
   std::vector<std::string> dof_names;
-  std::uint64_t seed = 0;              ///< Seed of the per-env random streams.
-  int num_threads = 0;                 ///< Worker threads; 0 means all cores.
-  double drive_gain = 10.0;            ///< Velocity drive gain [N m s/rad].
-  DriveMode drive = DriveMode::kAuto;  ///< How the wheels follow their targets.
+  std::uint64_t seed = 0;                           ///< Seed of the per-env random streams.
+  int num_threads = 0;                              ///< Worker threads; 0 means all cores.
+  double drive_gain = 10.0;                         ///< Velocity drive gain [N m s/rad].
+  DriveMode drive = DriveMode::kAuto;               ///< How the wheels follow their targets.
+  ActionSpace action_space = ActionSpace::kWheels;  ///< What an action is.
   double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
   int solver_iterations = 10;  ///< Bullet constraint solver iterations per physics step.
   /// Wheel (dof) velocity limit [rad/s] for every dof; 0 takes the URDF <limit velocity>.
@@ -98,13 +111,17 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
     "Jetbot's); velocity_loop: a servo with integral action that holds the target in steady "
     "state within the effort limit (Gazebo's diff drive plugin, diff_drive_controller); auto: "
     "velocity_loop for a robot description with a Gazebo diff drive plugin, else damping.");
+  v("action_space", c.action_space, AnyValue{},
+    "wheels: a velocity target per dof [rad/s]; twist: (v [m/s], omega [rad/s]) of the "
+    "differential drive (DiffDrive: wheel_radius, wheel_separation), bounded by the wheels' "
+    "limits, as a base's cmd_vel.");
   v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"),
     "Wheel drive torque limit.");
   v("solver_iterations", c.solver_iterations, inRange(1, 1000),
     "Bullet constraint solver iterations per physics step.");
   v("wheel_velocity_limit", c.wheel_velocity_limit,
     atLeast(0.0, "rad/s", "0: the URDF <limit velocity>"),
-    "Wheel velocity limit of every dof: the action bounds are +-this.");
+    "Wheel velocity limit of every dof: wheel targets are clamped to +-this.");
   v("caster_friction", c.caster_friction, atLeast(0.0),
     "Friction coefficient with the ground of every body no dof drives (chassis, caster).");
   v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: derived from the URDF"),

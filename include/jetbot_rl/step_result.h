@@ -23,7 +23,9 @@ struct StepResult {
   std::vector<std::uint32_t> episode_steps;  ///< num_envs: steps into the current episode.
   std::vector<std::uint32_t> reset_env_ids;  ///< Envs that ended in this step and were reset.
   std::vector<float> final_observations;     ///< len(reset_env_ids) x obs_dim, before the reset.
-  std::vector<Divergence> divergences;       ///< Envs among reset_env_ids that diverged.
+  /// len(reset_env_ids): how each ended episode ended (Outcome: 0 time-out, 1 success, 2 failure).
+  std::vector<std::uint8_t> outcomes;
+  std::vector<Divergence> divergences;  ///< Envs among reset_env_ids that diverged.
 };
 
 /// What a learner needs to know about a batch (the content of the EnvSpec message).

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,33 @@
 #include "jetbot_rl/rng.h"
 
 namespace jetbot_rl {
+
+struct ScannerSpec;
+class WorldModel;
+
+/// What a task may use of the batch it runs in, given once before any per-env call.
+struct TaskContext {
+  const ScannerSpec* scanner = nullptr;  ///< The laser scanner, or none.
+  const WorldModel* world = nullptr;     ///< The world, or none.
+  int action_dim = 0;
+  double control_dt = 0.0;  ///< [s]
+};
+
+/// What an env senses besides its root state, for tasks that use it; set before every
+/// terminated/reward/observe of the env (pointers valid until its next step).
+struct EnvSenses {
+  const float* scan = nullptr;  ///< The latest scan (REP 117 values), or none.
+  bool collided = false;        ///< The robot touched the world during the last step.
+  const float* action =
+      nullptr;  ///< The action of the last step (action_dim), zeros after a reset.
+};
+
+/// How an ended episode ended, as a task judges it (for success, collision and time-out rates).
+enum class Outcome : std::uint8_t {
+  kTimeOut = 0,  ///< Truncated (or a task without goals).
+  kSuccess = 1,  ///< The task's goal was reached.
+  kFailure = 2,  ///< It ended badly (a collision).
+};
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).
 struct RootState {
@@ -35,8 +63,32 @@ class Task {
   virtual std::string name() const = 0;
   /// One name per observation component.
   virtual std::vector<std::string> observationNames() const = 0;
+  /// Checks what the task needs of the batch (ConfigError naming what is missing) and keeps
+  /// what it uses; called once, before resize().
+  virtual void attach(const TaskContext& context) { (void)context; }
   /// Sizes per-env state; called once before any other per-env call.
   virtual void resize(int num_envs) { (void)num_envs; }
+  /// At a reset of an env with a world, after its start was drawn and before its obstacles:
+  /// draws what the task keeps free of obstacles (a goal) from `rng` and appends its points to
+  /// `keep_free`.
+  virtual void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
+                           std::vector<Eigen::Vector2d>& keep_free) {
+    (void)env;
+    (void)rng;
+    (void)world;
+    (void)start;
+    (void)keep_free;
+  }
+  /// Gives env `env`'s senses for the calls that follow (only tasks that need them keep them).
+  virtual void sense(int env, const EnvSenses& senses) {
+    (void)env;
+    (void)senses;
+  }
+  /// How env `env`'s episode ended, asked right after it ended (before its reset).
+  virtual Outcome outcome(int env) const {
+    (void)env;
+    return Outcome::kTimeOut;
+  }
   /// Called whenever env `env` is reset, after its root state was reset.
   virtual void resetEnv(int env, Rng& rng) {
     (void)env;

@@ -6,27 +6,43 @@
 
 #include "jetbot_rl/command_task.h"
 #include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
 
 /// The tasks makeTask() builds.
 enum class TaskKind {
-  kVelocity,  ///< VelocityTask: drive fast (the walkthrough's first part).
-  kCommand,   ///< CommandTask: turn to a random command and drive along it.
+  kVelocity,    ///< VelocityTask: drive fast (the walkthrough's first part).
+  kCommand,     ///< CommandTask: turn to a random command and drive along it.
+  kNavigation,  ///< NavigationTask: reach a goal without hitting anything.
 };
 
 inline const EnumNameList<TaskKind>& enumNames(TaskKind) {
   static const EnumNameList<TaskKind> names{{TaskKind::kVelocity, "velocity"},
-                                            {TaskKind::kCommand, "command"}};
+                                            {TaskKind::kCommand, "command"},
+                                            {TaskKind::kNavigation, "navigation"}};
   return names;
 }
 
-/// Which task an env runs: the `task` and `reward_variant` parameters.
+/// The reward variants of every task; each task takes its own (default: its first).
+enum class RewardVariant { kDefault, kExp, kSum, kProduct, kProgress, kSparse };
+
+inline const EnumNameList<RewardVariant>& enumNames(RewardVariant) {
+  static const EnumNameList<RewardVariant> names{
+      {RewardVariant::kDefault, "default"},   {RewardVariant::kExp, "exp"},
+      {RewardVariant::kSum, "sum"},           {RewardVariant::kProduct, "product"},
+      {RewardVariant::kProgress, "progress"}, {RewardVariant::kSparse, "sparse"}};
+  return names;
+}
+
+/// Which task an env runs: the `task`, `reward_variant` and `nav/...` parameters.
 struct TaskConfig {
   TaskKind task = TaskKind::kVelocity;
-  /// The command task's reward; ignored by the velocity task.
-  CommandTask::Variant reward_variant = CommandTask::Variant::kExp;
+  /// The task's reward: command exp (default), sum or product; navigation progress (default) or
+  /// sparse; the velocity task has one.
+  RewardVariant reward_variant = RewardVariant::kDefault;
+  NavigationConfig navigation;  ///< The navigation task's.
 };
 
 template <typename C, typename V>
@@ -35,10 +51,15 @@ IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
     "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm) or command "
     "(turn to a random command and drive along it).");
   v("reward_variant", c.reward_variant, AnyValue{},
-    "Command task's reward: exp (v_x exp(dot)), sum (v_x + dot) or product (v_x dot).");
+    "The task's reward: command: exp (v_x exp(dot), default), sum (v_x + dot) or product (v_x "
+    "dot); navigation: progress (default) or sparse; default: the task's first.");
+  visitFields(c.navigation, v);
 }
 
-/// Builds the configured task.
+/// The reward variant fits the task: ConfigError naming reward_variant otherwise.
+void checkFieldRules(const TaskConfig& config);
+
+/// Builds the configured task (ConfigError for a reward variant it does not take).
 std::unique_ptr<Task> makeTask(const TaskConfig& config);
 
 }  // namespace jetbot_rl

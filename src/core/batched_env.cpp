@@ -54,14 +54,45 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (!robot_) throw ModelError("no robot model given");
   if (!task_) throw ConfigError("invalid task = null: a task object is required");
   config_.dof_names = resolvedDofNames(config_, *robot_);
-  obs_dim_ = static_cast<int>(task_->observationNames().size());
   physics_ = std::make_unique<PhysicsModel>(robot_, config_);
-  randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
+  for (const auto& dof : physics_->dofs()) {
+    wheel_low_.push_back(static_cast<float>(-dof.velocity_limit));
+    wheel_high_.push_back(static_cast<float>(dof.velocity_limit));
+    dof_limits_.push_back(dof);
+  }
+  action_low_ = wheel_low_;
+  action_high_ = wheel_high_;
+  action_names_ = config_.dof_names;
+  if (config_.action_space == ActionSpace::kTwist) {
+    std::vector<double> limits(wheel_high_.begin(), wheel_high_.end());
+    try {
+      drive_ = std::make_unique<DiffDrive>(DiffDrive::fromRobot(
+          *robot_, config_.dof_names, limits, config_.wheel_radius, config_.wheel_separation));
+    } catch (const Error& e) {
+      throw ConfigError(std::string("invalid action_space = twist: it needs a differential "
+                                    "drive: ") +
+                        e.what());
+    }
+    // The fastest straight line and turn on the spot the wheels allow.
+    const double v = drive_->bodyTwist({limits[0], limits[1]}).linear;
+    const double w = std::abs(drive_->bodyTwist({-limits[0], limits[1]}).angular);
+    action_names_ = {"linear_x", "angular_z"};
+    action_low_ = {static_cast<float>(-std::abs(v)), static_cast<float>(-w)};
+    action_high_ = {static_cast<float>(std::abs(v)), static_cast<float>(w)};
+  }
   if (config_.world.enabled()) {
     world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
     world_shapes_ = std::make_unique<WorldShapes>(*world_);
   }
   scanner_ = resolveScanner(config_.scan, *robot_, config_.controlDt());
+  TaskContext context;
+  context.scanner = scanner_ ? &*scanner_ : nullptr;
+  context.world = world_.get();
+  context.action_dim = actionDim();
+  context.control_dt = config_.controlDt();
+  task_->attach(context);
+  obs_dim_ = static_cast<int>(task_->observationNames().size());
+  randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
   const int num_obstacles = config_.world.num_boxes + config_.world.num_cylinders;
 
   const int n = config_.num_envs;
@@ -79,11 +110,6 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
           std::make_unique<EnvWorld>(*physics_, *contexts_[w], world_shapes_.get(), num_obstacles);
     }
   });
-  for (const auto& dof : physics_->dofs()) {
-    action_low_.push_back(static_cast<float>(-dof.velocity_limit));
-    action_high_.push_back(static_cast<float>(dof.velocity_limit));
-    dof_limits_.push_back(dof);
-  }
   for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
     joint_names_.push_back(robot_->bodies()[b].joint_name);
     dof_of_joint_.push_back(-1);
@@ -93,7 +119,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     dof_of_joint_[body - 1] = static_cast<int>(d);
   }
   task_->resize(n);
-  targets_.assign(static_cast<std::size_t>(n) * actionDim(), 0.0f);
+  targets_.assign(static_cast<std::size_t>(n) * physics_->dofs().size(), 0.0f);
+  actions_.assign(static_cast<std::size_t>(n) * actionDim(), 0.0f);
+  outcome_.assign(n, 0);
   ended_.assign(n, 0);
   final_scratch_.assign(static_cast<std::size_t>(n) * obs_dim_, 0.0f);
   diverged_.assign(n, std::string());
@@ -138,17 +166,27 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   for (std::size_t i = 0; i < expected; ++i) {
     if (!std::isfinite(actions[i])) {
       std::ostringstream s;
-      s << "actions[env " << i / a << ", " << config_.dof_names[i % a] << "] = " << actions[i]
+      s << "actions[env " << i / a << ", " << action_names_[i % a] << "] = " << actions[i]
         << " is not finite";
       throw InputError(s.str());
     }
   }
-  if (randomizer_->noisesActions()) {
+  // The last action within its bounds, for the tasks that observe it.
+  for (std::size_t i = 0; i < expected; ++i) {
+    actions_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
+  }
+  if (drive_) {
+    // (v, omega) -> wheel targets: DiffDrive keeps the curvature within the wheels' limits.
+    const std::size_t dofs = wheel_low_.size();
+    for (int e = 0; e < n; ++e) {
+      const std::array<double, 2> wheels =
+          drive_->wheelTargets({actions_[2 * e], actions_[2 * e + 1]});
+      for (std::size_t d = 0; d < dofs; ++d) targets_[e * dofs + d] = static_cast<float>(wheels[d]);
+    }
+  } else if (randomizer_->noisesActions()) {
     std::copy(actions, actions + expected, targets_.begin());  // noise first, then clamping
   } else {
-    for (std::size_t i = 0; i < expected; ++i) {
-      targets_[i] = std::clamp(actions[i], action_low_[i % a], action_high_[i % a]);
-    }
+    std::copy(actions_.begin(), actions_.end(), targets_.begin());
   }
 
   for (int w = 0; w < pool_->size(); ++w) {
@@ -159,10 +197,12 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
 
   result_.reset_env_ids.clear();
   result_.final_observations.clear();
+  result_.outcomes.clear();
   result_.divergences.clear();
   for (int e = 0; e < n; ++e) {
     if (!ended_[e]) continue;
     result_.reset_env_ids.push_back(static_cast<std::uint32_t>(e));
+    result_.outcomes.push_back(outcome_[e]);
     const float* f = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     result_.final_observations.insert(result_.final_observations.end(), f, f + obs_dim_);
     if (!diverged_[e].empty()) {
@@ -188,11 +228,10 @@ void BatchedEnv::stepWorker(int w) {
 }
 
 void BatchedEnv::stepEnv(int e, WorkerContext& context) {
-  const int a = actionDim();
   const int last_step = config_.maxEpisodeLength() - 1;
   EnvWorld& world = *worlds_[e];
   world.useContext(context);
-  float* targets = &targets_[static_cast<std::size_t>(e) * a];
+  float* targets = &targets_[static_cast<std::size_t>(e) * wheel_low_.size()];
   if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
   world.setTargets(targets);
   world.clearCollided();
@@ -209,6 +248,7 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   diverged_[e] = world.divergence();
   const bool diverged = !diverged_[e].empty();
   if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
+  senseEnv(e);
   const bool terminated = !diverged && task_->terminated(e, state);
   const bool truncated =
       diverged || result_.episode_steps[e] >= static_cast<std::uint32_t>(last_step);
@@ -217,6 +257,7 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   result_.rewards[e] = diverged ? 0.0f : task_->reward(e, state);
   ended_[e] = terminated || truncated;
   if (ended_[e]) {
+    outcome_[e] = static_cast<std::uint8_t>(terminated ? task_->outcome(e) : Outcome::kTimeOut);
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
     if (diverged) {
@@ -226,6 +267,7 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
     }
     resetEnv(e);
     state = world.rootState();
+    senseEnv(e);
   }
   float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
   task_->observe(e, state, obs);
@@ -241,13 +283,25 @@ void BatchedEnv::resetEnv(int env) {
     EnvLayout& layout = layouts_[env];
     world_->drawStart(rngs_[env], layout);
     world.moveRobot(layout.start);
-    world_->drawObstacles(rngs_[env], {layout.start}, layout);
+    std::vector<Eigen::Vector2d> keep_free{layout.start};
+    task_->drawInWorld(env, rngs_[env], *world_, layout.start, keep_free);
+    world_->drawObstacles(rngs_[env], keep_free, layout);
     world.setObstacles(layout.obstacles);
     given_up_ += static_cast<std::uint64_t>(layout.given_up);
   }
   result_.episode_steps[env] = 0;
   task_->resetEnv(env, rngs_[env]);
+  collided_[env] = 0;
+  std::fill_n(actions_.begin() + static_cast<std::ptrdiff_t>(env) * actionDim(), actionDim(), 0.0f);
   if (scanner_) scanEnv(env);
+}
+
+void BatchedEnv::senseEnv(int env) {
+  EnvSenses senses;
+  senses.scan = scanner_ ? &scans_[static_cast<std::size_t>(env) * scanner_->samples] : nullptr;
+  senses.collided = collided_[env] != 0;
+  senses.action = &actions_[static_cast<std::size_t>(env) * actionDim()];
+  task_->sense(env, senses);
 }
 
 void BatchedEnv::scanEnv(int env) {
@@ -310,6 +364,7 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   for (int e = 0; e < n; ++e) {
     if (noisy && !selected[e]) continue;
     float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+    senseEnv(e);
     task_->observe(e, worlds_[e]->rootState(), obs);
     if (noisy) randomizer_->noiseObservation(e, obs);
   }
@@ -318,6 +373,7 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   std::fill(result_.truncated.begin(), result_.truncated.end(), 0);
   result_.reset_env_ids.clear();
   result_.final_observations.clear();
+  result_.outcomes.clear();
   result_.divergences.clear();
   return result_;
 }
@@ -333,7 +389,7 @@ BatchSpec BatchedEnv::spec() const {
   spec.max_episode_length = maxEpisodeLength();
   spec.task = task_->name();
   spec.observation_names = task_->observationNames();
-  spec.action_names = config_.dof_names;
+  spec.action_names = action_names_;
   return spec;
 }
 
@@ -401,7 +457,7 @@ double BatchedEnv::maxJointError(int env) const {
 
 double BatchedEnv::dofVelocity(int env, int dof) const {
   checkEnv(env);
-  if (dof < 0 || dof >= actionDim())
+  if (dof < 0 || dof >= static_cast<int>(wheel_low_.size()))
     throw InputError("dof " + std::to_string(dof) + " is out of range");
   return worlds_[env]->dofVelocity(dof);
 }

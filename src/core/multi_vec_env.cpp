@@ -100,6 +100,7 @@ const StepResult& MultiVecEnv::gather(const std::vector<const StepResult*>& resu
   r.episode_steps.clear();
   r.reset_env_ids.clear();
   r.final_observations.clear();
+  r.outcomes.clear();
   r.divergences.clear();
   const auto append = [](auto& to, const auto& from) {
     to.insert(to.end(), from.begin(), from.end());
@@ -114,6 +115,7 @@ const StepResult& MultiVecEnv::gather(const std::vector<const StepResult*>& resu
     append(r.episode_steps, p.episode_steps);
     for (std::uint32_t id : p.reset_env_ids) r.reset_env_ids.push_back(id + offset);
     append(r.final_observations, p.final_observations);
+    append(r.outcomes, p.outcomes);
     for (const Divergence& d : p.divergences) {
       r.divergences.push_back({d.env + offset, names_[k] + ": " + d.reason});
     }

@@ -1,11 +1,50 @@
 #include "jetbot_rl/task_factory.h"
 
-namespace jetbot_rl {
+#include "jetbot_rl/errors.h"
 
-std::unique_ptr<Task> makeTask(const TaskConfig& config) {
+namespace jetbot_rl {
+namespace {
+
+[[noreturn]] void wrongVariant(const TaskConfig& config, const char* choices) {
+  throwInvalid("reward_variant", "'" + enumName(config.reward_variant) + "'",
+               "the " + enumName(config.task) + " task takes " + choices);
+}
+
+}  // namespace
+
+void checkFieldRules(const TaskConfig& config) {
+  const RewardVariant v = config.reward_variant;
+  const bool any = v == RewardVariant::kDefault;
   switch (config.task) {
     case TaskKind::kCommand:
-      return std::make_unique<CommandTask>(config.reward_variant);
+      if (!any && v != RewardVariant::kExp && v != RewardVariant::kSum &&
+          v != RewardVariant::kProduct) {
+        wrongVariant(config, "exp, sum or product (or default)");
+      }
+      break;
+    case TaskKind::kNavigation:
+      if (!any && v != RewardVariant::kProgress && v != RewardVariant::kSparse) {
+        wrongVariant(config, "progress or sparse (or default)");
+      }
+      break;
+    case TaskKind::kVelocity:  // one reward: the variant is ignored
+      break;
+  }
+}
+
+std::unique_ptr<Task> makeTask(const TaskConfig& config) {
+  validateConfig(config);
+  switch (config.task) {
+    case TaskKind::kCommand:
+      return std::make_unique<CommandTask>(
+          config.reward_variant == RewardVariant::kSum       ? CommandTask::Variant::kSum
+          : config.reward_variant == RewardVariant::kProduct ? CommandTask::Variant::kProduct
+                                                             : CommandTask::Variant::kExp);
+    case TaskKind::kNavigation:
+      return std::make_unique<NavigationTask>(config.navigation,
+                                              config.reward_variant == RewardVariant::kSparse
+                                                  ? NavigationTask::Variant::kSparse
+                                                  : NavigationTask::Variant::kProgress);
     case TaskKind::kVelocity:
       break;
   }

@@ -41,7 +41,7 @@ class EnvRejectedError(RuntimeError):
 class Batch(object):
     """One node's EnvStep as numpy arrays (shapes from the spec)."""
     __slots__ = ('step', 'obs', 'rewards', 'terminated', 'truncated', 'episode_steps',
-                 'reset_env_ids', 'final_obs')
+                 'reset_env_ids', 'final_obs', 'outcomes')
 
     def __init__(self, msg, num_envs, obs_dim, node):
         # np.asarray is free for numpy_msg arrays; a plain message (a service answer, or a
@@ -54,10 +54,14 @@ class Batch(object):
         self.episode_steps = np.asarray(msg.episode_steps, dtype=np.uint32)
         self.reset_env_ids = np.asarray(msg.reset_env_ids, dtype=np.uint32)
         self.final_obs = np.asarray(msg.final_observations, dtype=np.float32).reshape(-1, obs_dim)
+        outcomes = msg.outcomes
+        self.outcomes = (np.frombuffer(outcomes, dtype=np.uint8) if isinstance(outcomes, (bytes, bytearray))
+                         else np.asarray(outcomes, dtype=np.uint8))
         if (self.obs.shape[0] != num_envs or self.rewards.shape != (num_envs,)
                 or self.terminated.shape != (num_envs,) or self.truncated.shape != (num_envs,)
                 or self.episode_steps.shape != (num_envs,)
-                or self.final_obs.shape[0] != self.reset_env_ids.shape[0]):
+                or self.final_obs.shape[0] != self.reset_env_ids.shape[0]
+                or self.outcomes.shape[0] != self.reset_env_ids.shape[0] or np.any(self.outcomes > 2)):
             raise RuntimeError('%s: EnvStep %d does not match its spec (%d envs, obs_dim %d)'
                                % (node, msg.step, num_envs, obs_dim))
 

@@ -3,6 +3,8 @@
 // policy's mean action in-process on envs configured by the YAML files (EnvSetup: the env node's
 // parameter names: task, reward_variant, randomisation ranges, ...), and prints the mean reward
 // per step over every env step. For evaluating a policy on perturbed physics (docs/sim_to_real.md).
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -21,12 +23,15 @@ int main(int argc, char** argv) {
   env_options.urdf = JETBOT_RL_DEFAULT_URDF;
   std::string checkpoint, task;
   long long seed = 1000;
+  int episodes = 0;
   std::string error;
   const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
     if (option == "--checkpoint") {
       checkpoint = value;
     } else if (option == "--task") {
       task = value;
+    } else if (option == "--episodes") {
+      parseWholeNumber(option, value, 0, 10000000, episodes, error);
     } else if (option == "--seed") {
       parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
     } else {
@@ -41,7 +46,7 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr,
         "jetbot_rl_evaluate: %s\nusage: jetbot_rl_evaluate --checkpoint PATH [--task NAME] "
-        "[--seed S] %s\n",
+        "[--seed S] [--episodes N] %s\n",
         error.c_str(), EnvProgramOptions::usage());
     return 2;
   }
@@ -58,12 +63,36 @@ int main(int argc, char** argv) {
     policy.setActionLimits(env.actionLow(), env.actionHigh());
     std::vector<float> actions;
     double reward_sum = 0.0;
-    for (int s = 0; s < steps; ++s) {
+    // With --episodes: the first ceil(N / envs) episodes of every env (a quota per env, so that
+    // short episodes are not over-counted), the steps a cap.
+    const int quota = episodes > 0 ? (episodes + envs - 1) / envs : 0;
+    std::vector<int> done(envs, 0);
+    std::int64_t outcome_count[3] = {0, 0, 0}, episode_steps = 0, counted = 0, full = 0;
+    int s = 0;
+    for (; s < steps && (quota == 0 || full < envs); ++s) {
       policy.act(env.state().observations, envs, actions);
-      for (float r : env.step(actions).rewards) reward_sum += r;
+      std::vector<std::uint32_t> lengths = env.state().episode_steps;
+      const StepResult& r = env.step(actions);
+      for (float x : r.rewards) reward_sum += x;
+      for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
+        const std::uint32_t e = r.reset_env_ids[i];
+        if (quota == 0 || done[e] >= quota) continue;
+        ++outcome_count[std::min<std::uint8_t>(r.outcomes[i], 2)];
+        episode_steps += lengths[e] + 1;
+        ++counted;
+        if (++done[e] == quota) ++full;
+      }
     }
-    std::printf("task=%s envs=%d steps=%d\n", env.task().name().c_str(), envs, steps);
-    std::printf("mean_reward_per_step=%.4f\n", reward_sum / (static_cast<double>(steps) * envs));
+    std::printf("task=%s envs=%d steps=%d\n", env.task().name().c_str(), envs, s);
+    std::printf("mean_reward_per_step=%.4f\n", reward_sum / (static_cast<double>(s) * envs));
+    if (quota > 0) {
+      const double n = std::max<std::int64_t>(counted, 1);
+      std::printf("episodes=%lld%s\n", static_cast<long long>(counted),
+                  full < envs ? " (the steps ran out first)" : "");
+      std::printf("success_rate=%.4f\ncollision_rate=%.4f\ntimeout_rate=%.4f\n",
+                  outcome_count[1] / n, outcome_count[2] / n, outcome_count[0] / n);
+      std::printf("mean_episode_steps=%.1f\n", episode_steps / n);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "jetbot_rl_evaluate: %s\n", e.what());
     return 1;

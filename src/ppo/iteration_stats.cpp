@@ -35,6 +35,7 @@ std::vector<std::string> statsColumns(const std::vector<std::string>& obs_names)
                                    "collection_s",        "update_s",        "value_loss",
                                    "surrogate_loss",      "entropy",         "approx_kl",
                                    "learning_rate",       "action_std",      "episodes",
+                                   "success_rate",        "collision_rate",  "timeout_rate",
                                    "obs_samples"};
   for (const std::string& name : obs_names) columns.push_back("obs_mean_" + name);
   return columns;
@@ -56,6 +57,9 @@ std::vector<double> statsValues(const IterationStats& s) {
                              s.update.learning_rate,
                              s.action_std,
                              static_cast<double>(s.episodes),
+                             s.success_rate,
+                             s.collision_rate,
+                             s.timeout_rate,
                              static_cast<double>(s.obs_samples)};
   values.insert(values.end(), s.obs_means.begin(), s.obs_means.end());
   return values;
@@ -78,16 +82,22 @@ std::string csvRow(const IterationStats& s) {
 }
 
 std::string progressLine(const IterationStats& s) {
+  char outcomes[96] = "";
+  if (s.success_rate > 0.0 || s.collision_rate > 0.0) {  // a task with goals
+    std::snprintf(outcomes, sizeof(outcomes), " | success %.2f collision %.2f", s.success_rate,
+                  s.collision_rate);
+  }
   char buf[512];
   std::snprintf(buf, sizeof(buf),
-                "iteration %lld/%lld | env steps %lld | reward/step %.4f | episode return %s | "
+                "iteration %lld/%lld | env steps %lld | reward/step %.4f | episode return %s%s | "
                 "%.0f env steps/s | elapsed %s | left %s",
                 static_cast<long long>(s.iteration), static_cast<long long>(s.iterations),
                 static_cast<long long>(s.env_steps), s.mean_reward_per_step,
                 std::isnan(s.mean_episode_return)
                     ? "-"
                     : number(std::round(s.mean_episode_return * 100) / 100).c_str(),
-                s.env_steps_per_s, duration(s.elapsed_s).c_str(), duration(s.time_left_s).c_str());
+                outcomes, s.env_steps_per_s, duration(s.elapsed_s).c_str(),
+                duration(s.time_left_s).c_str());
   return buf;
 }
 

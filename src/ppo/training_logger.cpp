@@ -1,5 +1,6 @@
 #include "jetbot_rl/ppo/training_logger.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -73,6 +74,7 @@ void TrainingLogger::recordObservations(const StepResult& state) {
 void TrainingLogger::recordStep(const StepResult& result) {
   for (float r : result.rewards) reward_sum_ += r;
   reward_count_ += static_cast<std::int64_t>(result.rewards.size());
+  for (std::uint8_t o : result.outcomes) ++outcomes_[std::min<std::uint8_t>(o, 2)];
   tracker_.add(result);
 }
 
@@ -80,6 +82,12 @@ bool TrainingLogger::endIteration(IterationStats& s) {
   s.mean_reward_per_step = reward_count_ > 0 ? reward_sum_ / reward_count_ : 0.0;
   s.mean_episode_return = tracker_.meanReturn();
   s.episodes = tracker_.episodes();
+  const double ended = static_cast<double>(outcomes_[0] + outcomes_[1] + outcomes_[2]);
+  const double none = std::nan("");
+  s.timeout_rate = ended > 0 ? outcomes_[0] / ended : none;
+  s.success_rate = ended > 0 ? outcomes_[1] / ended : none;
+  s.collision_rate = ended > 0 ? outcomes_[2] / ended : none;
+  std::fill(std::begin(outcomes_), std::end(outcomes_), 0);
   s.obs_names = options_.obs_names;
   s.obs_samples = obs_count_;
   s.obs_means.clear();

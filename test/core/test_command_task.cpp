@@ -152,7 +152,7 @@ TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
     fieldsFromYaml("task: maze", config);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("task = 'maze': must be velocity or command"),
+    EXPECT_NE(std::string(e.what()).find("task = 'maze': must be velocity, command or navigation"),
               std::string::npos)
         << e.what();
   }

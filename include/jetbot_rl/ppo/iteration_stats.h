@@ -24,6 +24,9 @@ struct IterationStats {
   UpdateStats update;                 ///< Losses, entropy, KL, learning rate.
   double action_std = 0.0;            ///< Mean policy std [normalised action units].
   std::int64_t episodes = 0;          ///< Episodes completed so far.
+  /// Of the episodes that ended in this iteration: the fractions that reached the task's goal,
+  /// ended badly (a collision) and timed out (StepResult::outcomes); NaN when none ended.
+  double success_rate = 0.0, collision_rate = 0.0, timeout_rate = 0.0;
   /// Names of the observation components (BatchSpec::observation_names): obs_mean_<name> columns.
   std::vector<std::string> obs_names;
   /// Per observation component: mean over the rollout's late samples (see RunnerOptions::
@@ -34,7 +37,8 @@ struct IterationStats {
 
 /// Names of the CSV columns / ~training_stats entries, in order; starts with the required
 /// iteration,env_steps,mean_reward_per_step,mean_episode_return,env_steps_per_s,elapsed_s,
-/// ends with obs_samples and one obs_mean_<name> per entry of `obs_names`.
+/// then collection_s ... episodes, success_rate, collision_rate, timeout_rate; ends with
+/// obs_samples and one obs_mean_<name> per entry of `obs_names`.
 std::vector<std::string> statsColumns(const std::vector<std::string>& obs_names = {});
 /// The values of statsColumns(s.obs_names), in order.
 std::vector<double> statsValues(const IterationStats& s);

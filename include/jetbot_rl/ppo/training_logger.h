@@ -78,8 +78,9 @@ class TrainingLogger {
   std::function<void(const std::string&)> sink_;
   double reward_sum_ = 0.0;
   std::int64_t reward_count_ = 0;
-  std::vector<double> obs_sum_;  ///< Per component: sum over this rollout's late samples.
-  std::int64_t obs_count_ = 0;   ///< Late samples (env steps) in this rollout.
+  std::int64_t outcomes_[3] = {0, 0, 0};  ///< This iteration's ended episodes per Outcome.
+  std::vector<double> obs_sum_;           ///< Per component: sum over this rollout's late samples.
+  std::int64_t obs_count_ = 0;            ///< Late samples (env steps) in this rollout.
 };
 
 }  // namespace ppo

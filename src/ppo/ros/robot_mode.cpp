@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/ppo/ros/navigation_driver.h"
 #include "jetbot_rl/ros/common/drop_counter.h"
 #include "jetbot_rl/ros/common/param_reader.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
@@ -154,6 +155,15 @@ void checkFieldRules(const RobotModeParams& p) {
   if (p.dof_names.size() != 2) {
     throwInvalid("dof_names", listText(p.dof_names), "must name the two wheel joints");
   }
+  if (p.twist_limits.size() != 2) {
+    throwInvalid("twist_limits", listText(p.twist_limits), "must be [v_max, omega_max]");
+  }
+  if (p.scan_angles.size() != 2 || p.scan_angles[0] > p.scan_angles[1]) {
+    throwInvalid("scan_angles", listText(p.scan_angles), "must be [first, last], first <= last");
+  }
+  if (p.scan_range.size() != 2 || !(p.scan_range[0] < p.scan_range[1])) {
+    throwInvalid("scan_range", listText(p.scan_range), "must be [min, max], min < max");
+  }
 }
 
 int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
@@ -161,13 +171,21 @@ int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
   const std::optional<RobotModeParams> params = loadParams<RobotModeParams>(pnh);
   if (!params) return 1;
   try {
-    RobotDriver driver(nh, pnh, policy, *params);
-    ros::AsyncSpinner spinner(1);
-    spinner.start();
-    // The signal handler only sets `stop`, which nothing can wait on: checked every 50 ms.
-    while (!stop.load() && ros::ok()) ros::WallDuration(0.05).sleep();
-    spinner.stop();
-    driver.stop();
+    const auto spin = [&stop](auto& driver) {
+      ros::AsyncSpinner spinner(1);
+      spinner.start();
+      // The signal handler only sets `stop`, which nothing can wait on: checked every 50 ms.
+      while (!stop.load() && ros::ok()) ros::WallDuration(0.05).sleep();
+      spinner.stop();
+      driver.stop();
+    };
+    if (params->task.task == TaskKind::kNavigation) {
+      NavigationDriver driver(nh, pnh, policy, *params, makeKinematics(nh, *params));
+      spin(driver);
+    } else {
+      RobotDriver driver(nh, pnh, policy, *params);
+      spin(driver);
+    }
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;

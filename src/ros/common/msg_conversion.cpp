@@ -27,6 +27,7 @@ void toMsg(const StepResult& r, int num_envs, int obs_dim, const ros::Time& stam
   msg.episode_steps.assign(r.episode_steps.begin(), r.episode_steps.end());
   msg.reset_env_ids.assign(r.reset_env_ids.begin(), r.reset_env_ids.end());
   msg.final_observations.assign(r.final_observations.begin(), r.final_observations.end());
+  msg.outcomes.assign(r.outcomes.begin(), r.outcomes.end());
 }
 
 void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
@@ -41,6 +42,13 @@ void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
   checkSize("episode_steps", msg.episode_steps.size(), n, msg.step);
   checkSize("final_observations", msg.final_observations.size(), msg.reset_env_ids.size() * obs_dim,
             msg.step);
+  checkSize("outcomes", msg.outcomes.size(), msg.reset_env_ids.size(), msg.step);
+  for (std::uint8_t o : msg.outcomes) {
+    if (o > EnvStep::OUTCOME_FAILURE) {
+      throw Error("EnvStep " + std::to_string(msg.step) + ": outcomes holds " + std::to_string(o) +
+                  ", not 0, 1 or 2");
+    }
+  }
   for (std::uint32_t id : msg.reset_env_ids) {
     if (id >= n) {
       throw Error("EnvStep " + std::to_string(msg.step) + ": reset_env_ids holds " +
@@ -55,6 +63,7 @@ void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
   r.episode_steps.assign(msg.episode_steps.begin(), msg.episode_steps.end());
   r.reset_env_ids.assign(msg.reset_env_ids.begin(), msg.reset_env_ids.end());
   r.final_observations.assign(msg.final_observations.begin(), msg.final_observations.end());
+  r.outcomes.assign(msg.outcomes.begin(), msg.outcomes.end());
   r.divergences.clear();
 }
 

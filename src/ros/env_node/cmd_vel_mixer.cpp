@@ -7,8 +7,11 @@
 
 namespace jetbot_rl {
 
-CmdVelMixer::CmdVelMixer(DiffDrive drive, int envs, double timeout)
-    : drive_(std::move(drive)), timeout_(timeout), commands_(static_cast<std::size_t>(envs)) {}
+CmdVelMixer::CmdVelMixer(DiffDrive drive, int envs, double timeout, bool twist_actions)
+    : drive_(std::move(drive)),
+      twist_actions_(twist_actions),
+      timeout_(timeout),
+      commands_(static_cast<std::size_t>(envs)) {}
 
 void CmdVelMixer::set(int env, const geometry_msgs::Twist& msg, SteadyTime received) {
   if (env < 0 || env >= envs()) {
@@ -25,9 +28,11 @@ void CmdVelMixer::set(int env, const geometry_msgs::Twist& msg, SteadyTime recei
       throw InputError(s.str());
     }
   }
-  const std::array<double, 2> wheels = drive_.wheelTargets({msg.linear.x, msg.angular.z});
+  const std::array<double, 2> action = twist_actions_
+                                           ? std::array<double, 2>{msg.linear.x, msg.angular.z}
+                                           : drive_.wheelTargets({msg.linear.x, msg.angular.z});
   Command& c = commands_[static_cast<std::size_t>(env)];
-  c.targets = {static_cast<float>(wheels[0]), static_cast<float>(wheels[1])};
+  c.targets = {static_cast<float>(action[0]), static_cast<float>(action[1])};
   c.received = received;
   c.valid = true;
 }

@@ -149,7 +149,8 @@ void EnvServer::enableCmdVel(const DiffDrive& drive, int envs, double timeout) {
     throw ConfigError("cmd_vel needs a differential drive of 2 dofs, the env has " +
                       std::to_string(env_.actionDim()));
   }
-  cmd_vel_ = std::make_unique<CmdVelMixer>(drive, std::min(envs, env_.numEnvs()), timeout);
+  cmd_vel_ = std::make_unique<CmdVelMixer>(drive, std::min(envs, env_.numEnvs()), timeout,
+                                           env_.config().action_space == ActionSpace::kTwist);
 }
 
 bool EnvServer::onCmdVel(int env, const geometry_msgs::Twist& msg, SteadyTime received) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/env_config.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/task_factory.h"
 
@@ -31,6 +32,19 @@ struct RobotModeParams {
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
   /// The wheel velocity limit the policy was trained with [rad/s]: its actions span +-this.
   double wheel_velocity_limit = 20.0;
+  // ---- the navigation task (NavigationDriver) ----
+  ActionSpace policy_actions = ActionSpace::kWheels;  ///< What the policy's actions are.
+  /// With twist actions: the bounds the policy was trained with [m/s, rad/s] (v, omega).
+  std::vector<double> twist_limits{0.6, 10.6667};
+  std::string scan_topic = "scan";                    ///< sensor_msgs/LaserScan of the robot.
+  std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
+  std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
+  double scan_timeout = 0.5;                          ///< An older scan stops the robot [s, wall].
+  /// The policy's beams: [first, last] angle [rad], nav/beams of them evenly spread, in the
+  /// robot's base frame (as config/navigation_env.yaml trains them).
+  std::vector<double> scan_angles{-3.14159, 2.87979};
+  std::vector<double> scan_range{0.15, 3.5};  ///< The policy's [range_min, range_max] [m].
+  std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
 };
 
 template <typename C, typename V>
@@ -51,9 +65,33 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "The two wheel joints in the policy's action order (used with robot_description).");
   v("wheel_velocity_limit", c.wheel_velocity_limit, positive("rad/s"),
     "The wheel velocity limit the policy was trained with: its actions span +-this.");
+  v("policy_actions", c.policy_actions, AnyValue{},
+    "What the policy's actions are: wheels (wheel targets, turned into a Twist) or twist (v, "
+    "omega, published as they are: a policy trained with action_space twist).");
+  v("twist_limits", c.twist_limits, EachValue<double>{positive("")},
+    "Twist actions: [v_max [m/s], omega_max [rad/s]], the bounds the policy was trained with "
+    "(the Jetbot's: 0.6, 10.67).");
+  v("scan_topic", c.scan_topic, AnyValue{}, "Navigation: the robot's sensor_msgs/LaserScan.");
+  v("goal_topic", c.goal_topic, AnyValue{},
+    "Navigation: geometry_msgs/PoseStamped goals (RViz's 2D Nav Goal), transformed into the "
+    "odometry frame with tf2.");
+  v("outcome_topic", c.outcome_topic, AnyValue{},
+    "Navigation: std_msgs/String, what became of each goal (reached, refused: ...).");
+  v("scan_timeout", c.scan_timeout, positive("s, wall"),
+    "Navigation: an older scan stops the robot.");
+  v("scan_angles", c.scan_angles,
+    EachValue<double>{Range<double>{-10.0, 10.0, false, false, "rad"}},
+    "Navigation: [first, last] angle of the policy's nav/beams beams in the robot's base frame "
+    "(config/navigation_env.yaml's); the robot's scan is resampled to them.");
+  v("scan_range", c.scan_range, EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
+    "Navigation: the policy's [range_min, range_max]: readings are clamped into it and divided by "
+    "range_max.");
+  v("map_topic", c.map_topic, AnyValue{"", "empty: none"},
+    "Navigation: nav_msgs/OccupancyGrid in the odometry frame; a goal off its free cells is "
+    "refused.");
 }
 
-/// dof_names must name two wheel joints.
+/// dof_names must name two wheel joints; twist_limits, scan_angles and scan_range two values.
 void checkFieldRules(const RobotModeParams& params);
 
 /// Runs the robot mode until `stop` or ROS shutdown: reads the parameters above under `pnh`,

@@ -20,9 +20,10 @@ class CmdVelMixer {
  public:
   using SteadyTime = std::chrono::steady_clock::time_point;
 
-  /// Commands for envs 0..envs-1 of a batch whose action_dim is 2 (the drive's dofs); `timeout`
+  /// Commands for envs 0..envs-1 of a batch whose action_dim is 2 (the drive's dofs, or with
+  /// `twist_actions` the env's (v, omega) actions, which take a command as it is); `timeout`
   /// [s, wall].
-  CmdVelMixer(DiffDrive drive, int envs, double timeout);
+  CmdVelMixer(DiffDrive drive, int envs, double timeout, bool twist_actions = false);
 
   /// Converts `msg` into env `env`'s wheel targets [rad/s], received at `received`. Throws
   /// InputError naming the component when any of the six is NaN or infinite (or the env is
@@ -50,6 +51,7 @@ class CmdVelMixer {
   }
 
   DiffDrive drive_;
+  bool twist_actions_;
   std::chrono::duration<double> timeout_;
   std::vector<Command> commands_;
 };

@@ -1,0 +1,121 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/task.h"
+
+namespace jetbot_rl {
+
+/// The navigation task's parameters (`nav/...`).
+struct NavigationConfig {
+  int beams = 24;                               ///< Beams taken from the scan, evenly spread.
+  std::vector<double> goal_distance{1.0, 3.0};  ///< [min, max] from the start [m].
+  double goal_clearance = 0.3;       ///< Free radius around the goal: walls, map, obstacles [m].
+  double goal_radius = 0.2;          ///< Reached within this of the root link origin [m].
+  double progress_reward = 10.0;     ///< Per metre of progress towards the goal.
+  double goal_reward = 10.0;         ///< On reaching it.
+  double collision_penalty = 10.0;   ///< On a collision.
+  double step_cost = 0.01;           ///< Per control step.
+  double proximity_distance = 0.25;  ///< Closer than this, a scan range costs [m].
+  double proximity_penalty = 0.1;  ///< Per step at range 0, falling linearly to 0 at the distance.
+};
+
+template <typename C, typename V>
+IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
+  v("nav/beams", c.beams, inRange(1, 100000),
+    "Beams of the observation, taken evenly from the scan (beam i: sample i x samples / beams) "
+    "and divided by range_max (+inf as 1, -inf as range_min / range_max).");
+  v("nav/goal_distance", c.goal_distance, intervalOf(positiveUpTo(1000.0, "m")),
+    "Range of the goal's distance from the start, drawn at every reset (its direction uniform).");
+  v("nav/goal_clearance", c.goal_clearance, atLeast(0.0, "m"),
+    "No wall, map obstacle cell or obstacle within this of the goal (obstacles keep "
+    "world/start_clearance from it too).");
+  v("nav/goal_radius", c.goal_radius, positiveUpTo(100.0, "m"),
+    "The goal is reached (success, terminated) within this of the robot's root link origin.");
+  v("nav/progress_reward", c.progress_reward, atLeast(0.0, "1/m"),
+    "progress variant: reward per metre the robot got closer to the goal in a step.");
+  v("nav/goal_reward", c.goal_reward, atLeast(0.0), "Reward on reaching the goal.");
+  v("nav/collision_penalty", c.collision_penalty, atLeast(0.0),
+    "Penalty on a collision with the world (terminated, failure).");
+  v("nav/step_cost", c.step_cost, atLeast(0.0), "Cost of every control step.");
+  v("nav/proximity_distance", c.proximity_distance, atLeast(0.0, "m"),
+    "A scan range below this costs (the robot keeps off obstacles before it touches them).");
+  v("nav/proximity_penalty", c.proximity_penalty, atLeast(0.0),
+    "Per step: this x (1 - closest range / proximity_distance) when the closest range of the scan "
+    "is below proximity_distance.");
+}
+
+/**
+ * Goal-reaching without hitting anything (docs/navigation.md): at every reset each env draws a
+ * goal (distance range from the start, clearance from the world, from its stream); the robot
+ * observes K beams of its laser scan, the goal in its own frame, its forward speed and yaw rate
+ * and its last action; it is rewarded for progress towards the goal (variant progress) or only
+ * for the outcome (sparse), plus goal_reward on reaching it, minus collision_penalty on a
+ * collision and step_cost per step; reaching the goal or colliding terminates the episode.
+ * Needs a laser scanner.
+ */
+class NavigationTask : public Task {
+ public:
+  enum class Variant { kProgress, kSparse };
+
+  explicit NavigationTask(const NavigationConfig& config = NavigationConfig(),
+                          Variant variant = Variant::kProgress);
+
+  std::string name() const override { return "navigation"; }
+  std::vector<std::string> observationNames() const override;
+  void attach(const TaskContext& context) override;
+  void resize(int num_envs) override;
+  void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
+                   std::vector<Eigen::Vector2d>& keep_free) override;
+  void resetEnv(int env, Rng& rng) override;
+  void sense(int env, const EnvSenses& senses) override;
+  void observe(int env, const RootState& state, float* obs) const override;
+  float reward(int env, const RootState& state) const override;
+  bool terminated(int env, const RootState& state) const override;
+  Outcome outcome(int env) const override { return static_cast<Outcome>(outcome_.at(env)); }
+  std::vector<std::string> arrowNames() const override { return {"goal"}; }
+  Eigen::Vector2d arrowDirection(int env, int arrow) const override;
+
+  /// Env `env`'s goal in the env frame [m].
+  const Eigen::Vector2d& goal(int env) const { return goals_.at(env); }
+  /// Sets env `env`'s goal (a tool or test), keeping its progress reference.
+  void setGoal(int env, const Eigen::Vector2d& goal);
+  const NavigationConfig& config() const { return config_; }
+  Variant variant() const { return variant_; }
+
+  /// The observation as it is computed from its parts, for a robot elsewhere (the policy node's
+  /// robot mode): `beams` finite ranges divided by range_max, the goal in the robot frame [m],
+  /// forward speed [m/s], yaw rate [rad/s] and the last action.
+  static void observation(const std::vector<float>& beams, const Eigen::Vector2d& goal_in_robot,
+                          double forward_speed, double yaw_rate, const float* action,
+                          int action_dim, float* obs);
+
+ private:
+  /// The action's size: the batch's, or 2 (wheels or a twist) before attach().
+  int actionDim() const { return context_.action_dim > 0 ? context_.action_dim : 2; }
+  double distance(int env, const RootState& state) const;
+  void drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start, const WorldModel* world);
+
+  NavigationConfig config_;
+  Variant variant_;
+  TaskContext context_;
+  std::vector<int> beam_index_;         // per observation beam: its sample
+  std::vector<Eigen::Vector2d> goals_;  // per env
+  std::vector<unsigned char> drawn_;    // per env: the goal was drawn in the world at this reset
+  std::vector<EnvSenses> senses_;       // per env
+  mutable std::vector<double> last_distance_;      // per env: to the goal after the last step
+  mutable std::vector<unsigned char> outcome_;     // per env: of the episode that ended
+  mutable std::vector<Eigen::Vector2d> position_;  // per env: last observed root position
+};
+
+inline const EnumNameList<NavigationTask::Variant>& enumNames(NavigationTask::Variant) {
+  static const EnumNameList<NavigationTask::Variant> names{
+      {NavigationTask::Variant::kProgress, "progress"},
+      {NavigationTask::Variant::kSparse, "sparse"}};
+  return names;
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,184 @@
+#include "jetbot_rl/navigation_task.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/laser_scanner.h"
+#include "jetbot_rl/world_model.h"
+
+namespace jetbot_rl {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double yawOf(const RootState& state) {
+  const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+}  // namespace
+
+NavigationTask::NavigationTask(const NavigationConfig& config, Variant variant)
+    : config_(config), variant_(variant) {
+  validateConfig(config_);
+}
+
+std::vector<std::string> NavigationTask::observationNames() const {
+  std::vector<std::string> names;
+  for (int i = 0; i < config_.beams; ++i) names.push_back("beam_" + std::to_string(i));
+  for (const char* n : {"goal_distance", "goal_cos", "goal_sin", "lin_vel_b_x", "ang_vel_z"}) {
+    names.push_back(n);
+  }
+  for (int a = 0; a < actionDim(); ++a) {
+    names.push_back("last_action_" + std::to_string(a));
+  }
+  return names;
+}
+
+void NavigationTask::attach(const TaskContext& context) {
+  context_ = context;
+  if (!context.scanner) {
+    throw ConfigError(
+        "invalid task = navigation: it observes a laser scan; give the robot a scanner (scan/link, "
+        "or a robot description with a Gazebo ray sensor block)");
+  }
+  if (config_.beams > context.scanner->samples) {
+    throwInvalid(
+        "nav/beams", config_.beams,
+        "must be <= the scanner's samples (" + std::to_string(context.scanner->samples) + ")");
+  }
+  beam_index_.clear();
+  for (int i = 0; i < config_.beams; ++i) {
+    beam_index_.push_back(
+        static_cast<int>(static_cast<long long>(i) * context.scanner->samples / config_.beams));
+  }
+}
+
+void NavigationTask::resize(int num_envs) {
+  goals_.assign(num_envs, Eigen::Vector2d(config_.goal_distance[0], 0.0));
+  drawn_.assign(num_envs, 0);
+  senses_.assign(num_envs, EnvSenses());
+  last_distance_.assign(num_envs, config_.goal_distance[0]);
+  outcome_.assign(num_envs, static_cast<unsigned char>(Outcome::kTimeOut));
+  position_.assign(num_envs, Eigen::Vector2d::Zero());
+}
+
+void NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start,
+                                    const WorldModel* world) {
+  // Distance and direction from the env's stream; with a world, redrawn until the goal keeps its
+  // clearance (the clearest draw stands in when none does).
+  const int tries = world ? world->config().placement_tries : 1;
+  double best_clearance = -1.0;
+  for (int k = 0; k < tries; ++k) {
+    const double d = config_.goal_distance[0] +
+                     (config_.goal_distance[1] - config_.goal_distance[0]) * rng.uniform();
+    const double angle = 2.0 * kPi * rng.uniform();
+    const Eigen::Vector2d goal = start + d * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const double clearance = world ? world->staticClearance(goal) : 1e9;
+    const bool inside = !world || world->region().isEmpty() || world->region().contains(goal);
+    if (inside && clearance > best_clearance) {
+      best_clearance = clearance;
+      goals_[env] = goal;
+    }
+    if (inside && clearance >= config_.goal_clearance) break;
+  }
+  last_distance_[env] = (goals_[env] - start).norm();
+  position_[env] = start;
+}
+
+void NavigationTask::drawInWorld(int env, Rng& rng, const WorldModel& world,
+                                 const Eigen::Vector2d& start,
+                                 std::vector<Eigen::Vector2d>& keep_free) {
+  drawGoalAround(env, rng, start, &world);
+  drawn_[env] = 1;
+  keep_free.push_back(goals_[env]);
+}
+
+void NavigationTask::resetEnv(int env, Rng& rng) {
+  if (!drawn_[env]) drawGoalAround(env, rng, Eigen::Vector2d::Zero(), nullptr);
+  drawn_[env] = 0;
+  outcome_[env] = static_cast<unsigned char>(Outcome::kTimeOut);
+}
+
+void NavigationTask::sense(int env, const EnvSenses& senses) { senses_[env] = senses; }
+
+void NavigationTask::setGoal(int env, const Eigen::Vector2d& goal) {
+  if (!goal.allFinite()) throw InputError("goal of env " + std::to_string(env) + " is not finite");
+  goals_.at(env) = goal;
+}
+
+double NavigationTask::distance(int env, const RootState& state) const {
+  return (goals_[env] - state.position.head<2>()).norm();
+}
+
+void NavigationTask::observation(const std::vector<float>& beams,
+                                 const Eigen::Vector2d& goal_in_robot, double forward_speed,
+                                 double yaw_rate, const float* action, int action_dim, float* obs) {
+  std::size_t k = 0;
+  for (float b : beams) obs[k++] = b;
+  const double d = goal_in_robot.norm();
+  obs[k++] = static_cast<float>(d);
+  obs[k++] = static_cast<float>(d > 1e-9 ? goal_in_robot.x() / d : 1.0);
+  obs[k++] = static_cast<float>(d > 1e-9 ? goal_in_robot.y() / d : 0.0);
+  obs[k++] = static_cast<float>(forward_speed);
+  obs[k++] = static_cast<float>(yaw_rate);
+  for (int a = 0; a < action_dim; ++a) obs[k++] = action ? action[a] : 0.0f;
+}
+
+void NavigationTask::observe(int env, const RootState& state, float* obs) const {
+  const EnvSenses& s = senses_[env];
+  const ScannerSpec& scanner = *context_.scanner;
+  thread_local std::vector<float> beams;
+  beams.resize(beam_index_.size());
+  for (std::size_t i = 0; i < beam_index_.size(); ++i) {
+    const float r = s.scan ? finiteRange(s.scan[beam_index_[i]], scanner) : kNoReturn;
+    beams[i] = (s.scan ? r : static_cast<float>(scanner.range_max)) /
+               static_cast<float>(scanner.range_max);
+  }
+  const double yaw = yawOf(state);
+  const Eigen::Vector2d rel = goals_[env] - state.position.head<2>();
+  const Eigen::Vector2d in_robot = Eigen::Rotation2Dd(-yaw) * rel;
+  position_[env] = state.position.head<2>();
+  observation(beams, in_robot, state.comLinearVelocityBody().x(), state.angular_velocity.z(),
+              s.action, actionDim(), obs);
+}
+
+bool NavigationTask::terminated(int env, const RootState& state) const {
+  Outcome o = Outcome::kTimeOut;
+  if (senses_[env].collided) {
+    o = Outcome::kFailure;
+  } else if (distance(env, state) < config_.goal_radius) {
+    o = Outcome::kSuccess;
+  }
+  outcome_[env] = static_cast<unsigned char>(o);
+  return o != Outcome::kTimeOut;
+}
+
+float NavigationTask::reward(int env, const RootState& state) const {
+  const double d = distance(env, state);
+  double r = -config_.step_cost;
+  if (variant_ == Variant::kProgress) r += config_.progress_reward * (last_distance_[env] - d);
+  if (config_.proximity_penalty > 0.0 && senses_[env].scan) {
+    const ScannerSpec& scanner = *context_.scanner;
+    double closest = scanner.range_max;
+    for (int k = 0; k < scanner.samples; ++k) {
+      closest = std::min(closest, static_cast<double>(finiteRange(senses_[env].scan[k], scanner)));
+    }
+    if (closest < config_.proximity_distance) {
+      r -= config_.proximity_penalty * (1.0 - closest / config_.proximity_distance);
+    }
+  }
+  last_distance_[env] = d;
+  const auto o = static_cast<Outcome>(outcome_[env]);
+  if (o == Outcome::kSuccess) r += config_.goal_reward;
+  if (o == Outcome::kFailure) r -= config_.collision_penalty;
+  return static_cast<float>(r);
+}
+
+Eigen::Vector2d NavigationTask::arrowDirection(int env, int) const {
+  const Eigen::Vector2d rel = goals_.at(env) - position_.at(env);
+  return rel.norm() > 1e-9 ? Eigen::Vector2d(rel.normalized()) : Eigen::Vector2d::UnitX();
+}
+
+}  // namespace jetbot_rl
