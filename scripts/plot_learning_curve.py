@@ -135,12 +135,35 @@ def figures(rows, target):
     return out
 
 
+RATES = ('success_rate', 'collision_rate', 'timeout_rate')
+
+
+def has_goals(rows):
+    """A task with goals (navigation): some episode reached its goal or collided."""
+    return any(r.get(c, 0.0) > 0.0 for r in rows for c in RATES[:2] if not math.isnan(r.get(c, 0.0)))
+
+
+def rate_figures(rows):
+    """The success panel's figures: the last 10 iterations' rates, when success first held 0.9."""
+    if not has_goals(rows):
+        return []
+    out = []
+    for c in RATES:
+        tail = [r[c] for r in rows[-10:] if not math.isnan(r[c])]
+        out.append(('%s_last_10_iterations' % c, '%.3f' % (sum(tail) / len(tail)) if tail else 'nan'))
+    first = next((r for r in rows if not math.isnan(r['success_rate']) and r['success_rate'] >= 0.9),
+                 None)
+    out.append(('success_rate_0.9_first_at_env_steps', '%d' % first['env_steps'] if first else 'never'))
+    return out
+
+
 def plot(rows, target, out, title, obs_targets=()):
     steps = [r['env_steps'] for r in rows]
     reward = [r['mean_reward_per_step'] for r in rows]
     episode = [r['mean_episode_return'] for r in rows]
-    names = obs_names(rows)
-    if names:
+    goals = has_goals(rows)
+    names = [] if goals else obs_names(rows)  # a task with goals: the success panel instead
+    if names or goals:
         fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
     else:
         fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
@@ -156,6 +179,17 @@ def plot(rows, target, out, title, obs_targets=()):
     ax2.set_xlabel('env steps')
     ax2.grid(True, alpha=0.3)
     ax2.legend(loc='lower right')
+    if goals:
+        ax2.set_xlabel('')
+        for c, color in zip(RATES, ('tab:green', 'tab:red', 'tab:gray')):
+            ax3.plot(steps, [r.get(c, float('nan')) for r in rows], color=color,
+                     label=c.replace('_', ' ') + ' (episodes ended in the iteration)')
+        ax3.axhline(0.9, color='tab:green', linestyle='--', linewidth=1, label='0.9')
+        ax3.set_ylim(-0.02, 1.02)
+        ax3.set_ylabel('episode outcomes')
+        ax3.set_xlabel('env steps')
+        ax3.grid(True, alpha=0.3)
+        ax3.legend(loc='center right', fontsize='small')
     if names:
         ax2.set_xlabel('')
         targets = dict(obs_targets)
@@ -242,7 +276,7 @@ def main(argv=None):
     title = args.title or 'PPO on jetbot_env: %s' % run_dir
     plot(rows, target, out, title, obs_targets)
     print('learning curve: %s' % out)
-    for name, value in figures(rows, target) + obs_figures(rows, obs_targets):
+    for name, value in figures(rows, target) + obs_figures(rows, obs_targets) + rate_figures(rows):
         print('%s: %s' % (name, value))
     return 0
 

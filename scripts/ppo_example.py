@@ -125,6 +125,7 @@ def train(args):
             interrupted = True
             break
         t0 = time.monotonic()
+        outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, failure
         for t in range(steps):
             o = torch.from_numpy(obs)
             agent.update_normalizer(o)
@@ -137,6 +138,8 @@ def train(args):
             buf_obs[t], buf_act[t] = o_n, a
             obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
             buf_rew[t] = torch.from_numpy(reward)
+            if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _final_obs
+                outcomes += np.bincount(infos['outcome'][infos['_final_obs']], minlength=3)[:3]
             boot = np.zeros(n, dtype=np.float32)
             timed_out = truncated & ~terminated
             cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
@@ -199,8 +202,11 @@ def train(args):
         elapsed = time.monotonic() - start
         if target_at is None and reward_per_step >= args.target:
             target_at = (iteration, env_steps, elapsed)
-        print('iteration %d/%d | env steps %d | reward/step %.4f | %.0f env steps/s | elapsed '
-              '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step,
+        rates = ''
+        if outcomes[1:].sum():  # a task with goals
+            rates = ' | success %.2f collision %.2f' % tuple(outcomes[1:] / outcomes.sum())
+        print('iteration %d/%d | env steps %d | reward/step %.4f%s | %.0f env steps/s | elapsed '
+              '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step, rates,
                           steps * n / (time.monotonic() - t0), elapsed), flush=True)
     elapsed = time.monotonic() - start
     torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim}, args.save)

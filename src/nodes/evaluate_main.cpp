@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
     if (!task.empty()) fieldsFromYaml("task: " + task, setup);
     setup.env.seed = static_cast<std::uint64_t>(seed);
     const std::unique_ptr<BatchedEnv> batch =
-        makeEnv(RobotModel::fromUrdfFile(env_options.urdf), setup);
+        makeEnv(RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
+                setup);
     BatchedEnv& env = *batch;
     const int envs = env.numEnvs(), steps = env_options.steps;
     if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/best.pt";
