@@ -48,8 +48,9 @@ struct TaskConfig {
 template <typename C, typename V>
 IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
   v("task", c.task, AnyValue{},
-    "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm) or command "
-    "(turn to a random command and drive along it).");
+    "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm), command "
+    "(turn to a random command and drive along it) or navigation (reach a goal without "
+    "collisions; needs a laser scanner).");
   v("reward_variant", c.reward_variant, AnyValue{},
     "The task's reward: command: exp (v_x exp(dot), default), sum (v_x + dot) or product (v_x "
     "dot); navigation: progress (default) or sparse; default: the task's first.");

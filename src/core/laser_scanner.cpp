@@ -163,16 +163,14 @@ std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const Rob
     throwInvalid("scan/samples", spec.samples,
                  "must be in [1, 100000]" + (config.samples > 0 ? std::string() : gazebo));
   }
-  if (config.angles.size() == 2) {
-    spec.min_angle = config.angles[0];
-    spec.max_angle = config.angles[1];
-  } else if (g) {
-    spec.min_angle = g->min_angle;
-    spec.max_angle = g->max_angle;
-  } else {
-    spec.min_angle = -kPi;
-    spec.max_angle = kPi - 2.0 * kPi / spec.samples;
-  }
+  // A [min, max] pair: the parameter's, else the Gazebo block's, else the default.
+  const auto pair = [g](const std::vector<double>& set, double gazebo_min, double gazebo_max,
+                        double default_min, double default_max, double& min, double& max) {
+    min = set.size() == 2 ? set[0] : g ? gazebo_min : default_min;
+    max = set.size() == 2 ? set[1] : g ? gazebo_max : default_max;
+  };
+  pair(config.angles, g ? g->min_angle : 0.0, g ? g->max_angle : 0.0, -kPi,
+       kPi - 2.0 * kPi / spec.samples, spec.min_angle, spec.max_angle);
   spec.angles_from = pick(config.angles.size() == 2, "scan/angles", g);
   const bool angles_ok =
       std::isfinite(spec.min_angle) && std::isfinite(spec.max_angle) &&
@@ -182,16 +180,8 @@ std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const Rob
         "scan/angles", "[" + text(spec.min_angle) + ", " + text(spec.max_angle) + "]",
         "must be [min, max] with min < max" + (config.angles.size() == 2 ? std::string() : gazebo));
   }
-  if (config.range.size() == 2) {
-    spec.range_min = config.range[0];
-    spec.range_max = config.range[1];
-  } else if (g) {
-    spec.range_min = g->range_min;
-    spec.range_max = g->range_max;
-  } else {
-    spec.range_min = 0.12;
-    spec.range_max = 3.5;
-  }
+  pair(config.range, g ? g->range_min : 0.0, g ? g->range_max : 0.0, 0.12, 3.5, spec.range_min,
+       spec.range_max);
   spec.range_from = pick(config.range.size() == 2, "scan/range", g);
   if (!(spec.range_min >= 0.0 && spec.range_min < spec.range_max &&
         std::isfinite(spec.range_max))) {

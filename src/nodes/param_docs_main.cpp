@@ -100,7 +100,13 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},
       {"ppo", [] { return rowsOf(ppo::PpoConfig{}); }},
       {"policy_node", [] { return rowsOf(ppo::PolicyParams{}); }},
-      {"robot_mode", [] { return rowsWithout(rowsOf(ppo::RobotModeParams{}), TaskConfig{}); }},
+      {"robot_mode",
+       [] {
+         // Named, not temporaries: GCC 12 warns (falsely) of uninitialised vectors otherwise.
+         const ppo::RobotModeParams robot;
+         const TaskConfig task;
+         return rowsWithout(rowsOf(robot), task);
+       }},
       {"lockstep_bench_nodelet", [] { return rowsOf(LockstepBenchParams{}); }},
   };
   return t;
@@ -113,7 +119,11 @@ const std::map<std::string, std::function<std::string()>>& nodes() {
       {"env_setup", [] { return fieldsToYaml(EnvSetup{}); }},
       {"jetbot_ppo_trainer", [] { return fieldsToYaml(ppo::TrainerConfig{}); }},
       {"jetbot_policy_node",
-       [] { return fieldsToYaml(ppo::PolicyParams{}) + fieldsToYaml(ppo::RobotModeParams{}); }},
+       [] {
+         const ppo::PolicyParams policy;
+         const ppo::RobotModeParams robot;
+         return fieldsToYaml(policy) + fieldsToYaml(robot);
+       }},
       {"lockstep_bench_nodelet", [] { return fieldsToYaml(LockstepBenchParams{}); }},
   };
   return n;

@@ -75,7 +75,7 @@ TEST(EnvSetup, FieldNamesAreTheEnvsThenTheTasks) {
   ASSERT_FALSE(names.empty());
   EXPECT_EQ(names.front(), "num_envs");
   EXPECT_NE(std::find(names.begin(), names.end(), "reward_variant"), names.end());
-  EXPECT_EQ(names.back(), "nav/step_cost");
+  EXPECT_EQ(names.back(), "nav/proximity_penalty");
 }
 
 TEST(EnvProgramOptions, OptionsBuildTheSetupAndOldNamesAreRefused) {

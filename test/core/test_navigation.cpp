@@ -88,6 +88,7 @@ TEST(NavigationTask, ObservesBeamsGoalSpeedYawRateAndTheLastAction) {
 
 TEST(NavigationTask, RewardsProgressAndEndsOnTheGoalOrACollision) {
   NavigationConfig config;
+  config.proximity_penalty = 0.0;  // the proximity cost has its own test
   Fixture f({2.0, 0.0}, config);
   // After resetEnv the progress reference is the start's distance; set it by a first step.
   EXPECT_FALSE(f.task.terminated(0, at(0, 0, 0)));
@@ -107,9 +108,23 @@ TEST(NavigationTask, RewardsProgressAndEndsOnTheGoalOrACollision) {
   EXPECT_EQ(wall.task.outcome(0), Outcome::kFailure);
   EXPECT_LT(wall.task.reward(0, at(0.5, 0, 0)), -9.0f);
   // Sparse: no progress term.
-  Fixture sparse({2.0, 0.0}, NavigationConfig(), NavigationTask::Variant::kSparse);
+  Fixture sparse({2.0, 0.0}, config, NavigationTask::Variant::kSparse);
   sparse.task.reward(0, at(0, 0, 0));
   EXPECT_NEAR(sparse.task.reward(0, at(0.5, 0, 0)), -0.01, 1e-6);
+}
+
+TEST(NavigationTask, ACloseScanRangeCostsInProportionToItsNearness) {
+  NavigationConfig config;  // proximity_distance 0.25 m, proximity_penalty 0.1
+  Fixture f({2.0, 0.0}, config, NavigationTask::Variant::kSparse);
+  f.task.reward(0, at(0, 0, 0));
+  // The fixture's scan holds a too-close return: it reads as range_min (0.1 m).
+  EXPECT_NEAR(f.task.reward(0, at(0, 0, 0)), -0.01 - 0.1 * (1.0 - 0.1 / 0.25), 1e-6);
+  f.scan = std::vector<float>(8, 0.2f);
+  f.sense(false);
+  EXPECT_NEAR(f.task.reward(0, at(0, 0, 0)), -0.01 - 0.1 * (1.0 - 0.2 / 0.25), 1e-6);
+  f.scan = std::vector<float>(8, 0.3f);  // beyond proximity_distance: no cost
+  f.sense(false);
+  EXPECT_NEAR(f.task.reward(0, at(0, 0, 0)), -0.01, 1e-6);
 }
 
 EnvConfig navConfig(int envs, int threads = 1) {
@@ -147,7 +162,9 @@ TEST(NavigationTask, GoalsAreDrawnInFreeSpaceAwayFromObstacles) {
       EXPECT_LE(d, 3.0 + 1e-9);
       EXPECT_GE(env.world()->staticClearance(g), 0.3) << "env " << e;
       for (const Obstacle& o : l.obstacles) {
-        if (o.placed) EXPECT_GE(o.distance(g), c.world.start_clearance) << "env " << e;
+        if (o.placed) {
+          EXPECT_GE(o.distance(g), c.world.start_clearance) << "env " << e;
+        }
       }
     }
   }

@@ -52,31 +52,31 @@ class TestRefuseStart(unittest.TestCase):
         self.refuses([], 'world/map', 'no_such_map.yaml', 'cannot be read',
                      **{'world/map': '/tmp/no_such_map.yaml'})
 
-    def test_map_field_missing(self):
+    @staticmethod
+    def map_yaml(image, fields):
+        """A map YAML naming `image` with `fields` (its other lines), in a new folder; its path."""
         folder = tempfile.mkdtemp()
         with open(os.path.join(folder, 'map.yaml'), 'w') as f:
-            f.write('image: map.pgm\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n'
-                    'free_thresh: 0.196\n')
-        self.refuses([], 'world/map', "missing field 'resolution'",
-                     **{'world/map': os.path.join(folder, 'map.yaml')})
+            f.write('image: %s\n%s' % (image, fields))
+        return os.path.join(folder, 'map.yaml')
+
+    def test_map_field_missing(self):
+        path = self.map_yaml('map.pgm', 'origin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n'
+                             'free_thresh: 0.196\n')
+        self.refuses([], 'world/map', "missing field 'resolution'", **{'world/map': path})
 
     def test_map_image_undecodable(self):
-        folder = tempfile.mkdtemp()
-        with open(os.path.join(folder, 'map.pgm'), 'w') as f:
+        path = self.map_yaml('map.pgm', 'resolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
+                             'occupied_thresh: 0.65\nfree_thresh: 0.196\n')
+        with open(os.path.join(os.path.dirname(path), 'map.pgm'), 'w') as f:
             f.write('not an image')
-        with open(os.path.join(folder, 'map.yaml'), 'w') as f:
-            f.write('image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
-                    'occupied_thresh: 0.65\nfree_thresh: 0.196\n')
-        self.refuses([], 'image', 'cannot be read as an image',
-                     **{'world/map': os.path.join(folder, 'map.yaml')})
+        self.refuses([], 'image', 'cannot be read as an image', **{'world/map': path})
 
     def test_map_thresholds_out_of_order(self):
-        folder = tempfile.mkdtemp()
-        with open(os.path.join(folder, 'map.yaml'), 'w') as f:
-            f.write('image: %s\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
-                    'occupied_thresh: 0.3\nfree_thresh: 0.5\n'
-                    % os.path.join(PACKAGE, 'maps', 'office.pgm'))
-        self.refuses([], 'free_thresh = 0.5', **{'world/map': os.path.join(folder, 'map.yaml')})
+        path = self.map_yaml(os.path.join(PACKAGE, 'maps', 'office.pgm'),
+                             'resolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n'
+                             'occupied_thresh: 0.3\nfree_thresh: 0.5\n')
+        self.refuses([], 'free_thresh = 0.5', **{'world/map': path})
 
     def test_world_without_a_free_start(self):
         self.refuses([], 'world/random_start = false', **{'world/arena_size': [0.3, 0.3]})

@@ -57,6 +57,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     // mode may deliver several per step): the episode returns are counted from them.
     std::int64_t episodes = 0;
     std::vector<float> actions;  // the targets last published
+    std::string action_names;    // "name, name", from the spec
     std::vector<std::unique_ptr<VecEnv>> parts;
     std::vector<std::unique_ptr<EpisodeTracker>> trackers;
     for (const std::string& name : params.env_nodes.env_nodes) {
@@ -76,12 +77,12 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
         if (ended.empty()) return;
         episodes += static_cast<std::int64_t>(ended.size());
         ROS_INFO(
-            "%s step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far); wheel "
-            "targets of env 0: [%.2f, %.2f] rad/s",
+            "%s step %llu: %zu episode(s) ended, mean return %.3f (%lld episodes so far); "
+            "actions of env 0: [%.2f, %.2f] (%s)",
             name.c_str(), static_cast<unsigned long long>(msg.step), ended.size(),
             std::accumulate(ended.begin(), ended.end(), 0.0) / ended.size(),
             static_cast<long long>(episodes), actions.size() > 1 ? actions[0] : 0.0f,
-            actions.size() > 1 ? actions[1] : 0.0f);
+            actions.size() > 1 ? actions[1] : 0.0f, action_names.c_str());
       });
       parts.push_back(std::move(part));
     }
@@ -95,6 +96,9 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
                         " does not fit the policy's " + std::to_string(policy->obsDim()));
     }
     policy->setActionLimits(info.action_low, info.action_high);
+    for (const std::string& n : info.action_names) {
+      action_names += (action_names.empty() ? "" : ", ") + n;
+    }
 
     const StepResult* batch = &env->reset(params.reset_seed);
     ROS_INFO("driving %d env(s) with the mean action (%s mode)", info.num_envs,
