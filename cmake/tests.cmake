@@ -46,6 +46,7 @@ catkin_add_gtest(test_ppo
   test/ppo/test_runner.cpp
   test/ppo/test_update.cpp
   test/ppo/test_in_process.cpp
+  test/ppo/test_memory.cpp
 )
 target_link_libraries(test_ppo jetbot_rl_ppo)
 target_compile_definitions(test_ppo PRIVATE ${_robots})
@@ -93,13 +94,14 @@ foreach(_scenario vec_env determinism bad_input timeout multi_node ppo_example)
 endforeach()
 
 # ---- training, determinism, Ctrl-C and resume, start-up refusals ----
-foreach(_scenario train train_command train_navigation train_tribot determinism interrupt_resume refuse_start_ppo
-    clean_end)
+foreach(_scenario train train_command train_navigation train_tribot determinism determinism_memory
+    determinism_history interrupt_resume refuse_start_ppo clean_end)
   add_rostest(test/ppo/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 
 # ---- sim-to-real: a policy trained with randomisation drives the env's robot view ----
-foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation robot_mode)
+foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation closed_loop_memory
+    robot_mode)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

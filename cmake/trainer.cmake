@@ -8,6 +8,7 @@ add_library(jetbot_rl_ppo
   src/ppo/checkpoint.cpp
   src/ppo/episode_tracker.cpp
   src/ppo/gae.cpp
+  src/ppo/input_history.cpp
   src/ppo/iteration_stats.cpp
   src/ppo/obs_normalizer.cpp
   src/ppo/policy.cpp
@@ -16,6 +17,7 @@ add_library(jetbot_rl_ppo
   src/ppo/ppo_config.cpp
   src/ppo/ppo_losses.cpp
   src/ppo/progress_csv.cpp
+  src/ppo/recurrent_memory.cpp
   src/ppo/rollout_storage.cpp
   src/ppo/runner.cpp
   src/ppo/training_logger.cpp

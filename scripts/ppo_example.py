@@ -11,6 +11,8 @@ state-independent std, samples clipped to [-1, 1] and scaled onto the action bou
 (+-20 rad/s); separate [32, 32] ELU actor and critic; running observation normalisation;
 16 steps per env per iteration, 5 epochs of 4 minibatches, adaptive-KL learning rate; time-outs
 bootstrapped with V(final observation); each env's first episode cut at a staggered step.
+--obs-history K and --action-history M give the policy memory as the trainer's obs_history_length
+and action_history_length do: it sees its last K observations and last M actions.
 """
 import argparse
 import signal
@@ -45,8 +47,17 @@ def parse_args():
     p.add_argument('--save', default='jetbot_ppo.pt', help='where training saves the policy')
     p.add_argument('--play', metavar='POLICY', help='play a saved policy instead of training')
     p.add_argument('--play-steps', type=int, default=600, help='steps to play')
+    p.add_argument('--obs-history', type=int, default=1, metavar='K',
+                   help='the policy sees the last K observations (default 1: the current one)')
+    p.add_argument('--action-history', type=int, default=0, metavar='M',
+                   help='the policy sees its last M actions (default 0)')
     p.add_argument('--node', action=Renamed, new='--env-nodes')
-    return p.parse_args()
+    args = p.parse_args()
+    if args.obs_history < 1:
+        p.error('invalid --obs-history = %d: must be >= 1' % args.obs_history)
+    if args.action_history < 0:
+        p.error('invalid --action-history = %d: must be >= 0' % args.action_history)
+    return args
 
 
 # PPO hyper-parameters (config/ppo.yaml)
@@ -59,10 +70,55 @@ def mlp(n_in, n_out):
                          nn.Linear(32, n_out))
 
 
+class History:
+    """Each env's last k observations (raw, newest first) and last m actions (in [-1, 1], newest
+    first): the policy's input, as jetbot_ppo_trainer's obs_history_length and
+    action_history_length build it. An env whose episode ended starts over at its next
+    observation: every slot holds it and the actions are zero. k = 1, m = 0: the observation."""
+
+    def __init__(self, n, obs_dim, action_dim, k, m):
+        self.k, self.m = k, m
+        self.obs, self.act = torch.zeros(n, k, obs_dim), torch.zeros(n, m, action_dim)
+        self.fresh = torch.ones(n, dtype=torch.bool)
+
+    def _pushed(self, rows, obs, fresh):
+        newest = obs.unsqueeze(1)
+        slots = torch.cat([newest, self.obs[rows, :self.k - 1]], 1)
+        slots = torch.where(fresh.view(-1, 1, 1), newest.expand_as(slots), slots)
+        acts = torch.where(fresh.view(-1, 1, 1), torch.zeros_like(self.act[rows]), self.act[rows])
+        return slots, acts
+
+    @staticmethod
+    def _input(slots, acts, normalize):
+        n = slots.shape[0]
+        obs = normalize(slots.reshape(-1, slots.shape[2])).reshape(n, -1)
+        return torch.cat([obs, acts.reshape(n, -1)], 1)
+
+    def push(self, obs, normalize):
+        """Pushes every env's observation; returns the input [n, input_dim]."""
+        self.obs, self.act = self._pushed(torch.arange(len(obs)), obs, self.fresh)
+        self.fresh[:] = False
+        return self._input(self.obs, self.act, normalize)
+
+    def push_actions(self, actions):
+        if self.m:
+            self.act = torch.cat([actions.clamp(-1.0, 1.0).unsqueeze(1), self.act[:, :-1]], 1)
+
+    def peek(self, rows, obs, normalize, fresh=None):
+        """The input envs `rows` would get from push(obs); nothing changes."""
+        fresh = torch.zeros(len(rows), dtype=torch.bool) if fresh is None else fresh
+        return self._input(*self._pushed(rows, obs, fresh), normalize)
+
+    def end(self, ended):
+        """Envs whose episode ended: they start over at their next observation."""
+        self.fresh |= torch.as_tensor(ended)
+
+
 class Agent(nn.Module):
-    def __init__(self, obs_dim, action_dim):
+    def __init__(self, obs_dim, action_dim, input_dim=None):
         super().__init__()
-        self.actor, self.critic = mlp(obs_dim, action_dim), mlp(obs_dim, 1)
+        input_dim = input_dim or obs_dim  # with a history: k x obs_dim + m x action_dim
+        self.actor, self.critic = mlp(input_dim, action_dim), mlp(input_dim, 1)
         self.log_std = nn.Parameter(torch.zeros(action_dim))  # std 1 = the action limit
         # running observation statistics, saved with the policy
         self.register_buffer('obs_mean', torch.zeros(obs_dim, dtype=torch.float64))
@@ -100,10 +156,12 @@ def train(args):
     env = JetbotVecEnv(env_nodes=args.env_nodes)
     n, steps, obs_dim, act_dim = env.num_envs, args.num_steps, env.obs_dim, env.action_dim
     low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
-    agent = Agent(obs_dim, act_dim)
+    history = History(n, obs_dim, act_dim, args.obs_history, args.action_history)
+    input_dim = args.obs_history * obs_dim + args.action_history * act_dim
+    agent = Agent(obs_dim, act_dim, input_dim)
     optimizer = torch.optim.Adam(agent.parameters(), lr=LR)
     lr = LR
-    buf_obs, buf_act = torch.zeros(steps, n, obs_dim), torch.zeros(steps, n, act_dim)
+    buf_obs, buf_act = torch.zeros(steps, n, input_dim), torch.zeros(steps, n, act_dim)
     buf_mean = torch.zeros(steps, n, act_dim)
     buf_logp, buf_val, buf_rew = (torch.zeros(steps, n) for _ in range(3))
     buf_end = torch.zeros(steps, n, dtype=torch.bool)  # the episode ended after this step
@@ -129,13 +187,14 @@ def train(args):
         for t in range(steps):
             o = torch.from_numpy(obs)
             agent.update_normalizer(o)
-            o_n = agent.normalize(o)
+            o_n = history.push(o, agent.normalize)
             with torch.no_grad():
                 d = agent.dist(o_n)
                 a = d.sample()
                 buf_logp[t], buf_mean[t] = d.log_prob(a).sum(-1), d.mean
                 buf_val[t] = agent.value(o_n)
             buf_obs[t], buf_act[t] = o_n, a
+            history.push_actions(a)
             obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
             buf_rew[t] = torch.from_numpy(reward)
             if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _final_obs
@@ -143,21 +202,27 @@ def train(args):
             boot = np.zeros(n, dtype=np.float32)
             timed_out = truncated & ~terminated
             cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
+            # V(the observation after the end) continues the env's history
             with torch.no_grad():
                 if timed_out.any():
-                    v = agent.value(agent.normalize(torch.from_numpy(infos['final_obs'])))
-                    boot[timed_out] = v.numpy()[timed_out]
+                    rows = torch.from_numpy(np.flatnonzero(timed_out))
+                    final = torch.from_numpy(infos['final_obs'][timed_out])
+                    boot[timed_out] = agent.value(history.peek(rows, final, agent.normalize))
                 if cut.any():
-                    boot[cut] = agent.value(agent.normalize(torch.from_numpy(obs))).numpy()[cut]
+                    rows = torch.from_numpy(np.flatnonzero(cut))
+                    now = torch.from_numpy(obs[cut])
+                    boot[cut] = agent.value(history.peek(rows, now, agent.normalize))
             if cut.any():
                 obs, _ = env.reset(options={'reset_mask': cut})
+            history.end(terminated | truncated | cut)
             buf_end[t] = torch.from_numpy(terminated | truncated | cut)
             buf_boot[t] = torch.from_numpy(boot)
         env_steps += steps * n
 
         # GAE; an ended episode's next value is its bootstrap value, and nothing flows across it
         with torch.no_grad():
-            next_value = agent.value(agent.normalize(torch.from_numpy(obs)))
+            next_value = agent.value(history.peek(torch.arange(n), torch.from_numpy(obs),
+                                                  agent.normalize, history.fresh))
         advantages, gae = torch.zeros(steps, n), torch.zeros(n)
         for t in reversed(range(steps)):
             nxt = next_value if t == steps - 1 else buf_val[t + 1]
@@ -209,7 +274,9 @@ def train(args):
               '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step, rates,
                           steps * n / (time.monotonic() - t0), elapsed), flush=True)
     elapsed = time.monotonic() - start
-    torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim}, args.save)
+    torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim,
+                'obs_history': args.obs_history, 'action_history': args.action_history},
+               args.save)
     env.close()
     print('saved %s' % args.save)
     print('status=%s' % ('interrupted' if interrupted else 'completed'))
@@ -226,21 +293,27 @@ def train(args):
 def play(args):
     """Drives every env with the policy's mean action; prints the reward and episode returns."""
     saved = torch.load(args.play)
-    agent = Agent(saved['obs_dim'], saved['action_dim'])
+    obs_dim, act_dim = saved['obs_dim'], saved['action_dim']
+    k, m = saved.get('obs_history', 1), saved.get('action_history', 0)
+    agent = Agent(obs_dim, act_dim, k * obs_dim + m * act_dim)
     agent.load_state_dict(saved['model'])
     env = JetbotVecEnv(env_nodes=args.env_nodes)
+    history = History(env.num_envs, obs_dim, act_dim, k, m)
     low, high = torch.from_numpy(env.action_low), torch.from_numpy(env.action_high)
     obs, _ = env.reset(seed=args.seed)
     episode_return, returns, rewards, at_limit = np.zeros(env.num_envs), [], 0.0, 0
     for _ in range(args.play_steps):
         with torch.no_grad():
-            targets = to_env(agent.actor(agent.normalize(torch.from_numpy(obs))), low, high)
+            mean = agent.actor(history.push(torch.from_numpy(obs), agent.normalize))
+        history.push_actions(mean)
+        targets = to_env(mean, low, high)
         saturated = np.all(np.abs(np.abs(targets) - high.numpy()) < 0.02 * high.numpy(), axis=1)
         at_limit += int(np.sum(saturated & (np.sign(targets[:, 0]) == np.sign(targets[:, 1]))))
         obs, reward, terminated, truncated, _ = env.step(targets)
         rewards += reward.sum()
         episode_return += reward
         ended = terminated | truncated
+        history.end(ended)
         returns.extend(episode_return[ended].tolist())
         episode_return[ended] = 0.0
     env.close()

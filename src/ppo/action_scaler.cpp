@@ -29,9 +29,12 @@ ActionScaler::ActionScaler(const std::vector<float>& low, const std::vector<floa
   half_range_ = 0.5 * (hi - lo);
 }
 
+torch::Tensor ActionScaler::squash(const torch::Tensor& actions) const {
+  return tanh_ ? torch::tanh(actions) : torch::clamp(actions, -1.0, 1.0);
+}
+
 torch::Tensor ActionScaler::toEnv(const torch::Tensor& actions) const {
-  const torch::Tensor squashed = tanh_ ? torch::tanh(actions) : torch::clamp(actions, -1.0, 1.0);
-  return center_ + half_range_ * squashed;
+  return center_ + half_range_ * squash(actions);
 }
 
 void ActionScaler::toEnv(const torch::Tensor& actions, std::vector<float>& out) const {

@@ -45,46 +45,104 @@ torch::Tensor gaussianLogProb(const torch::Tensor& x, const torch::Tensor& mean,
 
 }  // namespace
 
-ActorCriticImpl::ActorCriticImpl(int obs_dim, int action_dim,
+ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim,
                                  const std::vector<int>& actor_hidden_dims,
                                  const std::vector<int>& critic_hidden_dims, Activation activation,
                                  double init_noise_std)
-    : obs_dim_(obs_dim), action_dim_(action_dim) {
-  if (obs_dim < 1 || action_dim < 1) {
-    throw ConfigError("invalid model size: obs_dim " + std::to_string(obs_dim) + ", action_dim " +
+    : ActorCriticImpl(input_dim, action_dim, [&] {
+        PpoConfig c;
+        c.actor_hidden_dims = actor_hidden_dims;
+        c.critic_hidden_dims = critic_hidden_dims;
+        c.activation = activation;
+        c.init_noise_std = init_noise_std;
+        return c;
+      }()) {}
+
+ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const PpoConfig& c)
+    : input_dim_(input_dim), action_dim_(action_dim) {
+  if (input_dim < 1 || action_dim < 1) {
+    throw ConfigError("invalid model size: input " + std::to_string(input_dim) + ", action_dim " +
                       std::to_string(action_dim));
   }
-  actor_ = register_module("actor", makeMlp(obs_dim, actor_hidden_dims, action_dim, activation));
-  critic_ = register_module("critic", makeMlp(obs_dim, critic_hidden_dims, 1, activation));
-  log_std_ = register_parameter("log_std",
-                                torch::full({action_dim}, std::log(init_noise_std), torch::kFloat));
+  int features = input_dim;
+  if (c.rnn_type != RnnType::kNone) {
+    actor_rnn_ = register_module(
+        "actor_rnn", RecurrentMemory(c.rnn_type, input_dim, c.rnn_hidden_size, c.rnn_num_layers));
+    critic_rnn_ = register_module(
+        "critic_rnn", RecurrentMemory(c.rnn_type, input_dim, c.rnn_hidden_size, c.rnn_num_layers));
+    features = c.rnn_hidden_size;
+  }
+  actor_ =
+      register_module("actor", makeMlp(features, c.actor_hidden_dims, action_dim, c.activation));
+  critic_ = register_module("critic", makeMlp(features, c.critic_hidden_dims, 1, c.activation));
+  log_std_ = register_parameter(
+      "log_std", torch::full({action_dim}, std::log(c.init_noise_std), torch::kFloat));
 }
 
-ActionSample ActorCriticImpl::act(const torch::Tensor& obs) {
-  torch::NoGradGuard no_grad;
-  ActionSample s;
-  s.mean = actor_->forward(obs);
-  s.std = torch::exp(log_std_).expand_as(s.mean);
-  s.actions = s.mean + s.std * torch::randn_like(s.mean);
-  s.log_probs = gaussianLogProb(s.actions, s.mean, log_std_);
-  s.values = critic_->forward(obs).squeeze(-1);
+MemoryState ActorCriticImpl::initialState(int64_t batch) const {
+  MemoryState s;
+  if (recurrent()) {
+    s.actor = torch::zeros({batch, actor_rnn_->stateSize()});
+    s.critic = torch::zeros({batch, critic_rnn_->stateSize()});
+  }
   return s;
 }
 
-ActionEvaluation ActorCriticImpl::evaluate(const torch::Tensor& obs, const torch::Tensor& actions) {
+ActionSample ActorCriticImpl::act(const torch::Tensor& input, MemoryState* state) {
+  torch::NoGradGuard no_grad;
+  ActionSample s;
+  s.mean = actionMean(input, state ? &state->actor : nullptr);
+  s.std = torch::exp(log_std_).expand_as(s.mean);
+  s.actions = s.mean + s.std * torch::randn_like(s.mean);
+  s.log_probs = gaussianLogProb(s.actions, s.mean, log_std_);
+  if (recurrent()) {
+    s.values = critic_->forward(critic_rnn_->step(input, state->critic)).squeeze(-1);
+  } else {
+    s.values = critic_->forward(input).squeeze(-1);
+  }
+  return s;
+}
+
+ActionEvaluation ActorCriticImpl::evaluate(const torch::Tensor& input,
+                                           const torch::Tensor& actions) {
+  if (recurrent()) throw Error("ActorCritic::evaluate of a recurrent model: use evaluateSequence");
   ActionEvaluation e;
-  e.mean = actor_->forward(obs);
+  e.mean = actor_->forward(input);
   e.std = torch::exp(log_std_).expand_as(e.mean);
   e.log_probs = gaussianLogProb(actions, e.mean, log_std_);
-  e.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({obs.size(0)});
-  e.values = critic_->forward(obs).squeeze(-1);
+  e.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({input.size(0)});
+  e.values = critic_->forward(input).squeeze(-1);
   return e;
 }
 
-torch::Tensor ActorCriticImpl::actionMean(const torch::Tensor& obs) { return actor_->forward(obs); }
+ActionEvaluation ActorCriticImpl::evaluateSequence(const torch::Tensor& input,
+                                                   const torch::Tensor& actions,
+                                                   const MemoryState& state,
+                                                   const torch::Tensor& starts) {
+  if (!recurrent()) throw Error("ActorCritic::evaluateSequence of a model without an RNN");
+  const torch::Tensor actor_features = actor_rnn_->sequence(input, state.actor, starts);
+  const torch::Tensor critic_features = critic_rnn_->sequence(input, state.critic, starts);
+  ActionEvaluation e;
+  e.mean = actor_->forward(actor_features.flatten(0, 1));
+  e.std = torch::exp(log_std_).expand_as(e.mean);
+  e.log_probs = gaussianLogProb(actions.flatten(0, 1), e.mean, log_std_);
+  e.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({e.mean.size(0)});
+  e.values = critic_->forward(critic_features.flatten(0, 1)).squeeze(-1);
+  return e;
+}
 
-torch::Tensor ActorCriticImpl::value(const torch::Tensor& obs) {
-  return critic_->forward(obs).squeeze(-1);
+torch::Tensor ActorCriticImpl::actionMean(const torch::Tensor& input, torch::Tensor* actor_state) {
+  if (!recurrent()) return actor_->forward(input);
+  if (!actor_state) throw Error("ActorCritic::actionMean of a recurrent model without a state");
+  return actor_->forward(actor_rnn_->step(input, *actor_state));
+}
+
+torch::Tensor ActorCriticImpl::value(const torch::Tensor& input,
+                                     const torch::Tensor* critic_state) {
+  if (!recurrent()) return critic_->forward(input).squeeze(-1);
+  if (!critic_state) throw Error("ActorCritic::value of a recurrent model without a state");
+  torch::Tensor state = *critic_state;  // step() replaces its copy, not the caller's
+  return critic_->forward(critic_rnn_->step(input, state)).squeeze(-1);
 }
 
 torch::Tensor ActorCriticImpl::actionStd() const { return torch::exp(log_std_).detach(); }

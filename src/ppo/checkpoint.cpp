@@ -12,7 +12,56 @@ namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-constexpr std::int64_t kFormatVersion = 1;
+// 2: the env's spec ("spec"); format 1 files are read without it.
+constexpr std::int64_t kFormatVersion = 2;
+
+/// BatchSpec's fields a policy runs with, as YAML (config_fields.h's format).
+struct SpecFields {
+  std::string task;
+  double control_dt = 0.0;
+  int max_episode_length = 0;
+  std::vector<std::string> observation_names, action_names;
+  std::vector<double> action_low, action_high;
+};
+
+template <typename C, typename V>
+IfConfig<C, SpecFields> visitFields(C& c, V&& v) {
+  v("task", c.task, AnyValue{}, "");
+  v("control_dt", c.control_dt, AnyValue{}, "");
+  v("max_episode_length", c.max_episode_length, AnyValue{}, "");
+  v("observation_names", c.observation_names, AnyValue{}, "");
+  v("action_names", c.action_names, AnyValue{}, "");
+  v("action_low", c.action_low, AnyValue{}, "");
+  v("action_high", c.action_high, AnyValue{}, "");
+}
+
+// SpecFields and BatchSpec name the fields they share alike: one copy serves both directions.
+template <class From, class To>
+void copySpec(const From& from, To& to) {
+  to.task = from.task;
+  to.control_dt = from.control_dt;
+  to.max_episode_length = from.max_episode_length;
+  to.observation_names = from.observation_names;
+  to.action_names = from.action_names;
+  to.action_low.assign(from.action_low.begin(), from.action_low.end());
+  to.action_high.assign(from.action_high.begin(), from.action_high.end());
+}
+
+std::string specYaml(const BatchSpec& spec) {
+  SpecFields f;
+  copySpec(spec, f);
+  return fieldsToYaml(f);
+}
+
+BatchSpec specFromYaml(const std::string& yaml, int obs_dim, int action_dim) {
+  SpecFields f;
+  fieldsFromYaml(yaml, f);
+  BatchSpec spec;
+  spec.obs_dim = obs_dim;
+  spec.action_dim = action_dim;
+  copySpec(f, spec);
+  return spec;
+}
 
 void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
   a.write("format_version", c10::IValue(kFormatVersion));
@@ -24,13 +73,15 @@ void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
   a.write("obs_dim", c10::IValue(static_cast<std::int64_t>(m.obs_dim)));
   a.write("action_dim", c10::IValue(static_cast<std::int64_t>(m.action_dim)));
   a.write("config", c10::IValue(toYaml(m.config)));
+  a.write("spec", c10::IValue(specYaml(m.spec)));
 }
 
 CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
   c10::IValue v;
   a.read("format_version", v);
-  if (v.toInt() != kFormatVersion) {
-    throw Error("unsupported checkpoint format version " + std::to_string(v.toInt()));
+  const std::int64_t version = v.toInt();
+  if (version < 1 || version > kFormatVersion) {
+    throw Error("unsupported checkpoint format version " + std::to_string(version));
   }
   CheckpointMeta m;
   a.read("iteration", v);
@@ -49,6 +100,10 @@ CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
   m.action_dim = static_cast<int>(v.toInt());
   a.read("config", v);
   m.config = fromYaml(v.toStringRef());
+  if (version >= 2) {
+    a.read("spec", v);
+    m.spec = specFromYaml(v.toStringRef(), m.obs_dim, m.action_dim);
+  }
   return m;
 }
 
@@ -65,11 +120,12 @@ torch::serialize::InputArchive openArchive(const std::string& path) {
   return archive;
 }
 
-void checkSizes(const std::string& path, const CheckpointMeta& m, int obs_dim, int action_dim) {
-  if (m.obs_dim != obs_dim || m.action_dim != action_dim) {
-    throw Error("checkpoint " + path + " is for obs_dim " + std::to_string(m.obs_dim) +
-                ", action_dim " + std::to_string(m.action_dim) + "; the model has " +
-                std::to_string(obs_dim) + ", " + std::to_string(action_dim));
+void checkSizes(const std::string& path, const CheckpointMeta& m, int input_dim, int action_dim) {
+  const int input = policyInputDim(m.config, m.obs_dim, m.action_dim);
+  if (input != input_dim || m.action_dim != action_dim) {
+    throw Error("checkpoint " + path + " is for input " + std::to_string(input) + " (obs_dim " +
+                std::to_string(m.obs_dim) + "), action_dim " + std::to_string(m.action_dim) +
+                "; the model has " + std::to_string(input_dim) + ", " + std::to_string(action_dim));
   }
 }
 
@@ -108,7 +164,7 @@ CheckpointMeta loadCheckpoint(const std::string& path, Ppo& ppo) {
   torch::serialize::InputArchive archive = openArchive(path);
   try {
     const CheckpointMeta meta = readMeta(archive);
-    checkSizes(path, meta, ppo.model()->obsDim(), ppo.model()->actionDim());
+    checkSizes(path, meta, ppo.model()->inputDim(), ppo.model()->actionDim());
     torch::serialize::InputArchive model, optimizer, normalizer;
     archive.read("model", model);
     archive.read("optimizer", optimizer);
@@ -127,7 +183,7 @@ CheckpointMeta loadPolicy(const std::string& path, ActorCritic& model, ObsNormal
   torch::serialize::InputArchive archive = openArchive(path);
   try {
     const CheckpointMeta meta = readMeta(archive);
-    checkSizes(path, meta, model->obsDim(), model->actionDim());
+    checkSizes(path, meta, model->inputDim(), model->actionDim());
     torch::serialize::InputArchive model_archive, normalizer_archive;
     archive.read("model", model_archive);
     archive.read("normalizer", normalizer_archive);

@@ -9,11 +9,13 @@ namespace ppo {
 
 Policy::Policy(const std::string& checkpoint) : meta_(readCheckpointMeta(checkpoint)) {
   const PpoConfig& c = meta_.config;
-  model_ = ActorCritic(meta_.obs_dim, meta_.action_dim, c.actor_hidden_dims, c.critic_hidden_dims,
-                       c.activation, c.init_noise_std);
+  model_ = ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c);
   normalizer_ = ObsNormalizer(meta_.obs_dim, c.normalize_observations);
   loadPolicy(checkpoint, model_, normalizer_);
   model_->eval();
+  if (!meta_.spec.action_low.empty()) {
+    setActionLimits(meta_.spec.action_low, meta_.spec.action_high);
+  }
 }
 
 void Policy::setActionLimits(const std::vector<float>& low, const std::vector<float>& high) {
@@ -25,16 +27,64 @@ void Policy::setActionLimits(const std::vector<float>& low, const std::vector<fl
   scaler_ = std::make_unique<ActionScaler>(low, high, meta_.config.action_squash);
 }
 
+void Policy::startMemory(int num_envs) {
+  const PpoConfig& c = meta_.config;
+  memory_envs_ = num_envs;
+  fresh_ = torch::ones({num_envs}, torch::kBool);
+  if (c.obs_history_length > 1 || c.action_history_length > 0) {
+    history_ = std::make_unique<InputHistory>(num_envs, obsDim(), actionDim(), c.obs_history_length,
+                                              c.action_history_length);
+  }
+  if (model_->recurrent()) actor_state_ = model_->initialState(num_envs).actor;
+}
+
+void Policy::resetMemory(const std::vector<std::uint32_t>& envs) {
+  if (!fresh_.defined()) return;  // nothing remembered yet
+  bool* fresh = fresh_.data_ptr<bool>();
+  for (std::uint32_t e : envs) {
+    if (e >= static_cast<std::uint32_t>(memory_envs_)) {
+      throw InputError("resetMemory: env " + std::to_string(e) + " of " +
+                       std::to_string(memory_envs_));
+    }
+    fresh[e] = true;
+  }
+}
+
+void Policy::resetMemory() {
+  if (fresh_.defined()) fresh_.fill_(true);
+}
+
 void Policy::act(const std::vector<float>& observations, int num_envs, std::vector<float>& out) {
   if (!scaler_) throw Error("Policy::act before setActionLimits");
-  if (static_cast<int>(observations.size()) != num_envs * obsDim()) {
+  if (num_envs < 1 || static_cast<std::int64_t>(observations.size()) !=
+                          static_cast<std::int64_t>(num_envs) * obsDim()) {
     throw InputError("expected " + std::to_string(num_envs * obsDim()) + " observations, got " +
                      std::to_string(observations.size()));
   }
   torch::NoGradGuard no_grad;
   const torch::Tensor obs = torch::from_blob(const_cast<float*>(observations.data()),
                                              {num_envs, obsDim()}, torch::kFloat);
-  scaler_->toEnv(model_->actionMean(normalizer_->normalize(obs)), out);
+  if (!hasMemory()) {
+    scaler_->toEnv(model_->actionMean(normalizer_->normalize(obs)), out);
+    return;
+  }
+  if (num_envs != memory_envs_) startMemory(num_envs);
+  // The same steps as Ppo::act: history pushed, recurrent state zeroed where an episode starts.
+  const torch::Tensor input =
+      history_
+          ? history_->push(obs, fresh_,
+                           [this](const torch::Tensor& o) { return normalizer_->normalize(o); })
+          : normalizer_->normalize(obs);
+  torch::Tensor mean;
+  if (model_->recurrent()) {
+    actor_state_ = actor_state_ * (1.0 - fresh_.to(torch::kFloat)).unsqueeze(1);
+    mean = model_->actionMean(input, &actor_state_);
+  } else {
+    mean = model_->actionMean(input);
+  }
+  if (history_) history_->pushActions(scaler_->squash(mean));
+  fresh_.zero_();
+  scaler_->toEnv(mean, out);
 }
 
 }  // namespace ppo

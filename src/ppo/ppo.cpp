@@ -30,14 +30,26 @@ Ppo::Ppo(const BatchSpec& spec, const PpoConfig& config)
     : config_(config),
       num_envs_(spec.num_envs),
       obs_dim_(spec.obs_dim),
-      model_(spec.obs_dim, spec.action_dim, config.actor_hidden_dims, config.critic_hidden_dims,
-             config.activation, config.init_noise_std),
+      input_dim_(policyInputDim(config, spec.obs_dim, spec.action_dim)),
+      model_(input_dim_, spec.action_dim, config),
       normalizer_(spec.obs_dim, config.normalize_observations),
-      storage_(config.num_steps_per_env, spec.num_envs, spec.obs_dim, spec.action_dim),
+      storage_(config.num_steps_per_env, spec.num_envs, input_dim_, spec.action_dim),
       scaler_(spec.action_low, spec.action_high, config.action_squash),
       learning_rate_(config.learning_rate) {
   optimizer_ = std::make_unique<torch::optim::Adam>(model_->parameters(),
                                                     torch::optim::AdamOptions(learning_rate_));
+  if (config.obs_history_length > 1 || config.action_history_length > 0) {
+    history_ =
+        std::make_unique<InputHistory>(spec.num_envs, spec.obs_dim, spec.action_dim,
+                                       config.obs_history_length, config.action_history_length);
+  }
+  if (model_->recurrent() && config.num_mini_batches > spec.num_envs) {
+    throwInvalid("num_mini_batches", config.num_mini_batches,
+                 "must be <= num_envs = " + std::to_string(spec.num_envs) +
+                     " with an RNN (a minibatch holds whole env sequences)");
+  }
+  state_ = model_->initialState(spec.num_envs);
+  fresh_ = torch::ones({spec.num_envs}, torch::kBool);
 }
 
 void Ppo::setLearningRate(double lr) {
@@ -49,9 +61,17 @@ void Ppo::setLearningRate(double lr) {
 
 double Ppo::actionStd() { return model_->actionStd().mean().item<double>(); }
 
-torch::Tensor Ppo::values(const std::vector<float>& observations, int rows) {
+torch::Tensor Ppo::peekValues(const torch::Tensor& rows, const torch::Tensor& obs,
+                              const torch::Tensor& fresh) {
   torch::NoGradGuard no_grad;
-  return model_->value(normalizer_->normalize(floats(observations, rows, obs_dim_)));
+  const torch::Tensor input =
+      history_ ? history_->peek(rows, obs, fresh,
+                                [this](const torch::Tensor& o) { return normalize(o); })
+               : normalize(obs);
+  if (!model_->recurrent()) return model_->value(input);
+  const torch::Tensor critic =
+      state_.critic.index_select(0, rows) * (1.0 - fresh.to(torch::kFloat)).unsqueeze(1);
+  return model_->value(input, &critic);
 }
 
 const std::vector<float>& Ppo::act(const StepResult& state) {
@@ -65,8 +85,22 @@ const std::vector<float>& Ppo::act(const StepResult& state) {
   }
   const torch::Tensor obs = floats(state.observations, num_envs_, obs_dim_);
   normalizer_->update(obs);
-  obs_ = normalizer_->normalize(obs);
-  sample_ = model_->act(obs_);
+  obs_ = history_
+             ? history_->push(obs, fresh_, [this](const torch::Tensor& o) { return normalize(o); })
+             : normalize(obs);
+  if (model_->recurrent()) {
+    // The rollout keeps the states before step 0 and where episodes start, so that the update
+    // recomputes every step's state (RecurrentMemory::sequence) as acting did here.
+    if (step_ == 0) storage_.setInitialState(state_);
+    const torch::Tensor starts = fresh_.to(torch::kFloat);
+    storage_.addStarts(step_, starts);
+    const torch::Tensor keep = (1.0 - starts).unsqueeze(1);
+    state_.actor = state_.actor * keep;
+    state_.critic = state_.critic * keep;
+  }
+  sample_ = model_->act(obs_, &state_);
+  if (history_) history_->pushActions(scaler_.squash(sample_.actions));
+  fresh_.zero_();
   scaler_.toEnv(sample_.actions, actions_);
   acted_ = true;
   return actions_;
@@ -102,17 +136,23 @@ void Ppo::processEnvStep(const StepResult& r) {
                   " but has no final observation in reset_env_ids");
     }
   }
+  // V(final observation) continues the env's history and recurrent state.
   torch::Tensor truncated_values = torch::zeros({n});
   if (!rows.empty()) {
     const int ended = static_cast<int>(r.reset_env_ids.size());
-    const torch::Tensor v =
-        values(r.final_observations, ended).index_select(0, torch::tensor(rows, torch::kLong));
+    std::vector<int64_t> ended_ids(r.reset_env_ids.begin(), r.reset_env_ids.end());
+    const torch::Tensor v = peekValues(torch::tensor(ended_ids, torch::kLong),
+                                       floats(r.final_observations, ended, obs_dim_),
+                                       torch::zeros({ended}, torch::kBool))
+                                .index_select(0, torch::tensor(rows, torch::kLong));
     truncated_values.index_copy_(0, torch::tensor(envs, torch::kLong), v);
   }
   const torch::Tensor rewards =
       torch::from_blob(const_cast<float*>(r.rewards.data()), {n}, torch::kFloat).clone();
   storage_.add(step_, obs_, sample_.actions, sample_.log_probs, sample_.values, sample_.mean,
                sample_.std, rewards, flags(r.terminated), flags(r.truncated), truncated_values);
+  bool* fresh = fresh_.data_ptr<bool>();
+  for (std::uint32_t id : r.reset_env_ids) fresh[id] = true;
   ++step_;
   acted_ = false;
 }
@@ -122,7 +162,10 @@ void Ppo::computeReturns(const StepResult& state) {
     throw Error("Ppo::computeReturns: the rollout holds " + std::to_string(step_) + " of " +
                 std::to_string(storage_.numSteps()) + " steps");
   }
-  storage_.computeReturns(values(state.observations, num_envs_), config_.gamma, config_.lam);
+  const torch::Tensor last_values =
+      peekValues(torch::arange(num_envs_, torch::kLong),
+                 floats(state.observations, num_envs_, obs_dim_), fresh_);
+  storage_.computeReturns(last_values, config_.gamma, config_.lam);
 }
 
 UpdateStats Ppo::update() {
@@ -132,8 +175,13 @@ UpdateStats Ppo::update() {
   int updates = 0;
   const auto params = model_->parameters();
   for (int epoch = 0; epoch < c.num_learning_epochs; ++epoch) {
-    for (const MiniBatch& b : storage.miniBatches(c.num_mini_batches)) {
-      const ActionEvaluation e = model_->evaluate(b.obs, b.actions);
+    const std::vector<MiniBatch> batches = model_->recurrent()
+                                               ? storage.sequenceMiniBatches(c.num_mini_batches)
+                                               : storage.miniBatches(c.num_mini_batches);
+    for (const MiniBatch& b : batches) {
+      const ActionEvaluation e = model_->recurrent()
+                                     ? model_->evaluateSequence(b.obs, b.actions, b.state, b.starts)
+                                     : model_->evaluate(b.obs, b.actions);
 
       // KL(old || new) drives the adaptive learning rate (rsl_rl).
       const double kl = gaussianKl(b.old_mean, b.old_std, e.mean, e.std);

@@ -20,7 +20,30 @@ PpoConfig fromYaml(const std::string& yaml, PpoConfig config) {
 
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b) {
   return a.actor_hidden_dims == b.actor_hidden_dims &&
-         a.critic_hidden_dims == b.critic_hidden_dims && a.activation == b.activation;
+         a.critic_hidden_dims == b.critic_hidden_dims && a.activation == b.activation &&
+         a.obs_history_length == b.obs_history_length &&
+         a.action_history_length == b.action_history_length && a.rnn_type == b.rnn_type &&
+         (a.rnn_type == RnnType::kNone ||
+          (a.rnn_hidden_size == b.rnn_hidden_size && a.rnn_num_layers == b.rnn_num_layers));
+}
+
+void copyArchitecture(const PpoConfig& from, PpoConfig& to) {
+  to.actor_hidden_dims = from.actor_hidden_dims;
+  to.critic_hidden_dims = from.critic_hidden_dims;
+  to.activation = from.activation;
+  to.obs_history_length = from.obs_history_length;
+  to.action_history_length = from.action_history_length;
+  to.rnn_type = from.rnn_type;
+  to.rnn_hidden_size = from.rnn_hidden_size;
+  to.rnn_num_layers = from.rnn_num_layers;
+}
+
+int policyInputDim(const PpoConfig& c, int obs_dim, int action_dim) {
+  return c.obs_history_length * obs_dim + c.action_history_length * action_dim;
+}
+
+bool hasMemory(const PpoConfig& c) {
+  return c.obs_history_length > 1 || c.action_history_length > 0 || c.rnn_type != RnnType::kNone;
 }
 
 }  // namespace ppo

@@ -19,6 +19,7 @@ RolloutStorage::RolloutStorage(int num_steps, int num_envs, int obs_dim, int act
   terminated_ = torch::zeros({num_steps, num_envs});
   truncated_ = torch::zeros({num_steps, num_envs});
   truncated_values_ = torch::zeros({num_steps, num_envs});
+  starts_ = torch::zeros({num_steps, num_envs});
 }
 
 void RolloutStorage::add(int t, const torch::Tensor& obs, const torch::Tensor& actions,
@@ -57,10 +58,46 @@ std::vector<MiniBatch> RolloutStorage::miniBatches(int num_mini_batches) const {
   std::vector<MiniBatch> batches;
   for (int i = 0; i < num_mini_batches; ++i) {
     const torch::Tensor idx = perm.slice(0, i * size, (i + 1) * size);
-    batches.push_back({obs.index_select(0, idx), actions.index_select(0, idx),
-                       log_probs.index_select(0, idx), values.index_select(0, idx),
-                       advantages.index_select(0, idx), returns.index_select(0, idx),
-                       mean.index_select(0, idx), std.index_select(0, idx)});
+    MiniBatch b;
+    b.obs = obs.index_select(0, idx);
+    b.actions = actions.index_select(0, idx);
+    b.old_log_probs = log_probs.index_select(0, idx);
+    b.old_values = values.index_select(0, idx);
+    b.advantages = advantages.index_select(0, idx);
+    b.returns = returns.index_select(0, idx);
+    b.old_mean = mean.index_select(0, idx);
+    b.old_std = std.index_select(0, idx);
+    batches.push_back(b);
+  }
+  return batches;
+}
+
+std::vector<MiniBatch> RolloutStorage::sequenceMiniBatches(int num_mini_batches) const {
+  const int64_t size = num_envs_ / num_mini_batches;
+  const torch::Tensor perm = torch::randperm(num_envs_, torch::kLong);
+  // Envs along dim 1; the flat fields t-major, as evaluateSequence flattens its outputs.
+  auto envs = [](const torch::Tensor& x, const torch::Tensor& idx) {
+    return x.index_select(1, idx);
+  };
+  auto flat = [&envs](const torch::Tensor& x, const torch::Tensor& idx) {
+    return envs(x, idx).flatten(0, 1);
+  };
+  std::vector<MiniBatch> batches;
+  for (int i = 0; i < num_mini_batches; ++i) {
+    const torch::Tensor idx = perm.slice(0, i * size, (i + 1) * size);
+    MiniBatch b;
+    b.obs = envs(obs_, idx);
+    b.actions = envs(actions_, idx);
+    b.old_log_probs = flat(log_probs_, idx);
+    b.old_values = flat(values_, idx);
+    b.advantages = flat(advantages_, idx);
+    b.returns = flat(returns_, idx);
+    b.old_mean = flat(mean_, idx);
+    b.old_std = flat(std_, idx);
+    b.state.actor = initial_state_.actor.index_select(0, idx);
+    b.state.critic = initial_state_.critic.index_select(0, idx);
+    b.starts = envs(starts_, idx);
+    batches.push_back(b);
   }
   return batches;
 }

@@ -58,11 +58,9 @@ OnPolicyRunner::OnPolicyRunner(VecEnv& env, const PpoConfig& config, const Runne
     meta = readCheckpointMeta(options_.resume);
     if (!sameArchitecture(meta.config, config_)) {
       sink_(
-          "resume: the checkpoint's network (hidden dims, activation) differs from the "
+          "resume: the checkpoint's network (hidden dims, activation, memory) differs from the "
           "parameters; using the checkpoint's");
-      config_.actor_hidden_dims = meta.config.actor_hidden_dims;
-      config_.critic_hidden_dims = meta.config.critic_hidden_dims;
-      config_.activation = meta.config.activation;
+      copyArchitecture(meta.config, config_);
     }
     config_.normalize_observations = meta.config.normalize_observations;
   }
@@ -90,6 +88,8 @@ void OnPolicyRunner::save(const std::string& path, double elapsed_s, double best
   meta.action_dim = env_.spec().action_dim;
   meta.config = config_;
   meta.elapsed_s = elapsed_s;
+  meta.spec = env_.spec();
+  meta.spec.num_envs = 0;  // a property of the run, not of the policy
   saveCheckpoint(path, *ppo_, meta);
 }
 

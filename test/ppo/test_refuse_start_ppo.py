@@ -2,6 +2,7 @@
 """jetbot_ppo_trainer and jetbot_policy_node refuse bad parameters at start-up: non-zero exit and
 a FATAL line naming the parameter and its value."""
 import os
+import subprocess
 import tempfile
 import unittest
 
@@ -17,6 +18,18 @@ URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot
 
 class TestRefuseStartPpo(unittest.TestCase):
     count = 0
+    trained = None
+
+    @classmethod
+    def checkpoint(cls):
+        """A velocity-task run of one iteration (trained once, in the trainer's process)."""
+        if cls.trained is None:
+            cls.trained = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_run_')
+            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                            'iterations:=1', 'num_envs:=4', 'run_dir:=' + cls.trained,
+                            'output:=log'], check=True, timeout=10 * RUN_TIMEOUT,
+                           stdout=subprocess.DEVNULL)
+        return cls.trained
 
     def refuses(self, node_type, params, *texts):
         TestRefuseStartPpo.count += 1
@@ -65,6 +78,36 @@ class TestRefuseStartPpo(unittest.TestCase):
                       'env_config/num_envs': 2, 'env_config/task': 'command',
                       'env_config/reward': 'exp'},
                      'invalid reward = (set): was renamed reward_variant')
+
+    # --- memory ---
+    def test_obs_history_length_zero(self):
+        self.refuses('jetbot_ppo_trainer', {'obs_history_length': 0}, 'obs_history_length = 0')
+
+    def test_rnn_type_unknown(self):
+        self.refuses('jetbot_ppo_trainer', {'rnn_type': 'transformer'}, 'rnn_type',
+                     'transformer')
+
+    def test_recurrent_minibatches_beyond_the_envs(self):
+        # A recurrent minibatch holds whole env sequences: no more of them than envs.
+        rospy.set_param('/robot_description', URDF)
+        self.addCleanup(rospy.delete_param, '/robot_description')
+        self.refuses('jetbot_ppo_trainer',
+                     {'env_in_process': 'true', 'iterations': 1, 'rnn_type': 'gru',
+                      'num_mini_batches': 4,
+                      'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_'),
+                      'env_config/num_envs': 2},
+                     'num_mini_batches = 4', 'num_envs = 2')
+
+    # --- the robot mode takes the control rate, bounds and task from the checkpoint ---
+    def test_robot_mode_control_rate_from_the_checkpoint(self):
+        self.refuses('jetbot_policy_node',
+                     {'checkpoint': self.checkpoint(), 'robot': True, 'control_rate': 60.0},
+                     'control_rate = (set): comes from the checkpoint now')
+
+    def test_robot_mode_task_not_the_checkpoints(self):
+        self.refuses('jetbot_policy_node',
+                     {'checkpoint': self.checkpoint(), 'robot': True, 'task': 'command'},
+                     "task = 'command'", "trained on task 'velocity'")
 
     def test_iterations_zero(self):
         self.refuses('jetbot_ppo_trainer', {'iterations': 0}, 'iterations = 0')

@@ -54,7 +54,7 @@ class TestClosedLoopNavigation(unittest.TestCase):
         cls.policy = subprocess.Popen([
             'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=robot_policy',
             '_checkpoint:=' + cls.run_dir, '_robot:=true', '_task:=navigation',
-            '_policy_actions:=twist', '_control_rate:=20', '_odom_topic:=/env_0/odom',
+            '_odom_topic:=/env_0/odom',
             '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
             '_wheel_radius:=0', '_wheel_separation:=0'])
         wait_for(lambda: cls.odoms and cls.scans, what='odometry and scans')

@@ -17,6 +17,8 @@ class ActionScaler {
   /// `low`/`high` per action dimension from the spec; ConfigError unless low < high, finite.
   ActionScaler(const std::vector<float>& low, const std::vector<float>& high, ActionSquash squash);
 
+  /// [B, A] normalised actions -> [B, A] in [-1, 1] (what the action history holds).
+  torch::Tensor squash(const torch::Tensor& actions) const;
   /// [B, A] normalised actions -> [B, A] env actions.
   torch::Tensor toEnv(const torch::Tensor& actions) const;
   /// The same, flattened row-major into `out` (B x A floats, WheelTargets order).

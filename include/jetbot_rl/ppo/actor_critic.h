@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "jetbot_rl/ppo/ppo_config.h"
+#include "jetbot_rl/ppo/recurrent_memory.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -29,32 +30,56 @@ struct ActionEvaluation {
   torch::Tensor std;        ///< [B, A]
 };
 
-/// Gaussian policy with a learned, state-independent log-std and a separate MLP value function.
+/// The recurrent states of a batch, [B, stateSize()] each; undefined without an RNN.
+struct MemoryState {
+  torch::Tensor actor, critic;
+};
+
+/**
+ * Gaussian policy with a learned, state-independent log-std and a separate MLP value function;
+ * with `rnn_type` gru or lstm, a recurrent layer before each MLP (rsl_rl's ActorCriticRecurrent).
+ * Its input is the observation, or the history InputHistory stacks.
+ */
 class ActorCriticImpl : public torch::nn::Module {
  public:
   /// Builds both MLPs with the hidden `activation`; std starts at `init_noise_std`.
-  ActorCriticImpl(int obs_dim, int action_dim, const std::vector<int>& actor_hidden_dims,
+  ActorCriticImpl(int input_dim, int action_dim, const std::vector<int>& actor_hidden_dims,
                   const std::vector<int>& critic_hidden_dims, Activation activation,
                   double init_noise_std);
+  /// The same with config's widths, activation, noise and recurrent layer.
+  ActorCriticImpl(int input_dim, int action_dim, const PpoConfig& config);
 
-  /// Samples actions (no gradients); uses torch's default generator.
-  ActionSample act(const torch::Tensor& obs);
-  /// Log-probabilities, entropy and values of given `actions` at `obs` (with gradients).
-  ActionEvaluation evaluate(const torch::Tensor& obs, const torch::Tensor& actions);
-  /// [B, A] Gaussian mean: the deterministic action.
-  torch::Tensor actionMean(const torch::Tensor& obs);
-  /// [B] V(obs).
-  torch::Tensor value(const torch::Tensor& obs);
+  /// Samples actions (no gradients); uses torch's default generator. With an RNN, `state` is
+  /// advanced by the step (its rows zeroed first where an episode starts).
+  ActionSample act(const torch::Tensor& input, MemoryState* state = nullptr);
+  /// Log-probabilities, entropy and values of given `actions` at `input` [B, D] (with gradients;
+  /// no RNN).
+  ActionEvaluation evaluate(const torch::Tensor& input, const torch::Tensor& actions);
+  /// The same over whole sequences (with an RNN): `input` [T, B, D], `actions` [T, B, A], from
+  /// `state` with the states zeroed where `starts` [T, B] is 1; results flattened to [T x B].
+  ActionEvaluation evaluateSequence(const torch::Tensor& input, const torch::Tensor& actions,
+                                    const MemoryState& state, const torch::Tensor& starts);
+  /// [B, A] Gaussian mean: the deterministic action; `actor_state` advanced with an RNN.
+  torch::Tensor actionMean(const torch::Tensor& input, torch::Tensor* actor_state = nullptr);
+  /// [B] V(input), from `critic_state` with an RNN (not changed).
+  torch::Tensor value(const torch::Tensor& input, const torch::Tensor* critic_state = nullptr);
   /// Current policy std per action dimension [normalised action units].
   torch::Tensor actionStd() const;
 
-  /// The policy MLP (Linear and activation layers): obs -> action mean.
+  /// Zero states for `batch` envs (undefined tensors without an RNN).
+  MemoryState initialState(int64_t batch) const;
+  bool recurrent() const { return !actor_rnn_.is_empty(); }
+
+  /// The policy MLP (Linear and activation layers): input (or RNN output) -> action mean.
   const torch::nn::Sequential& actor() const { return actor_; }
-  int obsDim() const { return obs_dim_; }
+  /// The actor's recurrent layer (empty without one).
+  const RecurrentMemory& actorMemory() const { return actor_rnn_; }
+  int inputDim() const { return input_dim_; }
   int actionDim() const { return action_dim_; }
 
  private:
-  int obs_dim_, action_dim_;
+  int input_dim_, action_dim_;
+  RecurrentMemory actor_rnn_{nullptr}, critic_rnn_{nullptr};
   torch::nn::Sequential actor_{nullptr}, critic_{nullptr};
   torch::Tensor log_std_;
 };

@@ -16,9 +16,12 @@ struct CheckpointMeta {
   double elapsed_s = 0.0;       ///< Wall time of training so far [s].
   double best_reward = -1e300;  ///< Best mean reward per step of an iteration so far.
   double learning_rate = 0.0;   ///< Current (adaptive) learning rate.
-  int obs_dim = 0;              ///< Model input size.
+  int obs_dim = 0;              ///< Observation size (the model's input is its history).
   int action_dim = 0;           ///< Model output size.
   PpoConfig config;             ///< Hyper-parameters the model was trained with.
+  /// The env it was trained on (num_envs 0): task, names, action bounds [env units] and control
+  /// step [s], which the robot mode runs it with. Empty in checkpoints of format 1.
+  BatchSpec spec;
 };
 
 /**

@@ -7,29 +7,44 @@
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/checkpoint.h"
+#include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
 #include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {
 
-/// A trained policy for playing: the checkpoint's model and normaliser, acting with the mean.
+/**
+ * A trained policy for playing: the checkpoint's model and normaliser, acting with the mean.
+ * A policy with memory (history, RNN) keeps it per env: the caller starts an env's memory over
+ * with resetMemory() when its episode (or, on a robot, its command) starts.
+ */
 class Policy {
  public:
-  /// Loads `checkpoint` (Error naming the file when it cannot).
+  /// Loads `checkpoint` (Error naming the file when it cannot); the action limits are the
+  /// checkpoint's (a checkpoint of format 1 has none: call setActionLimits()).
   explicit Policy(const std::string& checkpoint);
 
   /// Sets the env's action limits (from EnvSpec); ConfigError when they do not fit the model.
   void setActionLimits(const std::vector<float>& low, const std::vector<float>& high);
   /// Deterministic actions for `num_envs` observations (num_envs x obs_dim, row-major) into
-  /// `out` (num_envs x action_dim, env units, e.g. rad/s).
+  /// `out` (num_envs x action_dim, env units, e.g. rad/s). With memory: another num_envs than
+  /// the last call's starts every env's memory over.
   void act(const std::vector<float>& observations, int num_envs, std::vector<float>& out);
+  /// Starts the memory of `envs` over: their next act() is an episode's first step.
+  void resetMemory(const std::vector<std::uint32_t>& envs);
+  /// Starts every env's memory over.
+  void resetMemory();
+  /// True when the policy has memory (a history or an RNN).
+  bool hasMemory() const { return ppo::hasMemory(meta_.config); }
 
-  /// Writes the policy as a TorchScript module (the observation normaliser, the mean action and
-  /// the squashing and scaling to the action limits inside) that libtorch or PyTorch load without
-  /// this package: forward(obs [B, obs_dim] float32) -> actions [B, action_dim] (env units).
+  /// Writes the policy as a TorchScript module (the observation normaliser, the mean action, the
+  /// memory and the squashing and scaling to the action limits inside) that libtorch or PyTorch
+  /// load without this package: forward(obs [B, obs_dim] float32) -> actions [B, action_dim]
+  /// (env units); with memory forward(obs, hidden [B, H]) -> (actions, hidden) and
+  /// initial_hidden(batch) -> zeros [B, H] (an env's row set to it starts its memory over).
   /// `spec` gives the names and control step, stored in the file's extra file "meta.yaml".
-  /// Needs setActionLimits(); throws Error naming the file when it cannot be written.
+  /// Needs action limits; throws Error naming the file when it cannot be written.
   void exportTorchScript(const std::string& path, const BatchSpec& spec) const;
 
   const CheckpointMeta& meta() const { return meta_; }
@@ -37,10 +52,17 @@ class Policy {
   int actionDim() const { return meta_.action_dim; }
 
  private:
+  /// Sizes the memory for `num_envs` envs, all starting over.
+  void startMemory(int num_envs);
+
   CheckpointMeta meta_;
   ActorCritic model_{nullptr};
   ObsNormalizer normalizer_{nullptr};
   std::unique_ptr<ActionScaler> scaler_;
+  int memory_envs_ = 0;
+  std::unique_ptr<InputHistory> history_;
+  torch::Tensor actor_state_;  // [N, S] with an RNN
+  torch::Tensor fresh_;        // [N] bool: the env's memory starts over at its next act()
 };
 
 }  // namespace ppo

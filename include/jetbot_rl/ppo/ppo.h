@@ -7,6 +7,7 @@
 
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/actor_critic.h"
+#include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/rollout_storage.h"
@@ -29,6 +30,9 @@ struct UpdateStats {
  * actor-critic, its observation normaliser, Adam and the rollout, and does all the learning:
  * acting, storing each transition (time-outs bootstrapped with V(final observation)), GAE returns
  * and the clipped update over minibatches and epochs. Knows the env only through StepResult.
+ * With memory (PpoConfig's history lengths, rnn_type) it keeps each env's history and recurrent
+ * state, starts them over for exactly the envs whose episode ended, and learns a recurrent model
+ * on whole env sequences of the rollout from their stored start states.
  */
 class Ppo {
  public:
@@ -57,6 +61,10 @@ class Ppo {
   void setLearningRate(double lr);
   /// Mean policy std [normalised action units].
   double actionStd();
+  /// The network's input width (the observation, or the history stacked).
+  int inputDim() const { return input_dim_; }
+  /// The recurrent states of every env now [N, S] (undefined tensors without an RNN).
+  const MemoryState& memoryState() const { return state_; }
 
   // For checkpoints and tests.
   ActorCritic& model() { return model_; }
@@ -64,11 +72,14 @@ class Ppo {
   torch::optim::Adam& optimizer() { return *optimizer_; }
 
  private:
-  /// V of normalised observations [rows, obs_dim] (no gradients).
-  torch::Tensor values(const std::vector<float>& observations, int rows);
+  /// V of envs `rows` [R] if they observed `obs` [R, obs_dim] (raw) next, where `fresh` [R]
+  /// (bool) marks an episode start; nothing changes (no gradients).
+  torch::Tensor peekValues(const torch::Tensor& rows, const torch::Tensor& obs,
+                           const torch::Tensor& fresh);
+  torch::Tensor normalize(const torch::Tensor& obs) const { return normalizer_->normalize(obs); }
 
   PpoConfig config_;
-  int num_envs_, obs_dim_;
+  int num_envs_, obs_dim_, input_dim_;
   ActorCritic model_;
   ObsNormalizer normalizer_;
   std::unique_ptr<torch::optim::Adam> optimizer_;
@@ -79,8 +90,11 @@ class Ppo {
   int step_ = 0;         // transitions stored in this rollout
   bool acted_ = false;   // act() awaits its processEnvStep()
   ActionSample sample_;  // of the last act()
-  torch::Tensor obs_;    // normalised observations of the last act()
+  torch::Tensor obs_;    // the network input of the last act()
   std::vector<float> actions_;
+  std::unique_ptr<InputHistory> history_;  // with a history
+  MemoryState state_;                      // with an RNN: after the last act()
+  torch::Tensor fresh_;                    // [N] bool: the env's next act() starts an episode
 };
 
 }  // namespace ppo

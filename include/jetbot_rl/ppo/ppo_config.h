@@ -15,6 +15,8 @@ enum class Activation { kElu, kTanh, kRelu };
 enum class ActionSquash { kClip, kTanh };
 /// Learning-rate schedule: KL-controlled (rsl_rl) or fixed.
 enum class LrSchedule { kAdaptive, kFixed };
+/// Recurrent layer before both MLPs (rsl_rl's ActorCriticRecurrent), or none.
+enum class RnnType { kNone, kGru, kLstm };
 
 /// Every PPO hyper-parameter; defaults match config/ppo.yaml.
 struct PpoConfig {
@@ -35,6 +37,13 @@ struct PpoConfig {
   double init_noise_std = 1.0;  ///< Initial policy std, in normalised action units ([-1, 1]).
   ActionSquash action_squash = ActionSquash::kClip;  ///< Sample -> [-1, 1], then to the limits.
   bool normalize_observations = true;                ///< Running mean/std observation normaliser.
+
+  // --- memory ---
+  int obs_history_length = 1;     ///< Observations the policy sees: the current one and k-1 before.
+  int action_history_length = 0;  ///< Its own previous actions the policy sees.
+  RnnType rnn_type = RnnType::kNone;  ///< Recurrent layer before the actor's and critic's MLPs.
+  int rnn_hidden_size = 64;           ///< Its state width per layer.
+  int rnn_num_layers = 1;             ///< Its stacked layers.
 
   // --- PPO update ---
   int num_learning_epochs = 5;                  ///< Passes over each rollout.
@@ -73,9 +82,22 @@ IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
     "Gaussian sample -> [-1, 1] (clip or tanh), then scaled to the env's action bounds.");
   v("normalize_observations", c.normalize_observations, AnyValue{},
     "Running mean/std observation normaliser (saved in checkpoints).");
+  v("obs_history_length", c.obs_history_length, inRange(1, 1000, "control steps"),
+    "The policy sees the last this many observations (the current one first); an episode starts "
+    "with all of them its first observation.");
+  v("action_history_length", c.action_history_length, inRange(0, 1000, "control steps"),
+    "The policy sees its last this many actions (normalised, in [-1, 1]; zero at an episode "
+    "start).");
+  v("rnn_type", c.rnn_type, AnyValue{},
+    "none, or gru or lstm: a recurrent layer before the actor's MLP and one before the critic's, "
+    "its state carried from step to step and zeroed at an episode start.");
+  v("rnn_hidden_size", c.rnn_hidden_size, inRange(1, 4096),
+    "The recurrent state's width per layer.");
+  v("rnn_num_layers", c.rnn_num_layers, inRange(1, 16), "Stacked recurrent layers.");
   v("num_learning_epochs", c.num_learning_epochs, inRange(1, 1000), "Passes over each rollout.");
   v("num_mini_batches", c.num_mini_batches, atLeast(1),
-    "Minibatches per epoch (<= num_steps_per_env x num_envs).");
+    "Minibatches per epoch (<= num_steps_per_env x num_envs; with an RNN <= num_envs: a "
+    "minibatch holds whole env sequences).");
   v("learning_rate", c.learning_rate, positive(),
     "Adam learning rate (the start value when schedule is adaptive).");
   v("schedule", c.schedule, AnyValue{},
@@ -109,8 +131,14 @@ std::string toYaml(const PpoConfig& config);
 /// Throws ConfigError for a value of the wrong type.
 PpoConfig fromYaml(const std::string& yaml, PpoConfig config = PpoConfig());
 
-/// True when both configs build the same network (hidden dims, activation).
+/// True when both configs build the same network (hidden dims, activation, memory).
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b);
+/// Copies the fields that shape the network (sameArchitecture's) from `from` into `to`.
+void copyArchitecture(const PpoConfig& from, PpoConfig& to);
+/// True when the policy has memory: a history longer than the current observation, or an RNN.
+bool hasMemory(const PpoConfig& config);
+/// The network's input width: obs_history_length x obs_dim + action_history_length x action_dim.
+int policyInputDim(const PpoConfig& config, int obs_dim, int action_dim);
 
 inline const EnumNameList<Activation>& enumNames(Activation) {
   static const EnumNameList<Activation> names{
@@ -120,6 +148,11 @@ inline const EnumNameList<Activation>& enumNames(Activation) {
 inline const EnumNameList<ActionSquash>& enumNames(ActionSquash) {
   static const EnumNameList<ActionSquash> names{{ActionSquash::kClip, "clip"},
                                                 {ActionSquash::kTanh, "tanh"}};
+  return names;
+}
+inline const EnumNameList<RnnType>& enumNames(RnnType) {
+  static const EnumNameList<RnnType> names{
+      {RnnType::kNone, "none"}, {RnnType::kGru, "gru"}, {RnnType::kLstm, "lstm"}};
   return names;
 }
 inline const EnumNameList<LrSchedule>& enumNames(LrSchedule) {

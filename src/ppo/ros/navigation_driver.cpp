@@ -66,9 +66,11 @@ std::vector<float> resampleScan(const sensor_msgs::LaserScan& scan,
 }
 
 NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
-                                   const RobotModeParams& p, const DiffDrive& kinematics)
+                                   const RobotModeParams& p, const PolicyRun& run,
+                                   const std::optional<DiffDrive>& kinematics)
     : params_(p),
       policy_(policy),
+      run_(run),
       kinematics_(kinematics),
       tf_listener_(tf_buffer_),
       dropped_(nh, ros::this_node::getName() + ": robot mode", "dropped input") {
@@ -84,14 +86,7 @@ NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Po
                       std::to_string(obs_dim) + " values; the policy takes " +
                       std::to_string(policy_.obsDim()));
   }
-  if (p.policy_actions == ActionSpace::kTwist) {
-    policy_.setActionLimits(
-        {static_cast<float>(-p.twist_limits[0]), static_cast<float>(-p.twist_limits[1])},
-        {static_cast<float>(p.twist_limits[0]), static_cast<float>(p.twist_limits[1])});
-  } else {
-    policy_.setActionLimits(std::vector<float>(2, -static_cast<float>(p.wheel_velocity_limit)),
-                            std::vector<float>(2, static_cast<float>(p.wheel_velocity_limit)));
-  }
+  if (!run.twist && !kinematics_) throw Error("NavigationDriver: wheel actions need kinematics");
   last_action_.assign(2, 0.0f);
   const auto topic = [&](const std::string& name) -> ros::NodeHandle& {
     return name.rfind('~', 0) == 0 ? pnh : nh;
@@ -108,14 +103,14 @@ NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Po
   goal_sub_ =
       topic(p.goal_topic).subscribe(strip(p.goal_topic), 10, &NavigationDriver::onGoal, this);
   if (!p.map_topic.empty()) map_sub_ = nh.subscribe(p.map_topic, 1, &NavigationDriver::onMap, this);
-  timer_ =
-      nh.createWallTimer(ros::WallDuration(1.0 / p.control_rate), &NavigationDriver::onTick, this);
+  timer_ = nh.createWallTimer(ros::WallDuration(1.0 / run.control_rate), &NavigationDriver::onTick,
+                              this);
   ROS_INFO(
       "robot mode (navigation): %s, %s and goals on %s -> policy (%d beams over [%g, %g] "
-      "rad, range [%g, %g] m) -> %s at %.1f Hz (%s actions)",
+      "rad, range [%g, %g] m) -> %s at %.1f Hz (%s actions; both the checkpoint's)",
       odom_sub_.getTopic().c_str(), scan_sub_.getTopic().c_str(), goal_sub_.getTopic().c_str(),
       beams, p.scan_angles[0], p.scan_angles[1], p.scan_range[0], p.scan_range[1],
-      cmd_vel_pub_.getTopic().c_str(), p.control_rate, enumName(p.policy_actions).c_str());
+      cmd_vel_pub_.getTopic().c_str(), run.control_rate, run.twist ? "twist" : "wheel");
 }
 
 void NavigationDriver::stop() {
@@ -200,6 +195,7 @@ void NavigationDriver::onGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
                   odom_->header.frame_id + " is " + why);
   }
   goal_ = goal;
+  policy_.resetMemory();  // each goal is an episode
   ROS_INFO("new goal (%.2f, %.2f) in %s", goal.x(), goal.y(), odom_->header.frame_id.c_str());
   report("accepted");
 }
@@ -216,6 +212,7 @@ void NavigationDriver::onTick(const ros::WallTimerEvent&) {
   } else if (!odom_fresh || !scan_fresh) {
     ROS_WARN_THROTTLE(2.0, "no fresh %s: stopping the robot", !odom_fresh ? "odometry" : "scan");
     last_action_.assign(2, 0.0f);
+    policy_.resetMemory();
   } else {
     const auto& pose = odom_->pose.pose;
     const Eigen::Vector2d position(pose.position.x, pose.position.y);
@@ -236,11 +233,11 @@ void NavigationDriver::onTick(const ros::WallTimerEvent&) {
                                   obs_.data());
       policy_.act(obs_, 1, actions_);
       last_action_.assign(actions_.begin(), actions_.begin() + 2);
-      if (params_.policy_actions == ActionSpace::kTwist) {
+      if (run_.twist) {
         twist.linear.x = actions_[0];
         twist.angular.z = actions_[1];
       } else {
-        const PlanarTwist body = kinematics_.bodyTwist({actions_[0], actions_[1]});
+        const PlanarTwist body = kinematics_->bodyTwist({actions_[0], actions_[1]});
         twist.linear.x = body.linear;
         twist.angular.z = body.angular;
       }

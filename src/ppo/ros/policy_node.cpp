@@ -48,7 +48,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
-  if (params.robot) return runRobotMode(nh, pnh, *policy, stop);
+  if (params.robot) return runRobotMode(nh, pnh, *policy, params.checkpoint, stop);
 
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;
@@ -58,13 +58,18 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     std::int64_t episodes = 0;
     std::vector<float> actions;  // the targets last published
     std::string action_names;    // "name, name", from the spec
+    // The batch's envs whose episode ended since the last step (realtime mode may deliver several
+    // EnvSteps per step): their memory starts over.
+    std::vector<std::uint32_t> ended_envs;
+    std::uint32_t offset = 0;  // of the part's first env in the batch
     std::vector<std::unique_ptr<VecEnv>> parts;
     std::vector<std::unique_ptr<EpisodeTracker>> trackers;
     for (const std::string& name : params.env_nodes.env_nodes) {
       auto part = std::make_unique<RosVecEnv>(name, params.mode == EnvMode::kLockstep,
                                               params.env_nodes.step_timeout, &stop, nh);
       trackers.push_back(std::make_unique<EpisodeTracker>(part->spec().num_envs));
-      part->setObserver([&, tracker = trackers.back().get(), name](const EnvStep& msg) {
+      part->setObserver([&, tracker = trackers.back().get(), name, offset](const EnvStep& msg) {
+        for (std::uint32_t id : msg.reset_env_ids) ended_envs.push_back(offset + id);
         StepResult rewards_only;
         rewards_only.rewards = msg.rewards;
         rewards_only.reset_env_ids = msg.reset_env_ids;
@@ -84,6 +89,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
             static_cast<long long>(episodes), actions.size() > 1 ? actions[0] : 0.0f,
             actions.size() > 1 ? actions[1] : 0.0f, action_names.c_str());
       });
+      offset += static_cast<std::uint32_t>(part->spec().num_envs);
       parts.push_back(std::move(part));
     }
     std::unique_ptr<VecEnv> env =
@@ -101,11 +107,15 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
     }
 
     const StepResult* batch = &env->reset(params.reset_seed);
-    ROS_INFO("driving %d env(s) with the mean action (%s mode)", info.num_envs,
-             enumName(params.mode).c_str());
+    ROS_INFO("driving %d env(s) with the mean action (%s mode)%s", info.num_envs,
+             enumName(params.mode).c_str(),
+             policy->hasMemory() ? "; the policy's memory starts over with each episode" : "");
+    ended_envs.clear();
     for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
       policy->act(batch->observations, info.num_envs, actions);
       batch = &env->step(actions);
+      policy->resetMemory(ended_envs);
+      ended_envs.clear();
     }
     ROS_INFO("drove %d steps; %lld episodes ended", params.steps, static_cast<long long>(episodes));
   } catch (const Interrupted&) {

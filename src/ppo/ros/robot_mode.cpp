@@ -21,19 +21,29 @@ namespace ppo {
 namespace {
 
 /// Wheel targets -> Twist kinematics: the parameters; one given as 0 from robot_description.
-DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p) {
+/// `limits`: the policy's wheel velocity bounds [rad/s].
+DiffDrive makeKinematics(const ros::NodeHandle& nh, const RobotModeParams& p,
+                         const std::vector<double>& limits) {
   if (p.wheel_radius > 0.0 && p.wheel_separation > 0.0) {
-    return DiffDrive(p.wheel_radius, p.wheel_separation,
-                     {p.dof_names.at(0), 0, 1.0, p.wheel_velocity_limit},
-                     {p.dof_names.at(1), 1, 1.0, p.wheel_velocity_limit});
+    return DiffDrive(p.wheel_radius, p.wheel_separation, {p.dof_names.at(0), 0, 1.0, limits.at(0)},
+                     {p.dof_names.at(1), 1, 1.0, limits.at(1)});
   }
   if (!nh.hasParam("robot_description")) {
     throwInvalid(p.wheel_radius > 0.0 ? "wheel_separation" : "wheel_radius", 0.0,
                  "0 takes it from robot_description, which is not set");
   }
-  const std::vector<double> limits(p.dof_names.size(), p.wheel_velocity_limit);
   return DiffDrive::fromRobot(*loadRobotDescription(nh), p.dof_names, limits, p.wheel_radius,
                               p.wheel_separation);
+}
+
+/// Robot-mode parameters of earlier versions that the checkpoint now gives.
+const std::vector<std::pair<const char*, const char*>>& paramsFromTheCheckpoint() {
+  static const std::vector<std::pair<const char*, const char*>> removed{
+      {"control_rate", "1 / its control step"},
+      {"wheel_velocity_limit", "its action bounds"},
+      {"twist_limits", "its action bounds"},
+      {"policy_actions", "its action names"}};
+  return removed;
 }
 
 bool finite(const nav_msgs::Odometry& m) {
@@ -50,10 +60,11 @@ bool finite(const nav_msgs::Odometry& m) {
 /// The robot mode's state: the newest odometry and command, the task that observes them.
 class RobotDriver {
  public:
-  RobotDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p)
+  RobotDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy, const RobotModeParams& p,
+              const PolicyRun& run)
       : params_(p),
         policy_(policy),
-        kinematics_(makeKinematics(nh, p)),
+        kinematics_(makeKinematics(nh, p, run.action_high)),
         task_(makeTask(p.task)),
         dropped_(nh, ros::this_node::getName() + ": robot mode", "dropped odometry") {
     task_->resize(1);
@@ -62,8 +73,10 @@ class RobotDriver {
                         std::to_string(task_->observationNames().size()) +
                         " values; the policy takes " + std::to_string(policy_.obsDim()));
     }
-    policy_.setActionLimits(std::vector<float>(2, -static_cast<float>(p.wheel_velocity_limit)),
-                            std::vector<float>(2, static_cast<float>(p.wheel_velocity_limit)));
+    if (run.twist) {
+      throw ConfigError("the policy's actions are a twist (linear_x, angular_z): task '" +
+                        task_->name() + "' drives wheel targets");
+    }
     cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.cmd_vel_topic, 10);
     odom_sub_ = nh.subscribe(p.odom_topic, 10, &RobotDriver::onOdom, this,
                              ros::TransportHints().tcpNoDelay());
@@ -74,10 +87,11 @@ class RobotDriver {
                                     10, &RobotDriver::onCommand, this);
     }
     timer_ =
-        nh.createWallTimer(ros::WallDuration(1.0 / p.control_rate), &RobotDriver::onTick, this);
-    ROS_INFO("robot mode: %s -> policy (task %s) -> %s at %.1f Hz; %s",
-             odom_sub_.getTopic().c_str(), task_->name().c_str(), cmd_vel_pub_.getTopic().c_str(),
-             p.control_rate, kinematics_.describe().c_str());
+        nh.createWallTimer(ros::WallDuration(1.0 / run.control_rate), &RobotDriver::onTick, this);
+    ROS_INFO("robot mode: %s -> policy (task %s%s) -> %s at %.1f Hz (the checkpoint's); %s",
+             odom_sub_.getTopic().c_str(), task_->name().c_str(),
+             policy_.hasMemory() ? ", with memory" : "", cmd_vel_pub_.getTopic().c_str(),
+             run.control_rate, kinematics_.describe().c_str());
   }
 
   /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
@@ -101,6 +115,7 @@ class RobotDriver {
   void onCommand(const geometry_msgs::Vector3::ConstPtr& msg) {
     try {
       task_->setCommand(0, {msg->x, msg->y}, /*hold=*/true);
+      policy_.resetMemory();  // a new command starts a new episode, as in training
     } catch (const InputError& e) {
       ROS_WARN_THROTTLE(1.0, "command ignored: %s", e.what());
     }
@@ -112,6 +127,7 @@ class RobotDriver {
     if (!odom_ || age > std::chrono::duration<double>(params_.odom_timeout)) {
       ROS_WARN_THROTTLE(2.0, "no odometry on %s for over %.2f s: stopping the robot",
                         odom_sub_.getTopic().c_str(), params_.odom_timeout);
+      policy_.resetMemory();  // the robot stops: its memory starts over with the next drive
     } else {
       // The task's observation of the odometry: pose in the odom frame, twist in the child frame
       // (rotated into the odom frame, where RootState keeps its velocities).
@@ -155,9 +171,6 @@ void checkFieldRules(const RobotModeParams& p) {
   if (p.dof_names.size() != 2) {
     throwInvalid("dof_names", listText(p.dof_names), "must name the two wheel joints");
   }
-  if (p.twist_limits.size() != 2) {
-    throwInvalid("twist_limits", listText(p.twist_limits), "must be [v_max, omega_max]");
-  }
   if (p.scan_angles.size() != 2 || p.scan_angles[0] > p.scan_angles[1]) {
     throwInvalid("scan_angles", listText(p.scan_angles), "must be [first, last], first <= last");
   }
@@ -166,9 +179,47 @@ void checkFieldRules(const RobotModeParams& p) {
   }
 }
 
+PolicyRun policyRunOf(const Policy& policy, const std::string& checkpoint) {
+  const BatchSpec& spec = policy.meta().spec;
+  if (spec.control_dt <= 0.0 || spec.action_high.size() != 2) {
+    throw ConfigError("checkpoint " + checkpoint +
+                      " does not hold the control step and the action bounds it was trained with "
+                      "(a checkpoint of format 1): train it again, or resume it for one iteration "
+                      "(train.launch resume:=RUN_DIR/checkpoints/latest.pt iterations:=N+1), "
+                      "which saves it in format 2");
+  }
+  PolicyRun run;
+  run.control_rate = 1.0 / spec.control_dt;
+  run.twist = spec.action_names == std::vector<std::string>{"linear_x", "angular_z"};
+  run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
+  return run;
+}
+
 int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
-                 const std::atomic<bool>& stop) {
-  const std::optional<RobotModeParams> params = loadParams<RobotModeParams>(pnh);
+                 const std::string& checkpoint, const std::atomic<bool>& stop) {
+  PolicyRun run;
+  try {
+    for (const auto& [name, now] : paramsFromTheCheckpoint()) {
+      if (pnh.hasParam(name)) {
+        throwInvalid(name, "(set)", std::string("comes from the checkpoint now (") + now + ")");
+      }
+    }
+    run = policyRunOf(policy, checkpoint);
+  } catch (const ConfigError& e) {
+    logParamError(pnh, e);
+    return 1;
+  }
+  // The task: the checkpoint's unless given, and then it must be the checkpoint's.
+  const std::optional<RobotModeParams> params =
+      loadParams<RobotModeParams>(pnh, [&](RobotModeParams& p) {
+        const std::string trained = policy.meta().spec.task;
+        if (!pnh.hasParam("task")) {
+          p.task.task = parseEnum<TaskKind>("task", trained);
+        } else if (enumName(p.task.task) != trained) {
+          throwInvalid("task", "'" + enumName(p.task.task) + "'",
+                       "the checkpoint was trained on task '" + trained + "'");
+        }
+      });
   if (!params) return 1;
   try {
     const auto spin = [&stop](auto& driver) {
@@ -180,10 +231,12 @@ int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
       driver.stop();
     };
     if (params->task.task == TaskKind::kNavigation) {
-      NavigationDriver driver(nh, pnh, policy, *params, makeKinematics(nh, *params));
+      std::optional<DiffDrive> kinematics;
+      if (!run.twist) kinematics = makeKinematics(nh, *params, run.action_high);
+      NavigationDriver driver(nh, pnh, policy, *params, run, kinematics);
       spin(driver);
     } else {
-      RobotDriver driver(nh, pnh, policy, *params);
+      RobotDriver driver(nh, pnh, policy, *params, run);
       spin(driver);
     }
   } catch (const Error& e) {

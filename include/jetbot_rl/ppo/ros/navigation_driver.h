@@ -34,7 +34,8 @@ std::vector<float> resampleScan(const sensor_msgs::LaserScan& scan,
 /**
  * The robot mode of a navigation policy: the newest odometry, laser scan and goal (a PoseStamped
  * as RViz's "2D Nav Goal" publishes it, transformed into the odometry frame with tf2) become the
- * navigation task's observation; the policy's action is published as a Twist at control_rate.
+ * navigation task's observation; the policy's action is published as a Twist at the policy's
+ * control rate (its memory starts over with each goal and after each stop).
  * The robot stays stopped without a goal, stops on arrival (goal_radius, outcome "reached") and
  * while the scan or the odometry are stale; a goal that is not finite, cannot be transformed or
  * lies off the map's free cells is refused with a warning and an outcome naming it.
@@ -42,7 +43,8 @@ std::vector<float> resampleScan(const sensor_msgs::LaserScan& scan,
 class NavigationDriver {
  public:
   NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
-                   const RobotModeParams& p, const DiffDrive& kinematics);
+                   const RobotModeParams& p, const PolicyRun& run,
+                   const std::optional<DiffDrive>& kinematics);
   /// Stops ticking and leaves the robot standing (a zero Twist, written out).
   void stop();
 
@@ -58,7 +60,8 @@ class NavigationDriver {
 
   RobotModeParams params_;
   Policy& policy_;
-  DiffDrive kinematics_;
+  PolicyRun run_;
+  std::optional<DiffDrive> kinematics_;  // wheel targets -> Twist; none for twist actions
   std::vector<double> beam_angles_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;

@@ -16,13 +16,14 @@ namespace ppo {
 
 /// jetbot_policy_node's robot mode: odometry in, cmd_vel out, for a real robot's driver (or the
 /// env node's robot view). Defaults suit the stock Jetbot's ROS 2 driver (dusty-nv/jetbot_ros).
+/// The control rate, the action bounds and whether the actions are wheel targets or a twist come
+/// from the checkpoint (the env it was trained on), not from parameters.
 struct RobotModeParams {
-  TaskConfig task;                                ///< The task the policy was trained on.
+  TaskConfig task;  ///< The task the policy was trained on (unset: the checkpoint's).
   std::string odom_topic = "odom";                ///< nav_msgs/Odometry of the robot.
   std::string cmd_vel_topic = "/jetbot/cmd_vel";  ///< geometry_msgs/Twist the driver takes.
   std::string command_topic = "~command";         ///< geometry_msgs/Vector3: command task's (x, y).
-  double control_rate = 60.0;  ///< Policy steps per second [Hz] (1 / control_dt).
-  double odom_timeout = 0.5;   ///< Older odometry stops the robot [s, wall].
+  double odom_timeout = 0.5;                      ///< Older odometry stops the robot [s, wall].
   /// Wheel radius [m] for wheel targets -> Twist: the driver's, which turns the Twist back into
   /// wheel speeds (stock Jetbot: 0.0603 m wheels); 0: from robot_description.
   double wheel_radius = 0.0603 / 2;
@@ -30,12 +31,7 @@ struct RobotModeParams {
   double wheel_separation = 0.1016;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  /// The wheel velocity limit the policy was trained with [rad/s]: its actions span +-this.
-  double wheel_velocity_limit = 20.0;
   // ---- the navigation task (NavigationDriver) ----
-  ActionSpace policy_actions = ActionSpace::kWheels;  ///< What the policy's actions are.
-  /// With twist actions: the bounds the policy was trained with [m/s, rad/s] (v, omega).
-  std::vector<double> twist_limits{0.6, 10.6667};
   std::string scan_topic = "scan";                    ///< sensor_msgs/LaserScan of the robot.
   std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
   std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
@@ -54,8 +50,6 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
   v("cmd_vel_topic", c.cmd_vel_topic, AnyValue{}, "geometry_msgs/Twist the robot's driver takes.");
   v("command_topic", c.command_topic, AnyValue{},
     "geometry_msgs/Vector3: the command task's command (x, y).");
-  v("control_rate", c.control_rate, positiveUpTo(10000.0, "Hz"),
-    "Policy steps per second (1 / the control step the policy was trained with).");
   v("odom_timeout", c.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
   v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
     "Wheel radius for wheel targets -> Twist: the driver's (stock Jetbot: 0.0603 m wheels).");
@@ -63,14 +57,6 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "Wheel separation for wheel targets -> Twist: the driver's (stock Jetbot: 0.1016 m).");
   v("dof_names", c.dof_names, NameList{},
     "The two wheel joints in the policy's action order (used with robot_description).");
-  v("wheel_velocity_limit", c.wheel_velocity_limit, positive("rad/s"),
-    "The wheel velocity limit the policy was trained with: its actions span +-this.");
-  v("policy_actions", c.policy_actions, AnyValue{},
-    "What the policy's actions are: wheels (wheel targets, turned into a Twist) or twist (v, "
-    "omega, published as they are: a policy trained with action_space twist).");
-  v("twist_limits", c.twist_limits, EachValue<double>{positive("")},
-    "Twist actions: [v_max [m/s], omega_max [rad/s]], the bounds the policy was trained with "
-    "(the Jetbot's: 0.6, 10.67).");
   v("scan_topic", c.scan_topic, AnyValue{}, "Navigation: the robot's sensor_msgs/LaserScan.");
   v("goal_topic", c.goal_topic, AnyValue{},
     "Navigation: geometry_msgs/PoseStamped goals (RViz's 2D Nav Goal), transformed into the "
@@ -91,14 +77,26 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "refused.");
 }
 
-/// dof_names must name two wheel joints; twist_limits, scan_angles and scan_range two values.
+/// dof_names must name two wheel joints; scan_angles and scan_range two values.
 void checkFieldRules(const RobotModeParams& params);
 
+/// How the checkpoint's policy runs: at 1 / its control step, with its action bounds, its actions
+/// wheel targets or a twist (v, omega). ConfigError naming the file for a checkpoint without its
+/// env's spec (format 1).
+struct PolicyRun {
+  double control_rate = 0.0;  ///< [Hz]
+  bool twist = false;         ///< Actions (linear_x, angular_z) rather than wheel targets.
+  std::vector<double> action_high;
+};
+PolicyRun policyRunOf(const Policy& policy, const std::string& checkpoint);
+
 /// Runs the robot mode until `stop` or ROS shutdown: reads the parameters above under `pnh`,
-/// then at control_rate turns the newest odometry into the task's observation, acts with the
-/// policy's mean and publishes the wheel targets as a Twist. Returns the exit code.
+/// then at the policy's control rate turns the newest odometry into the task's observation, acts
+/// with the policy's mean and publishes its action as a Twist. The policy's memory starts over
+/// when it starts driving: at start-up, at a new command (goal) and after a stop for stale input.
+/// Returns the exit code.
 int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
-                 const std::atomic<bool>& stop);
+                 const std::string& checkpoint, const std::atomic<bool>& stop);
 
 }  // namespace ppo
 }  // namespace jetbot_rl

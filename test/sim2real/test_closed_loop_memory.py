@@ -1,0 +1,133 @@
+#!/usr/bin/python3
+"""Closed loop with unequal motors (docs/sim_to_real.md#policies-with-memory): two command-task
+policies trained with domain randomisation and the stock Jetbot's open-loop motors
+(config/randomization.yaml, config/jetbot_motors.yaml), one with memory
+(config/ppo_command_memory.yaml) and one without (config/ppo_command.yaml), drive through
+jetbot_policy_node's robot mode two realtime envs: `weak`, whose right motor is 20 % weaker than
+its left, with a dead zone, a heavier chassis on a slippery floor and 2 steps of delay
+(config/perturbed_weak_motor.yaml), and `nominal`. Each gets a command to the left, then one to the
+right while it drives. 4 s after each, the policy with memory heads within 0.1 rad of it at
+>= 0.4 m/s on the weak robot, and no worse than that on the nominal one; the memoryless policy's
+offsets are printed beside it."""
+import math
+import os
+import signal
+import subprocess
+import tempfile
+import unittest
+
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import Vector3
+from nav_msgs.msg import Odometry
+
+from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
+from jetbot_rl_test.robot_view_client import Motion, stamp, yaw
+
+COMMANDS = (2.0, -1.0)  # rad: to the left of the start heading, then to the right
+SETTLE = 4.0            # s of simulation time from a command to the measurement
+WINDOW = 0.5            # s measured
+ROBOTS = ('weak', 'nominal')
+
+
+def config(name):
+    return os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config', name)
+
+
+def heading_error(odom, command):
+    d = yaw(odom.pose.pose.orientation) - command
+    return abs(math.atan2(math.sin(d), math.cos(d)))
+
+
+def moving(odom):
+    return abs(odom.twist.twist.linear.x) > 0.02 or abs(odom.twist.twist.angular.z) > 0.2
+
+
+class TestClosedLoopMemory(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.odoms = {robot: EventList() for robot in ROBOTS}
+        for robot in ROBOTS:
+            rospy.Subscriber('/%s/env_0/odom' % robot, Odometry, cls.odoms[robot].append)
+        cls.commands = {robot: rospy.Publisher('/%s_command' % robot, Vector3, queue_size=1,
+                                               latch=True) for robot in ROBOTS}
+        cls.runs = {'memory': cls.train('ppo_command_memory.yaml'),
+                    'memoryless': cls.train('ppo_command.yaml', rospy.get_param('~iterations'))}
+
+    @staticmethod
+    def train(ppo_config, iterations=None):
+        """Trains the command task in the trainer's process with randomisation and the open-loop
+        motors, as docs/sim_to_real.md tells a stock-Jetbot user to; returns the run directory."""
+        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_memory_')
+        args = ['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true', 'task:=command',
+                'config:=' + config(ppo_config), 'run_dir:=' + run_dir,
+                'robot_config:=' + config('jetbot_motors.yaml'),
+                'randomization:=' + config('randomization.yaml'), 'output:=log']
+        if iterations:
+            args.append('iterations:=%d' % iterations)
+        subprocess.run(args, check=True, timeout=60 * TIMEOUT, stdout=subprocess.DEVNULL)
+        with open(os.path.join(run_dir, 'summary.yaml')) as f:
+            print('%s:\n%s' % (ppo_config, f.read()))
+        return run_dir
+
+    def window(self, robot, start):
+        """Odometry of `robot` from `start` + SETTLE for WINDOW s of simulation time."""
+        odoms = self.odoms[robot]
+        end = start + SETTLE + WINDOW
+        wait_for(lambda: odoms and stamp(odoms[-1]) >= end, timeout=TIMEOUT,
+                 what='%s odometry up to %.1f s' % (robot, end))
+        return [o for o in odoms if start + SETTLE <= stamp(o) <= end]
+
+    def drive(self, policy, robot):
+        """Drives `robot` with `policy` through COMMANDS; returns [(largest heading error
+        [rad], speed [m/s])] over each command's window."""
+        odoms, command = self.odoms[robot], self.commands[robot]
+        wait_for(lambda: odoms, what='odometry of %s' % robot)
+        command.publish(Vector3(math.cos(COMMANDS[0]), math.sin(COMMANDS[0]), 0.0))
+        count = len(odoms)
+        proc = subprocess.Popen([
+            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=%s_%s' % (policy, robot),
+            '_checkpoint:=' + self.runs[policy], '_robot:=true',
+            '_odom_topic:=/%s/env_0/odom' % robot, '_cmd_vel_topic:=/%s/env_0/cmd_vel' % robot,
+            '_command_topic:=/%s_command' % robot,
+            # the env's robot view converts cmd_vel with the URDF's wheels: take them from there
+            '_wheel_radius:=0', '_wheel_separation:=0'])
+        results = []
+        try:
+            # The first command counts from when the policy first moves the robot; the second
+            # from when it is set, while the robot drives.
+            wait_for(lambda: any(moving(o) for o in odoms[count:]),
+                     what='%s to move %s' % (policy, robot))
+            start = stamp(next(o for o in odoms[count:] if moving(o)))
+            for k, goal in enumerate(COMMANDS):
+                if k > 0:
+                    start = stamp(odoms[-1])
+                    command.publish(Vector3(math.cos(goal), math.sin(goal), 0.0))
+                window = self.window(robot, start)
+                results.append((max(heading_error(o, goal) for o in window),
+                                Motion(window).speed))
+        finally:
+            proc.send_signal(signal.SIGINT)
+            self.assertEqual(proc.wait(timeout=TIMEOUT), 0)
+        for goal, (error, speed) in zip(COMMANDS, results):
+            print('FIGURE: closed loop, %s robot, %s policy: heading at most %.3f rad off the '
+                  'command %.1f rad %.1f-%.1f s after it, at %.3f m/s'
+                  % (robot, policy, error, goal, SETTLE, SETTLE + WINDOW, speed))
+        return results
+
+    def test_memory_absorbs_a_weak_motor(self):
+        figures = {(policy, robot): self.drive(policy, robot)
+                   for robot in ROBOTS for policy in ('memoryless', 'memory')}
+        for robot in ROBOTS:
+            for (error, speed), goal in zip(figures['memory', robot], COMMANDS):
+                self.assertLess(error, 0.1, '%s robot, command %.1f rad' % (robot, goal))
+                self.assertGreaterEqual(speed, 0.4, '%s robot, command %.1f rad' % (robot, goal))
+        # The contrast: without memory the weak motor leaves a larger offset.
+        worst = max(error for error, _ in figures['memoryless', 'weak'])
+        self.assertGreater(worst, max(error for error, _ in figures['memory', 'weak']))
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_closed_loop_memory')
+    rostest.rosrun('jetbot_rl', 'test_closed_loop_memory', TestClosedLoopMemory)
