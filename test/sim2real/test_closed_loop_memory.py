@@ -8,7 +8,7 @@ its left, with a dead zone, a heavier chassis on a slippery floor and 2 steps of
 (config/perturbed_weak_motor.yaml), and `nominal`. Each gets a command to the left, then one to the
 right while it drives. 4 s after each, the policy with memory heads within 0.1 rad of it at
 >= 0.4 m/s on the weak robot, and no worse than that on the nominal one; the memoryless policy's
-offsets are printed beside it."""
+offsets are printed beside it. The exported policy with memory runs in a bare Python."""
 import math
 import os
 import signal
@@ -29,6 +29,34 @@ COMMANDS = (2.0, -1.0)  # rad: to the left of the start heading, then to the rig
 SETTLE = 4.0            # s of simulation time from a command to the measurement
 WINDOW = 0.5            # s measured
 ROBOTS = ('weak', 'nominal')
+
+# Run by a bare /usr/bin/python3: only torch and yaml.
+EXPORT_CHECK = """
+import torch, yaml
+extra = {'meta.yaml': ''}
+policy = torch.jit.load(%r, _extra_files=extra)
+meta = yaml.safe_load(extra['meta.yaml'])
+assert meta['memory'] is True, meta
+torch.manual_seed(0)
+steps, shift = 20, 8
+obs = torch.randn(steps, 1, meta['obs_dim'])
+hidden = policy.initial_hidden(2)
+assert hidden.shape == (2, meta['hidden_size']) and bool((hidden == 0).all()), hidden.shape
+low, high = torch.tensor(meta['action_low']), torch.tensor(meta['action_high'])
+actions = []
+for t in range(steps):
+    if t == shift:
+        hidden[1] = 0.0  # env 1 starts over
+    row1 = obs[t - shift] if t >= shift else obs[(t * 7) %% steps]
+    a, hidden = policy(torch.cat([obs[t], row1]), hidden)
+    assert a.shape == (2, meta['action_dim']) and bool(((a >= low) & (a <= high)).all()), a
+    actions.append(a)
+for j in range(steps - shift):
+    assert torch.equal(actions[shift + j][1], actions[j][0]), (j, actions[shift + j], actions[j])
+fresh, _ = policy(obs[steps - 1], policy.initial_hidden(1))
+assert not torch.equal(fresh[0], actions[steps - 1][0]), 'carried memory changes nothing'
+print('export check passed: hidden_size %%d, %%d steps' %% (meta['hidden_size'], steps))
+"""
 
 
 def config(name):
@@ -115,6 +143,19 @@ class TestClosedLoopMemory(unittest.TestCase):
                   'command %.1f rad %.1f-%.1f s after it, at %.3f m/s'
                   % (robot, policy, error, goal, SETTLE, SETTLE + WINDOW, speed))
         return results
+
+    def test_exported_policy_runs_in_python_without_the_package(self):
+        """The memory policy's exported/policy.pt, loaded by a bare Python (no ROS, no package on
+        any path) as docs/sim_to_real.md#export shows: forward(obs, hidden) -> (actions, hidden);
+        each row is an env of its own; a row zeroed midway starts over exactly (its actions
+        equal a fresh env's on the same inputs), and carried memory changes the actions."""
+        script = EXPORT_CHECK % os.path.join(self.runs['memory'], 'exported', 'policy.pt')
+        out = subprocess.run(['/usr/bin/python3', '-c', script], env={'PATH': '/usr/bin:/bin'},
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                             timeout=60 * TIMEOUT)
+        print(out.stdout)
+        self.assertEqual(out.returncode, 0, out.stdout)
+        self.assertIn('export check passed', out.stdout)
 
     def test_memory_absorbs_a_weak_motor(self):
         figures = {(policy, robot): self.drive(policy, robot)
