@@ -2,6 +2,8 @@
 
 #include <torch/torch.h>
 
+#include <sstream>
+
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {
@@ -18,13 +20,30 @@ Policy::Policy(const std::string& checkpoint) : meta_(readCheckpointMeta(checkpo
   }
 }
 
-void Policy::setActionLimits(const std::vector<float>& low, const std::vector<float>& high) {
+namespace {
+std::string bounds(const std::vector<float>& low, const std::vector<float>& high) {
+  std::ostringstream s;
+  for (std::size_t i = 0; i < low.size(); ++i) {
+    s << (i ? ", " : "") << "[" << low[i] << ", " << high[i] << "]";
+  }
+  return s.str();
+}
+}  // namespace
+
+std::string Policy::setActionLimits(const std::vector<float>& low, const std::vector<float>& high) {
   if (static_cast<int>(low.size()) != actionDim()) {
     throw ConfigError("the env has " + std::to_string(low.size()) +
                       " action dimensions; the policy was trained for " +
                       std::to_string(actionDim()));
   }
   scaler_ = std::make_unique<ActionScaler>(low, high, meta_.config.action_squash);
+  const BatchSpec& trained = meta_.spec;
+  if (trained.action_low.empty() || (trained.action_low == low && trained.action_high == high)) {
+    return "";
+  }
+  return "the env's action bounds " + bounds(low, high) + " differ from the checkpoint's " +
+         bounds(trained.action_low, trained.action_high) +
+         ": the policy's actions span the env's bounds";
 }
 
 void Policy::startMemory(int num_envs) {

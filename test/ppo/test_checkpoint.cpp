@@ -184,6 +184,21 @@ TEST_F(CheckpointTest, PolicyActsWithTheScaledClippedMean) {
   EXPECT_THROW(policy.act({1.0f}, 2, out), InputError);
 }
 
+TEST_F(CheckpointTest, OtherEnvBoundsThanTheCheckpointsAreNamed) {
+  meta.spec = testSpec();  // trained on [-1, 1] per action
+  const std::string with_spec = tempPath("with_spec.pt");
+  saveCheckpoint(with_spec, *trained, meta);
+  Policy policy(with_spec);
+  EXPECT_EQ(policy.setActionLimits({-1.0f, -1.0f}, {1.0f, 1.0f}), "");
+  const std::string changed = policy.setActionLimits({-20.0f, -1.0f}, {20.0f, 1.0f});
+  EXPECT_NE(changed.find("the env's action bounds [-20, 20], [-1, 1] differ from the "
+                         "checkpoint's [-1, 1], [-1, 1]"),
+            std::string::npos)
+      << changed;
+  // A checkpoint without a spec (format 1's case) has nothing to compare with.
+  EXPECT_EQ(Policy(path).setActionLimits({-20.0f, -1.0f}, {20.0f, 1.0f}), "");
+}
+
 TEST_F(CheckpointTest, TheExportedTorchScriptPolicyActsAsTheCheckpoint) {
   Policy policy(path);
   policy.setActionLimits({-20.0f, -10.0f}, {20.0f, 30.0f});

@@ -26,7 +26,9 @@ class Policy {
   explicit Policy(const std::string& checkpoint);
 
   /// Sets the env's action limits (from EnvSpec); ConfigError when they do not fit the model.
-  void setActionLimits(const std::vector<float>& low, const std::vector<float>& high);
+  /// Returns "" or, when the checkpoint holds other limits, a line naming both (for a warning:
+  /// the policy's normalised actions then span the env's range, not the one it was trained on).
+  std::string setActionLimits(const std::vector<float>& low, const std::vector<float>& high);
   /// Deterministic actions for `num_envs` observations (num_envs x obs_dim, row-major) into
   /// `out` (num_envs x action_dim, env units, e.g. rad/s). With memory: another num_envs than
   /// the last call's starts every env's memory over.

@@ -101,7 +101,8 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
       throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +
                         " does not fit the policy's " + std::to_string(policy->obsDim()));
     }
-    policy->setActionLimits(info.action_low, info.action_high);
+    const std::string bounds_changed = policy->setActionLimits(info.action_low, info.action_high);
+    if (!bounds_changed.empty()) ROS_WARN("%s", bounds_changed.c_str());
     for (const std::string& n : info.action_names) {
       action_names += (action_names.empty() ? "" : ", ") + n;
     }
