@@ -24,6 +24,13 @@ InputHistory::InputHistory(int num_envs, int obs_dim, int action_dim, int obs_le
   actions_ = torch::zeros({num_envs, action_length, action_dim});
 }
 
+std::unique_ptr<InputHistory> InputHistory::forConfig(const PpoConfig& c, int num_envs, int obs_dim,
+                                                      int action_dim) {
+  if (!hasHistory(c)) return nullptr;
+  return std::make_unique<InputHistory>(num_envs, obs_dim, action_dim, c.obs_history_length,
+                                        c.action_history_length);
+}
+
 torch::Tensor InputHistory::pushed(const torch::Tensor& slots, const torch::Tensor& obs,
                                    const torch::Tensor& fresh) const {
   const torch::Tensor newest = obs.unsqueeze(1);

@@ -50,10 +50,7 @@ void Policy::startMemory(int num_envs) {
   const PpoConfig& c = meta_.config;
   memory_envs_ = num_envs;
   fresh_ = torch::ones({num_envs}, torch::kBool);
-  if (c.obs_history_length > 1 || c.action_history_length > 0) {
-    history_ = std::make_unique<InputHistory>(num_envs, obsDim(), actionDim(), c.obs_history_length,
-                                              c.action_history_length);
-  }
+  history_ = InputHistory::forConfig(c, num_envs, obsDim(), actionDim());
   if (model_->recurrent()) actor_state_ = model_->initialState(num_envs).actor;
 }
 
@@ -96,7 +93,7 @@ void Policy::act(const std::vector<float>& observations, int num_envs, std::vect
           : normalizer_->normalize(obs);
   torch::Tensor mean;
   if (model_->recurrent()) {
-    actor_state_ = actor_state_ * (1.0 - fresh_.to(torch::kFloat)).unsqueeze(1);
+    actor_state_ = startOver(actor_state_, fresh_);
     mean = model_->actionMean(input, &actor_state_);
   } else {
     mean = model_->actionMean(input);

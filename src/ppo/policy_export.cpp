@@ -85,7 +85,7 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
 
   // The hidden row: [started flag, observation slots, action slots] with a history (as
   // InputHistory::push computes them), then the RNN's state (as RecurrentMemory::step).
-  const bool history = c.obs_history_length > 1 || c.action_history_length > 0;
+  const bool history = hasHistory(c);
   const int64_t k = c.obs_history_length, o = obsDim(), m = c.action_history_length,
                 a = actionDim();
   const int64_t obs_at = 1, actions_at = obs_at + k * o, rnn_at = history ? actions_at + m * a : 0;

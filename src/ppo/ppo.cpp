@@ -38,11 +38,7 @@ Ppo::Ppo(const BatchSpec& spec, const PpoConfig& config)
       learning_rate_(config.learning_rate) {
   optimizer_ = std::make_unique<torch::optim::Adam>(model_->parameters(),
                                                     torch::optim::AdamOptions(learning_rate_));
-  if (config.obs_history_length > 1 || config.action_history_length > 0) {
-    history_ =
-        std::make_unique<InputHistory>(spec.num_envs, spec.obs_dim, spec.action_dim,
-                                       config.obs_history_length, config.action_history_length);
-  }
+  history_ = InputHistory::forConfig(config, spec.num_envs, spec.obs_dim, spec.action_dim);
   if (model_->recurrent() && config.num_mini_batches > spec.num_envs) {
     throwInvalid("num_mini_batches", config.num_mini_batches,
                  "must be <= num_envs = " + std::to_string(spec.num_envs) +
@@ -69,8 +65,7 @@ torch::Tensor Ppo::peekValues(const torch::Tensor& rows, const torch::Tensor& ob
                                 [this](const torch::Tensor& o) { return normalize(o); })
                : normalize(obs);
   if (!model_->recurrent()) return model_->value(input);
-  const torch::Tensor critic =
-      state_.critic.index_select(0, rows) * (1.0 - fresh.to(torch::kFloat)).unsqueeze(1);
+  const torch::Tensor critic = startOver(state_.critic.index_select(0, rows), fresh);
   return model_->value(input, &critic);
 }
 
@@ -94,9 +89,8 @@ const std::vector<float>& Ppo::act(const StepResult& state) {
     if (step_ == 0) storage_.setInitialState(state_);
     const torch::Tensor starts = fresh_.to(torch::kFloat);
     storage_.addStarts(step_, starts);
-    const torch::Tensor keep = (1.0 - starts).unsqueeze(1);
-    state_.actor = state_.actor * keep;
-    state_.critic = state_.critic * keep;
+    state_.actor = startOver(state_.actor, starts);
+    state_.critic = startOver(state_.critic, starts);
   }
   sample_ = model_->act(obs_, &state_);
   if (history_) history_->pushActions(scaler_.squash(sample_.actions));

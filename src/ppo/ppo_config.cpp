@@ -42,9 +42,11 @@ int policyInputDim(const PpoConfig& c, int obs_dim, int action_dim) {
   return c.obs_history_length * obs_dim + c.action_history_length * action_dim;
 }
 
-bool hasMemory(const PpoConfig& c) {
-  return c.obs_history_length > 1 || c.action_history_length > 0 || c.rnn_type != RnnType::kNone;
+bool hasHistory(const PpoConfig& c) {
+  return c.obs_history_length > 1 || c.action_history_length > 0;
 }
+
+bool hasMemory(const PpoConfig& c) { return hasHistory(c) || c.rnn_type != RnnType::kNone; }
 
 }  // namespace ppo
 }  // namespace jetbot_rl

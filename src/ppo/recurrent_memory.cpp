@@ -63,12 +63,16 @@ torch::Tensor RecurrentMemoryImpl::step(const torch::Tensor& x, torch::Tensor& s
   return input;
 }
 
+torch::Tensor startOver(const torch::Tensor& state, const torch::Tensor& starts) {
+  return state * (1.0 - starts.to(torch::kFloat)).unsqueeze(1);
+}
+
 torch::Tensor RecurrentMemoryImpl::sequence(const torch::Tensor& x, const torch::Tensor& state,
                                             const torch::Tensor& starts) const {
   torch::Tensor s = state;
   std::vector<torch::Tensor> out;
   for (int64_t t = 0; t < x.size(0); ++t) {
-    s = s * (1.0 - starts[t]).unsqueeze(1);
+    s = startOver(s, starts[t]);
     out.push_back(step(x[t], s));
   }
   return torch::stack(out);

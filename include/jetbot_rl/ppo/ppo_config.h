@@ -137,6 +137,9 @@ bool sameArchitecture(const PpoConfig& a, const PpoConfig& b);
 void copyArchitecture(const PpoConfig& from, PpoConfig& to);
 /// True when the policy has memory: a history longer than the current observation, or an RNN.
 bool hasMemory(const PpoConfig& config);
+
+/// True when the policy's input is a history: more than the current observation, or actions.
+bool hasHistory(const PpoConfig& config);
 /// The network's input width: obs_history_length x obs_dim + action_history_length x action_dim.
 int policyInputDim(const PpoConfig& config, int obs_dim, int action_dim);
 

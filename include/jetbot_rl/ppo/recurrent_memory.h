@@ -46,5 +46,8 @@ class RecurrentMemoryImpl : public torch::nn::Module {
 };
 TORCH_MODULE(RecurrentMemory);
 
+/// `state` [N, S] with the rows of the envs that start over zeroed: `starts` [N], bool or 0/1.
+torch::Tensor startOver(const torch::Tensor& state, const torch::Tensor& starts);
+
 }  // namespace ppo
 }  // namespace jetbot_rl
