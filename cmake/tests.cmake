@@ -63,6 +63,10 @@ catkin_add_gtest(test_ros_adapter
 target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
 target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 
+# ---- the robot mode's scan handling, without a master ----
+catkin_add_gtest(test_robot_mode_scan test/ros/test_main.cpp test/ppo/test_robot_mode_scan.cpp)
+target_link_libraries(test_robot_mode_scan jetbot_rl_ppo_ros)
+
 # ---- the env node (rostest) ----
 foreach(_scenario interface lockstep step_service reset rejection realtime_hz realtime_brake clock
     markers refuse_start hostile_bytes cmd_vel_drive cmd_vel_tribot cmd_vel_lockstep cmd_vel_brake

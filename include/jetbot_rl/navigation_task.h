@@ -77,6 +77,7 @@ class NavigationTask : public Task {
   bool terminated(int env, const RootState& state) const override;
   Outcome outcome(int env) const override { return static_cast<Outcome>(outcome_.at(env)); }
   std::vector<std::string> arrowNames() const override { return {"goal"}; }
+  std::vector<double> scanBeamAngles() const override;
   Eigen::Vector2d arrowDirection(int env, int arrow) const override;
 
   /// Env `env`'s goal in the env frame [m].

@@ -39,6 +39,10 @@ struct BatchSpec {
   std::string task;
   std::vector<std::string> observation_names;  ///< One per observation component.
   std::vector<std::string> action_names;       ///< One per action component (the dof names).
+  /// The scan beams the observation holds (navigation): their angles [rad, in the scanner's frame],
+  /// and the scanner's [range_min, range_max] [m] they are clamped into and divided by. Empty
+  /// when the task observes no scan.
+  std::vector<double> scan_beam_angles, scan_range;
 };
 
 }  // namespace jetbot_rl

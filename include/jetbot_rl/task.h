@@ -115,6 +115,9 @@ class Task {
     (void)hold;
     throw InputError("task '" + name() + "' takes no command");
   }
+  /// Angles [rad, in the scanner's frame] of the scan beams the observation holds, in order: the
+  /// geometry a robot elsewhere resamples its own scan to. Empty: the task observes no scan.
+  virtual std::vector<double> scanBeamAngles() const { return {}; }
   /// Names of the directions to draw per env besides the robot's forward arrow (marker
   /// namespaces), one per arrowDirection() index.
   virtual std::vector<std::string> arrowNames() const { return {}; }

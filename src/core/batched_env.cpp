@@ -390,6 +390,8 @@ BatchSpec BatchedEnv::spec() const {
   spec.task = task_->name();
   spec.observation_names = task_->observationNames();
   spec.action_names = action_names_;
+  spec.scan_beam_angles = task_->scanBeamAngles();
+  if (!spec.scan_beam_angles.empty()) spec.scan_range = {scanner_->range_min, scanner_->range_max};
   return spec;
 }
 

@@ -32,6 +32,8 @@ void checkAgrees(const BatchSpec& a, const std::string& first, const BatchSpec& 
   differ("control_dt", text(a.control_dt), text(b.control_dt));
   differ("max_episode_length", text(a.max_episode_length), text(b.max_episode_length));
   differ("task", "'" + a.task + "'", "'" + b.task + "'");
+  differ("scan_beam_angles", text(a.scan_beam_angles), text(b.scan_beam_angles));
+  differ("scan_range", text(a.scan_range), text(b.scan_range));
 }
 
 }  // namespace

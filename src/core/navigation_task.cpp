@@ -55,6 +55,15 @@ void NavigationTask::attach(const TaskContext& context) {
   }
 }
 
+std::vector<double> NavigationTask::scanBeamAngles() const {
+  std::vector<double> angles;
+  if (!context_.scanner) return angles;  // not attached yet
+  for (int k : beam_index_) {
+    angles.push_back(context_.scanner->min_angle + k * context_.scanner->angleIncrement());
+  }
+  return angles;
+}
+
 void NavigationTask::resize(int num_envs) {
   goals_.assign(num_envs, Eigen::Vector2d(config_.goal_distance[0], 0.0));
   drawn_.assign(num_envs, 0);

@@ -32,7 +32,8 @@ except ImportError:
 NODE_SEED_STRIDE = 2 ** 32
 #: ~spec fields every node of one JetbotVecEnv must agree on (num_envs may differ).
 SHARED_SPEC_FIELDS = ('obs_dim', 'action_dim', 'task', 'observation_names', 'action_names',
-                      'action_low', 'action_high', 'control_dt', 'max_episode_length')
+                      'action_low', 'action_high', 'control_dt', 'max_episode_length',
+                      'scan_beam_angles', 'scan_range')
 _INT64_MAX = 2 ** 63 - 1
 
 
@@ -97,6 +98,8 @@ class JetbotVecEnv(_Base):
         self.action_high = np.array(first.action_high, dtype=np.float32)
         self.control_dt = float(first.control_dt)
         self.max_episode_length = int(first.max_episode_length)
+        self.scan_beam_angles = np.array(first.scan_beam_angles, dtype=np.float64)
+        self.scan_range = np.array(first.scan_range, dtype=np.float64)
         n = self.num_envs
         self.single_observation_space = make_box(-np.inf, np.inf, (self.obs_dim,))
         self.single_action_space = make_box(self.action_low, self.action_high, (self.action_dim,))
@@ -109,7 +112,7 @@ class JetbotVecEnv(_Base):
     def _check_same_spec(first, link):
         for field in SHARED_SPEC_FIELDS:
             a, b = getattr(first.spec, field), getattr(link.spec, field)
-            if isinstance(a, (list, tuple)):
+            if isinstance(a, (list, tuple, np.ndarray)):
                 a, b = list(a), list(b)
             if a != b:
                 raise ValueError('JetbotVecEnv: %s has spec field %s = %r, but %s has %r: all '

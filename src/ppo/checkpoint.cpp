@@ -22,6 +22,7 @@ struct SpecFields {
   int max_episode_length = 0;
   std::vector<std::string> observation_names, action_names;
   std::vector<double> action_low, action_high;
+  std::vector<double> scan_beam_angles, scan_range;  // absent in files written before them
 };
 
 template <typename C, typename V>
@@ -33,6 +34,8 @@ IfConfig<C, SpecFields> visitFields(C& c, V&& v) {
   v("action_names", c.action_names, AnyValue{}, "");
   v("action_low", c.action_low, AnyValue{}, "");
   v("action_high", c.action_high, AnyValue{}, "");
+  v("scan_beam_angles", c.scan_beam_angles, AnyValue{}, "");
+  v("scan_range", c.scan_range, AnyValue{}, "");
 }
 
 // SpecFields and BatchSpec name the fields they share alike: one copy serves both directions.
@@ -45,6 +48,8 @@ void copySpec(const From& from, To& to) {
   to.action_names = from.action_names;
   to.action_low.assign(from.action_low.begin(), from.action_low.end());
   to.action_high.assign(from.action_high.begin(), from.action_high.end());
+  to.scan_beam_angles = from.scan_beam_angles;
+  to.scan_range = from.scan_range;
 }
 
 std::string specYaml(const BatchSpec& spec) {

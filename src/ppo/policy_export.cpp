@@ -47,6 +47,10 @@ std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta, int hidd
   writeValue(s, spec.action_low);
   s << "\naction_high: ";
   writeValue(s, spec.action_high);
+  s << "\nscan_beam_angles: ";
+  writeValue(s, spec.scan_beam_angles);
+  s << "\nscan_range: ";
+  writeValue(s, spec.scan_range);
   s << "\ncontrol_dt: " << spec.control_dt << "\niteration: " << meta.iteration
     << "\nenv_steps: " << meta.env_steps << "\nmemory: " << (hidden_size > 0 ? "true" : "false")
     << "\nhidden_size: " << hidden_size << "\nhidden_layout: \"" << layout << "\""

@@ -203,6 +203,23 @@ TEST(NavigationTask, OutcomesOfEndedEpisodesAreReported) {
   EXPECT_TRUE(failure);  // 20 rad/s straight on in a 4 x 4 m arena meets a wall within 20 s
 }
 
+TEST(NavigationTask, TheSpecCarriesTheBeamsItObservesForARobotElsewhere) {
+  EnvConfig c = navConfig(2);
+  c.scan.samples = 36;
+  c.scan.angles = {-1.75, 1.75};  // 0.1 rad apart
+  TaskConfig t;
+  t.task = TaskKind::kNavigation;
+  t.navigation.beams = 12;  // every third sample
+  const BatchSpec spec = BatchedEnv(test::jetbot(), c, makeTask(t)).spec();
+  ASSERT_EQ(spec.scan_beam_angles.size(), 12u);
+  for (int i = 0; i < 12; ++i) EXPECT_NEAR(spec.scan_beam_angles[i], -1.75 + 0.3 * i, 1e-12);
+  EXPECT_EQ(spec.scan_range, (std::vector<double>{0.05, 3.5}));
+  // A task that observes no scan says so, scanner or not.
+  const BatchSpec velocity = BatchedEnv(test::jetbot(), c).spec();
+  EXPECT_TRUE(velocity.scan_beam_angles.empty());
+  EXPECT_TRUE(velocity.scan_range.empty());
+}
+
 TEST(NavigationTask, NeedsAScannerAndNoMoreBeamsThanItHas) {
   EnvConfig c = test::smallConfig(1);
   try {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <unordered_map>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/checkpoint.h"
@@ -122,6 +123,32 @@ TEST_F(CheckpointTest, MetadataRoundTrip) {
   EXPECT_EQ(m.obs_dim, kObs);
   EXPECT_EQ(m.action_dim, kAct);
   EXPECT_EQ(toYaml(m.config), toYaml(testConfig()));
+}
+
+TEST_F(CheckpointTest, TheEnvsSpecWithItsScanBeamsRoundTrips) {
+  meta.spec = testSpec();
+  meta.spec.task = "navigation";
+  meta.spec.scan_beam_angles = {-0.5, 0.1, 0.7};
+  meta.spec.scan_range = {0.15, 3.5};
+  const std::string with_beams = tempPath("with_beams.pt");
+  saveCheckpoint(with_beams, *trained, meta);
+  const BatchSpec read = readCheckpointMeta(with_beams).spec;
+  EXPECT_EQ(read.task, "navigation");
+  EXPECT_EQ(read.scan_beam_angles, meta.spec.scan_beam_angles);
+  EXPECT_EQ(read.scan_range, meta.spec.scan_range);
+  EXPECT_EQ(read.action_high, meta.spec.action_high);
+  // A task without a scan (and a file written before the beams were saved) reads none.
+  EXPECT_TRUE(readCheckpointMeta(path).spec.scan_beam_angles.empty());
+  // The export's meta.yaml carries them too.
+  Policy policy(with_beams);
+  const std::string exported = tempPath("exported_beams/policy.pt");
+  policy.exportTorchScript(exported, meta.spec);
+  std::unordered_map<std::string, std::string> extra{{"meta.yaml", ""}};
+  torch::jit::load(exported, c10::nullopt, extra);
+  EXPECT_NE(
+      extra["meta.yaml"].find("\nscan_beam_angles: [-0.5, 0.1, 0.7]\nscan_range: [0.15, 3.5]\n"),
+      std::string::npos)
+      << extra["meta.yaml"];
 }
 
 TEST_F(CheckpointTest, SameOutputsAndNormaliserAfterReload) {

@@ -19,6 +19,7 @@ URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot
 class TestRefuseStartPpo(unittest.TestCase):
     count = 0
     trained = None
+    trained_navigation = None
 
     @classmethod
     def checkpoint(cls):
@@ -31,10 +32,25 @@ class TestRefuseStartPpo(unittest.TestCase):
                            stdout=subprocess.DEVNULL)
         return cls.trained
 
-    def refuses(self, node_type, params, *texts):
+    @classmethod
+    def navigation_checkpoint(cls):
+        """A navigation run of one iteration: its checkpoint holds the beams it observed."""
+        if cls.trained_navigation is None:
+            cls.trained_navigation = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_nav_')
+            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                            'task:=navigation', 'iterations:=1', 'num_envs:=4',
+                            'run_dir:=' + cls.trained_navigation, 'output:=log'], check=True,
+                           timeout=10 * RUN_TIMEOUT, stdout=subprocess.DEVNULL)
+        return cls.trained_navigation
+
+    def refuses(self, node_type, params, *texts, lists=None):
+        """`lists`: private parameters set on the server (a command line gives only scalars)."""
         TestRefuseStartPpo.count += 1
-        code, output = run_node(node_type, 'refuse_%d' % TestRefuseStartPpo.count, params,
-                                timeout=RUN_TIMEOUT)
+        name = 'refuse_%d' % TestRefuseStartPpo.count
+        for key, value in (lists or {}).items():
+            rospy.set_param('/%s/%s' % (name, key), value)
+            self.addCleanup(rospy.delete_param, '/%s/%s' % (name, key))
+        code, output = run_node(node_type, name, params, timeout=RUN_TIMEOUT)
         self.assertNotEqual(code, 0, output)
         fatal = [line for line in output.splitlines() if 'FATAL' in line]
         self.assertTrue(fatal, 'no FATAL line in:\n' + output)
@@ -108,6 +124,19 @@ class TestRefuseStartPpo(unittest.TestCase):
         self.refuses('jetbot_policy_node',
                      {'checkpoint': self.checkpoint(), 'robot': True, 'task': 'command'},
                      "task = 'command'", "trained on task 'velocity'")
+
+    def test_robot_mode_scan_range_not_the_checkpoints(self):
+        # config/navigation_env.yaml's scanner reads 0.15-3.5 m: another range would misread it
+        self.refuses('jetbot_policy_node',
+                     {'checkpoint': self.navigation_checkpoint(), 'robot': True},
+                     'scan_range = [0.12, 12]', 'was trained with [0.15, 3.5] m',
+                     lists={'scan_range': [0.12, 12.0]})
+
+    def test_robot_mode_scan_angles_not_the_checkpoints(self):
+        self.refuses('jetbot_policy_node',
+                     {'checkpoint': self.navigation_checkpoint(), 'robot': True},
+                     'scan_angles = [-1.5, 1.5]', 'was trained with [-3.14159, 2.87979] rad',
+                     lists={'scan_angles': [-1.5, 1.5]})
 
     def test_iterations_zero(self):
         self.refuses('jetbot_ppo_trainer', {'iterations': 0}, 'iterations = 0')

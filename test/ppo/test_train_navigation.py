@@ -7,17 +7,31 @@ import math
 import os
 import subprocess
 import unittest
+import zipfile
 
 import rospkg
 import rospy
 import rostest
 
+from jetbot_rl_test.env_client import wait_for
 from jetbot_rl_test.ppo_test_util import TIMEOUT, StatsWatcher, read_csv
 
 SUCCESS_FLOOR = 0.8     # the last 10 iterations' mean success rate
 EVAL_SUCCESS_FLOOR = 0.85
 EVAL_COLLISION_CEILING = 0.1
 PKG = rospkg.RosPack().get_path('jetbot_rl')
+
+
+def exported_meta(run_dir):
+    """The export's meta.yaml as a dict of strings; {} while it is not (completely) written."""
+    try:
+        with zipfile.ZipFile(os.path.join(run_dir, 'exported', 'policy.pt')) as z:
+            name = next(n for n in z.namelist() if n.endswith('extra/meta.yaml'))
+            text = z.read(name).decode()
+    except (OSError, zipfile.BadZipFile, StopIteration):
+        return {}
+    return dict(line.split(': ', 1) for line in text.splitlines()
+                if ': ' in line and not line.startswith('#'))
 
 
 class TestTrainNavigation(unittest.TestCase):
@@ -51,6 +65,17 @@ class TestTrainNavigation(unittest.TestCase):
         self.assertEqual(figures['episodes'].split()[0], '200')
         self.assertGreater(float(figures['success_rate']), EVAL_SUCCESS_FLOOR)
         self.assertLess(float(figures['collision_rate']), EVAL_COLLISION_CEILING)
+
+        # The beams it observed travelled from the env node (~spec) into the export's meta.yaml:
+        # config/navigation_env.yaml's 24 samples over [-3.14159, 2.87979] rad, 0.15-3.5 m.
+        meta = {}
+        wait_for(lambda: meta.update(exported_meta(run_dir)) or meta, timeout=TIMEOUT,
+                 what='the exported policy', recheck=0.5)
+        angles = [float(a) for a in meta['scan_beam_angles'].strip('[]').split(',')]
+        self.assertEqual(len(angles), 24)
+        for k, angle in enumerate(angles):
+            self.assertAlmostEqual(angle, -3.14159 + k * (2.87979 + 3.14159) / 23, places=9)
+        self.assertEqual(meta['scan_range'], '[0.15, 3.5]')
 
 
 if __name__ == '__main__':

@@ -53,6 +53,7 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual(env.action_low.dtype, np.float32)
         self.assertAlmostEqual(env.control_dt, 1.0 / 60.0, places=12)
         self.assertEqual(env.max_episode_length, 300)
+        self.assertEqual((len(env.scan_beam_angles), len(env.scan_range)), (0, 0))  # no scan
         self.assertEqual(str(getattr(env.metadata['autoreset_mode'], 'value',
                                      env.metadata['autoreset_mode'])), 'SameStep')
         self.assertEqual(len(env.specs), 1)

@@ -59,6 +59,7 @@ class TestInterface(unittest.TestCase):
         self.assertEqual(spec.task, 'velocity')
         self.assertEqual(spec.observation_names, ['lin_vel_b_x', 'lin_vel_b_y', 'lin_vel_b_z'])
         self.assertEqual(spec.action_names, ['left_wheel_joint', 'right_wheel_joint'])
+        self.assertEqual((list(spec.scan_beam_angles), list(spec.scan_range)), ([], []))
 
     def test_velocity_task_has_no_command(self):
         rospy.wait_for_service(NODE + '/set_command', TIMEOUT)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
 
@@ -65,6 +66,46 @@ std::vector<float> resampleScan(const sensor_msgs::LaserScan& scan,
   return beams;
 }
 
+ScanBeams scanBeamsOf(const BatchSpec& trained, const RobotModeParams& p,
+                      const std::string& checkpoint) {
+  ScanBeams beams;
+  if (trained.scan_beam_angles.empty() || trained.scan_range.size() != 2) {
+    if (p.scan_angles.empty() || p.scan_range.empty()) {
+      throwInvalid(p.scan_angles.empty() ? "scan_angles" : "scan_range", "[]",
+                   "checkpoint " + checkpoint +
+                       " does not hold the scan beams it was trained on (written before "
+                       "checkpoints held them): give the trained scanner's scan_angles [first, "
+                       "last] and scan_range [min, max]");
+    }
+    const int k = p.task.navigation.beams;
+    for (int i = 0; i < k; ++i) {
+      beams.angles.push_back(k == 1 ? p.scan_angles[0]
+                                    : p.scan_angles[0] +
+                                          i * (p.scan_angles[1] - p.scan_angles[0]) / (k - 1));
+    }
+    beams.range_min = p.scan_range[0];
+    beams.range_max = p.scan_range[1];
+    return beams;
+  }
+  beams.angles = trained.scan_beam_angles;
+  beams.range_min = trained.scan_range[0];
+  beams.range_max = trained.scan_range[1];
+  // Given as well: they must say what the checkpoint says (anything else would misread the scan).
+  const auto agree = [&](const char* name, const std::vector<double>& given, double first,
+                         double last, const char* unit) {
+    if (given.empty()) return;
+    if (std::abs(given[0] - first) > 1e-6 || std::abs(given[1] - last) > 1e-6) {
+      throwInvalid(name, listText(given),
+                   std::string("the policy of ") + checkpoint + " was trained with " +
+                       listText(std::vector<double>{first, last}) + " " + unit +
+                       " (leave it unset: the checkpoint gives it)");
+    }
+  };
+  agree("scan_angles", p.scan_angles, beams.angles.front(), beams.angles.back(), "rad");
+  agree("scan_range", p.scan_range, beams.range_min, beams.range_max, "m");
+  return beams;
+}
+
 NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
                                    const RobotModeParams& p, const PolicyRun& run,
                                    const std::optional<DiffDrive>& kinematics)
@@ -74,15 +115,11 @@ NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Po
       kinematics_(kinematics),
       tf_listener_(tf_buffer_),
       dropped_(nh, ros::this_node::getName() + ": robot mode", "dropped input") {
-  const int beams = p.task.navigation.beams;
-  for (int i = 0; i < beams; ++i) {
-    beam_angles_.push_back(
-        beams == 1 ? p.scan_angles[0]
-                   : p.scan_angles[0] + i * (p.scan_angles[1] - p.scan_angles[0]) / (beams - 1));
-  }
+  beams_of_policy_ = scanBeamsOf(policy.meta().spec, p, run.checkpoint);
+  const int beams = static_cast<int>(beams_of_policy_.angles.size());
   const int obs_dim = beams + 5 + 2;
   if (obs_dim != policy_.obsDim()) {
-    throw ConfigError("task 'navigation' with nav/beams " + std::to_string(beams) + " observes " +
+    throw ConfigError("task 'navigation' with " + std::to_string(beams) + " beams observes " +
                       std::to_string(obs_dim) + " values; the policy takes " +
                       std::to_string(policy_.obsDim()));
   }
@@ -107,9 +144,11 @@ NavigationDriver::NavigationDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Po
                               this);
   ROS_INFO(
       "robot mode (navigation): %s, %s and goals on %s -> policy (%d beams over [%g, %g] "
-      "rad, range [%g, %g] m) -> %s at %.1f Hz (%s actions; both the checkpoint's)",
+      "rad, range [%g, %g] m: %s) -> %s at %.1f Hz (%s actions; the checkpoint's)",
       odom_sub_.getTopic().c_str(), scan_sub_.getTopic().c_str(), goal_sub_.getTopic().c_str(),
-      beams, p.scan_angles[0], p.scan_angles[1], p.scan_range[0], p.scan_range[1],
+      beams, beams_of_policy_.angles.front(), beams_of_policy_.angles.back(),
+      beams_of_policy_.range_min, beams_of_policy_.range_max,
+      policy.meta().spec.scan_beam_angles.empty() ? "the parameters'" : "the checkpoint's",
       cmd_vel_pub_.getTopic().c_str(), run.control_rate, run.twist ? "twist" : "wheel");
 }
 
@@ -137,7 +176,8 @@ void NavigationDriver::onOdom(const nav_msgs::Odometry::ConstPtr& msg) {
 
 void NavigationDriver::onScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   std::string error;
-  resampleScan(*msg, beam_angles_, params_.scan_range[0], params_.scan_range[1], error);
+  resampleScan(*msg, beams_of_policy_.angles, beams_of_policy_.range_min,
+               beams_of_policy_.range_max, error);
   if (!error.empty()) {
     if (scan_error_.empty())
       ROS_ERROR("scan on %s refused: %s", scan_sub_.getTopic().c_str(), error.c_str());
@@ -225,8 +265,8 @@ void NavigationDriver::onTick(const ros::WallTimerEvent&) {
       report("reached");
     } else {
       std::string error;
-      beams_ =
-          resampleScan(*scan_, beam_angles_, params_.scan_range[0], params_.scan_range[1], error);
+      beams_ = resampleScan(*scan_, beams_of_policy_.angles, beams_of_policy_.range_min,
+                            beams_of_policy_.range_max, error);
       obs_.resize(static_cast<std::size_t>(policy_.obsDim()));
       NavigationTask::observation(beams_, in_robot, odom_->twist.twist.linear.x,
                                   odom_->twist.twist.angular.z, last_action_.data(), 2,

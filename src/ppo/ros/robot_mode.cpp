@@ -171,11 +171,14 @@ void checkFieldRules(const RobotModeParams& p) {
   if (p.dof_names.size() != 2) {
     throwInvalid("dof_names", listText(p.dof_names), "must name the two wheel joints");
   }
-  if (p.scan_angles.size() != 2 || p.scan_angles[0] > p.scan_angles[1]) {
-    throwInvalid("scan_angles", listText(p.scan_angles), "must be [first, last], first <= last");
+  if (!p.scan_angles.empty() &&
+      (p.scan_angles.size() != 2 || p.scan_angles[0] > p.scan_angles[1])) {
+    throwInvalid("scan_angles", listText(p.scan_angles),
+                 "must be empty (the checkpoint's) or [first, last], first <= last");
   }
-  if (p.scan_range.size() != 2 || !(p.scan_range[0] < p.scan_range[1])) {
-    throwInvalid("scan_range", listText(p.scan_range), "must be [min, max], min < max");
+  if (!p.scan_range.empty() && (p.scan_range.size() != 2 || !(p.scan_range[0] < p.scan_range[1]))) {
+    throwInvalid("scan_range", listText(p.scan_range),
+                 "must be empty (the checkpoint's) or [min, max], min < max");
   }
 }
 
@@ -192,6 +195,7 @@ PolicyRun policyRunOf(const Policy& policy, const std::string& checkpoint) {
   run.control_rate = 1.0 / spec.control_dt;
   run.twist = spec.action_names == std::vector<std::string>{"linear_x", "angular_z"};
   run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
+  run.checkpoint = checkpoint;
   return run;
 }
 
@@ -212,13 +216,18 @@ int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
   // The task: the checkpoint's unless given, and then it must be the checkpoint's.
   const std::optional<RobotModeParams> params =
       loadParams<RobotModeParams>(pnh, [&](RobotModeParams& p) {
-        const std::string trained = policy.meta().spec.task;
+        const BatchSpec& spec = policy.meta().spec;
         if (!pnh.hasParam("task")) {
-          p.task.task = parseEnum<TaskKind>("task", trained);
-        } else if (enumName(p.task.task) != trained) {
+          p.task.task = parseEnum<TaskKind>("task", spec.task);
+        } else if (enumName(p.task.task) != spec.task) {
           throwInvalid("task", "'" + enumName(p.task.task) + "'",
-                       "the checkpoint was trained on task '" + trained + "'");
+                       "the checkpoint was trained on task '" + spec.task + "'");
         }
+        // Its beam count too, where it holds its beams.
+        if (!spec.scan_beam_angles.empty() && !pnh.hasParam("nav/beams")) {
+          p.task.navigation.beams = static_cast<int>(spec.scan_beam_angles.size());
+        }
+        if (p.task.task == TaskKind::kNavigation) scanBeamsOf(spec, p, checkpoint);  // agree?
       });
   if (!params) return 1;
   try {

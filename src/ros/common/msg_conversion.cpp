@@ -79,18 +79,23 @@ EnvSpec toMsg(const BatchSpec& spec) {
   msg.task = spec.task;
   msg.observation_names = spec.observation_names;
   msg.action_names = spec.action_names;
+  msg.scan_beam_angles = spec.scan_beam_angles;
+  msg.scan_range = spec.scan_range;
   return msg;
 }
 
 BatchSpec fromMsg(const EnvSpec& msg) {
   if (msg.num_envs < 1 || msg.obs_dim < 1 || msg.action_dim < 1 ||
       msg.action_low.size() != msg.action_dim || msg.action_high.size() != msg.action_dim ||
-      msg.max_episode_length < 2 || !(msg.control_dt > 0.0)) {
+      msg.max_episode_length < 2 || !(msg.control_dt > 0.0) ||
+      msg.scan_range.size() != (msg.scan_beam_angles.empty() ? 0u : 2u)) {
     throw Error("inconsistent EnvSpec: num_envs " + std::to_string(msg.num_envs) + ", obs_dim " +
                 std::to_string(msg.obs_dim) + ", action_dim " + std::to_string(msg.action_dim) +
                 " with " + std::to_string(msg.action_low.size()) + "/" +
                 std::to_string(msg.action_high.size()) + " bounds, max_episode_length " +
-                std::to_string(msg.max_episode_length));
+                std::to_string(msg.max_episode_length) + ", " +
+                std::to_string(msg.scan_beam_angles.size()) + " scan beams with " +
+                std::to_string(msg.scan_range.size()) + " scan_range values");
   }
   BatchSpec spec;
   spec.num_envs = static_cast<int>(msg.num_envs);
@@ -103,6 +108,8 @@ BatchSpec fromMsg(const EnvSpec& msg) {
   spec.task = msg.task;
   spec.observation_names = msg.observation_names;
   spec.action_names = msg.action_names;
+  spec.scan_beam_angles = msg.scan_beam_angles;
+  spec.scan_range = msg.scan_range;
   return spec;
 }
 

@@ -31,6 +31,20 @@ std::vector<float> resampleScan(const sensor_msgs::LaserScan& scan,
                                 const std::vector<double>& beam_angles, double range_min,
                                 double range_max, std::string& error);
 
+/// The scan beams a navigation policy observes.
+struct ScanBeams {
+  std::vector<double> angles;  ///< In the scanner's frame, in observation order [rad].
+  double range_min = 0.0;      ///< Readings are clamped into [range_min, range_max] [m]...
+  double range_max = 0.0;      ///< ... and divided by range_max [m].
+};
+
+/// The beams of the policy trained on `trained` (its checkpoint's env spec); `scan_angles` and
+/// `scan_range`, when given, must agree with them. A checkpoint written before it held its beams
+/// takes them from those two parameters (nav/beams evenly spread), which it then needs.
+/// ConfigError naming the parameter and both values.
+ScanBeams scanBeamsOf(const BatchSpec& trained, const RobotModeParams& p,
+                      const std::string& checkpoint);
+
 /**
  * The robot mode of a navigation policy: the newest odometry, laser scan and goal (a PoseStamped
  * as RViz's "2D Nav Goal" publishes it, transformed into the odometry frame with tf2) become the
@@ -62,7 +76,7 @@ class NavigationDriver {
   Policy& policy_;
   PolicyRun run_;
   std::optional<DiffDrive> kinematics_;  // wheel targets -> Twist; none for twist actions
-  std::vector<double> beam_angles_;
+  ScanBeams beams_of_policy_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   ros::Publisher cmd_vel_pub_, outcome_pub_;

@@ -36,10 +36,11 @@ struct RobotModeParams {
   std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
   std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
   double scan_timeout = 0.5;                          ///< An older scan stops the robot [s, wall].
-  /// The policy's beams: [first, last] angle [rad], nav/beams of them evenly spread, in the
-  /// robot's base frame (as config/navigation_env.yaml trains them).
-  std::vector<double> scan_angles{-3.14159, 2.87979};
-  std::vector<double> scan_range{0.15, 3.5};  ///< The policy's [range_min, range_max] [m].
+  /// The policy's beams, [first, last] angle [rad] in the scanner's frame: empty, the
+  /// checkpoint's; only a checkpoint that predates them needs it (nav/beams evenly spread).
+  std::vector<double> scan_angles;
+  /// The policy's [range_min, range_max] [m]: empty, the checkpoint's (likewise).
+  std::vector<double> scan_range;
   std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
 };
 
@@ -67,17 +68,18 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "Navigation: an older scan stops the robot.");
   v("scan_angles", c.scan_angles,
     EachValue<double>{Range<double>{-10.0, 10.0, false, false, "rad"}},
-    "Navigation: [first, last] angle of the policy's nav/beams beams in the robot's base frame "
-    "(config/navigation_env.yaml's); the robot's scan is resampled to them.");
+    "Navigation: [first, last] angle in the scanner's frame of the beams the robot's scan is "
+    "resampled to. Empty: the checkpoint's (given, it must agree with them); only a checkpoint "
+    "written before checkpoints held their beams needs it, with nav/beams evenly spread.");
   v("scan_range", c.scan_range, EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
-    "Navigation: the policy's [range_min, range_max]: readings are clamped into it and divided by "
-    "range_max.");
+    "Navigation: [range_min, range_max] readings are clamped into and divided by the max of. "
+    "Empty: the checkpoint's (likewise).");
   v("map_topic", c.map_topic, AnyValue{"", "empty: none"},
     "Navigation: nav_msgs/OccupancyGrid in the odometry frame; a goal off its free cells is "
     "refused.");
 }
 
-/// dof_names must name two wheel joints; scan_angles and scan_range two values.
+/// dof_names must name two wheel joints; scan_angles and scan_range none or two values.
 void checkFieldRules(const RobotModeParams& params);
 
 /// How the checkpoint's policy runs: at 1 / its control step, with its action bounds, its actions
@@ -87,6 +89,7 @@ struct PolicyRun {
   double control_rate = 0.0;  ///< [Hz]
   bool twist = false;         ///< Actions (linear_x, angular_z) rather than wheel targets.
   std::vector<double> action_high;
+  std::string checkpoint;  ///< Its file, for messages.
 };
 PolicyRun policyRunOf(const Policy& policy, const std::string& checkpoint);
 
