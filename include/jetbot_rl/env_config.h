@@ -55,6 +55,8 @@ struct EnvConfig {
   double drive_gain = 10.0;                         ///< Velocity drive gain [N m s/rad].
   DriveMode drive = DriveMode::kAuto;               ///< How the wheels follow their targets.
   ActionSpace action_space = ActionSpace::kWheels;  ///< What an action is.
+  /// A twist action's fastest backwards v [m/s]; -1: as fast as forwards (the wheels' limit).
+  double twist_reverse_speed = -1.0;
   double effort_limit = 0.0;   ///< Drive torque limit [N m]; 0 takes the URDF <limit effort>.
   int solver_iterations = 10;  ///< Bullet constraint solver iterations per physics step.
   /// Wheel (dof) velocity limit [rad/s] for every dof; 0 takes the URDF <limit velocity>.
@@ -115,6 +117,11 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
     "wheels: a velocity target per dof [rad/s]; twist: (v [m/s], omega [rad/s]) of the "
     "differential drive (DiffDrive: wheel_radius, wheel_separation), bounded by the wheels' "
     "limits, as a base's cmd_vel.");
+  v("twist_reverse_speed", c.twist_reverse_speed,
+    atLeast(-1.0, "m/s", "-1: as fast as forwards; else >= 0"),
+    "With action_space twist: the fastest backwards v, the action's lower bound -this (0: never "
+    "backwards, as move_base's local planners default to with min_vel_x 0); -1: the fastest "
+    "straight v the wheels allow, as forwards.");
   v("effort_limit", c.effort_limit, atLeast(0.0, "N m", "0: the URDF effort limit"),
     "Wheel drive torque limit.");
   v("solver_iterations", c.solver_iterations, inRange(1, 1000),

@@ -77,7 +77,14 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     const double v = drive_->bodyTwist({limits[0], limits[1]}).linear;
     const double w = std::abs(drive_->bodyTwist({-limits[0], limits[1]}).angular);
     action_names_ = {"linear_x", "angular_z"};
-    action_low_ = {static_cast<float>(-std::abs(v)), static_cast<float>(-w)};
+    if (config_.twist_reverse_speed > std::abs(v)) {
+      throwInvalid("twist_reverse_speed", config_.twist_reverse_speed,
+                   "must not exceed the fastest straight v the wheels allow (" +
+                       std::to_string(std::abs(v)) + " m/s)");
+    }
+    const double reverse =
+        config_.twist_reverse_speed < 0.0 ? std::abs(v) : config_.twist_reverse_speed;
+    action_low_ = {static_cast<float>(-reverse), static_cast<float>(-w)};
     action_high_ = {static_cast<float>(std::abs(v)), static_cast<float>(w)};
   }
   if (config_.world.enabled()) {

@@ -11,6 +11,14 @@ namespace jetbot_rl {
 void checkFieldRules(const EnvConfig& config) {
   checkFieldRules(config.world);
   checkFieldRules(config.scan);
+  if (config.twist_reverse_speed < 0.0 && config.twist_reverse_speed != -1.0) {
+    throwInvalid("twist_reverse_speed", config.twist_reverse_speed,
+                 "must be -1 (as fast as forwards) or >= 0 m/s");
+  }
+  if (config.twist_reverse_speed != -1.0 && config.action_space != ActionSpace::kTwist) {
+    throwInvalid("twist_reverse_speed", config.twist_reverse_speed,
+                 "bounds twist actions: it needs action_space twist");
+  }
   const double steps = config.episode_length_s / config.controlDt();
   if (steps < 2.0 || steps > 1e9) {
     throwInvalid("episode_length_s", config.episode_length_s,

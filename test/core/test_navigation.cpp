@@ -266,5 +266,37 @@ TEST(ActionSpace, TwistActionsDriveThroughTheDifferentialDrive) {
   EXPECT_THROW(env.step({std::nanf(""), 0.0f}), InputError);
 }
 
+TEST(ActionSpace, TwistReverseSpeedBoundsBackwardsTwistsOnly) {
+  EnvConfig c = test::smallConfig(1);
+  c.action_space = ActionSpace::kTwist;
+  c.episode_length_s = 100.0;
+  c.twist_reverse_speed = 0.0;  // forwards only
+  BatchedEnv env(test::jetbot(), c);
+  EXPECT_EQ(env.actionLow()[0], 0.0f);
+  EXPECT_NEAR(env.actionHigh()[0], 0.6, 1e-5);  // forwards and turns as before
+  EXPECT_NEAR(env.actionLow()[1], -env.actionHigh()[1], 1e-6);
+  for (int k = 0; k < 120; ++k) env.step({-0.3f, 0.0f});  // clamped to standing still
+  EXPECT_NEAR(env.rootTwist(0).linear.x(), 0.0, 1e-3);
+  c.twist_reverse_speed = 0.1;
+  BatchedEnv slow(test::jetbot(), c);
+  EXPECT_FLOAT_EQ(slow.actionLow()[0], -0.1f);
+  for (int k = 0; k < 120; ++k) slow.step({-0.3f, 0.0f});
+  EXPECT_NEAR(slow.rootTwist(0).linear.x(), -0.1, 0.01);
+  // Faster than the wheels allow, negative other than -1, or wheel actions: refused naming it.
+  const std::vector<std::pair<double, std::string>> bad{
+      {0.7, "0.7: must not exceed"}, {-0.5, "-0.5: must be -1"}, {0.2, "0.2: bounds twist"}};
+  for (const auto& [value, text] : bad) {
+    c.twist_reverse_speed = value;
+    c.action_space = value == 0.2 ? ActionSpace::kWheels : ActionSpace::kTwist;
+    try {
+      BatchedEnv refused(test::jetbot(), c);
+      FAIL() << "accepted twist_reverse_speed " << value;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("twist_reverse_speed = " + text), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace jetbot_rl
