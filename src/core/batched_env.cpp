@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "action_layout.h"
 #include "env_randomizer.h"
 #include "env_world.h"
 #include "jetbot_rl/errors.h"
@@ -60,33 +61,12 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     wheel_high_.push_back(static_cast<float>(dof.velocity_limit));
     dof_limits_.push_back(dof);
   }
-  action_low_ = wheel_low_;
-  action_high_ = wheel_high_;
-  action_names_ = config_.dof_names;
-  if (config_.action_space == ActionSpace::kTwist) {
-    std::vector<double> limits(wheel_high_.begin(), wheel_high_.end());
-    try {
-      drive_ = std::make_unique<DiffDrive>(DiffDrive::fromRobot(
-          *robot_, config_.dof_names, limits, config_.wheel_radius, config_.wheel_separation));
-    } catch (const Error& e) {
-      throw ConfigError(std::string("invalid action_space = twist: it needs a differential "
-                                    "drive: ") +
-                        e.what());
-    }
-    // The fastest straight line and turn on the spot the wheels allow.
-    const double v = drive_->bodyTwist({limits[0], limits[1]}).linear;
-    const double w = std::abs(drive_->bodyTwist({-limits[0], limits[1]}).angular);
-    action_names_ = {"linear_x", "angular_z"};
-    if (config_.twist_reverse_speed > std::abs(v)) {
-      throwInvalid("twist_reverse_speed", config_.twist_reverse_speed,
-                   "must not exceed the fastest straight v the wheels allow (" +
-                       std::to_string(std::abs(v)) + " m/s)");
-    }
-    const double reverse =
-        config_.twist_reverse_speed < 0.0 ? std::abs(v) : config_.twist_reverse_speed;
-    action_low_ = {static_cast<float>(-reverse), static_cast<float>(-w)};
-    action_high_ = {static_cast<float>(std::abs(v)), static_cast<float>(w)};
-  }
+  ActionLayout actions = makeActionLayout(
+      *robot_, config_, std::vector<double>(wheel_high_.begin(), wheel_high_.end()));
+  action_low_ = std::move(actions.low);
+  action_high_ = std::move(actions.high);
+  action_names_ = std::move(actions.names);
+  drive_ = std::move(actions.drive);
   if (config_.world.enabled()) {
     world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
     world_shapes_ = std::make_unique<WorldShapes>(*world_);

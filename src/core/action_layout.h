@@ -1,0 +1,30 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/env_config.h"
+#include "jetbot_rl/robot_model.h"
+
+namespace jetbot_rl {
+
+/// What an env's action is: its bounds and names, and for action_space twist the kinematics that
+/// turn a twist into wheel targets.
+struct ActionLayout {
+  std::vector<float> low, high;      ///< Per action dimension [rad/s; twist: m/s, rad/s].
+  std::vector<std::string> names;    ///< The dof names; twist: linear_x, angular_z.
+  std::unique_ptr<DiffDrive> drive;  ///< Twist only.
+};
+
+/**
+ * The layout of `config.action_space` for `robot` with wheel velocity limits `wheel_limits`
+ * [rad/s] (in dof order): wheel targets within them, or a twist bounded by the fastest straight v
+ * and turn on the spot they allow (v from below by twist_reverse_speed). ConfigError naming
+ * action_space for a robot that is no differential drive, twist_reverse_speed beyond the wheels.
+ */
+ActionLayout makeActionLayout(const RobotModel& robot, const EnvConfig& config,
+                              const std::vector<double>& wheel_limits);
+
+}  // namespace jetbot_rl
