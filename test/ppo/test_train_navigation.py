@@ -68,9 +68,9 @@ class TestTrainNavigation(unittest.TestCase):
 
         # The beams it observed travelled from the env node (~spec) into the export's meta.yaml:
         # config/navigation_env.yaml's 24 samples over [-3.14159, 2.87979] rad, 0.15-3.5 m.
-        meta = {}
-        wait_for(lambda: meta.update(exported_meta(run_dir)) or meta, timeout=TIMEOUT,
-                 what='the exported policy', recheck=0.5)
+        wait_for(lambda: exported_meta(run_dir), timeout=TIMEOUT, what='the exported policy',
+                 recheck=0.5)
+        meta = exported_meta(run_dir)
         angles = [float(a) for a in meta['scan_beam_angles'].strip('[]').split(',')]
         self.assertEqual(len(angles), 24)
         for k, angle in enumerate(angles):
