@@ -14,9 +14,11 @@ add_library(jetbot_rl_core
   src/core/diff_drive.cpp
   src/core/dof_limits.cpp
   src/core/env_config.cpp
+  src/core/env_physics.cpp
   src/core/env_randomizer.cpp
   src/core/env_setup.cpp
-  src/core/env_world.cpp
+  src/core/env_view.cpp
+  src/core/former_names.cpp
   src/core/gazebo_blocks.cpp
   src/core/laser_scanner.cpp
   src/core/lean_dispatcher.cpp
@@ -28,6 +30,8 @@ add_library(jetbot_rl_core
   src/core/physics_model.cpp
   src/core/randomization.cpp
   src/core/robot_model.cpp
+  src/core/scan_sensor.cpp
+  src/core/task.cpp
   src/core/task_factory.cpp
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp

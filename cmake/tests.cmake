@@ -32,6 +32,7 @@ catkin_add_gtest(test_core
   test/core/test_laser_scanner.cpp
   test/core/test_world.cpp
   test/core/test_navigation.cpp
+  test/core/test_task_observers.cpp
 )
 target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
@@ -63,9 +64,12 @@ catkin_add_gtest(test_ros_adapter
 target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
 target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 
-# ---- the robot mode's scan handling, without a master ----
-catkin_add_gtest(test_robot_mode_scan test/ros/test_main.cpp test/ppo/test_robot_mode_scan.cpp)
-target_link_libraries(test_robot_mode_scan jetbot_rl_ppo_ros)
+# ---- the deploy node without a master: its scan handling, and the robot view's messages
+# observed as the simulated task observes ----
+catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.cpp
+  test/deploy/test_observer_agreement.cpp)
+target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
+target_compile_definitions(test_deploy PRIVATE ${_robots})
 
 # ---- the env node (rostest) ----
 foreach(_scenario interface lockstep step_service reset rejection realtime_hz realtime_brake clock
@@ -83,7 +87,7 @@ add_rostest(test/world/world_scan.test)
 add_rostest(test/world/world_view.test)
 
 # ---- the programs the rostests below start ----
-set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_rl_manager
+set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_deploy_node jetbot_rl_manager
   jetbot_rl_env_nodelet jetbot_rl_learner_nodelets)
 
 # ---- several env nodes as one batch ----

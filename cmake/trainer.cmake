@@ -2,6 +2,7 @@
 #   jetbot_rl_ppo      ROS-free PPO core: model, normaliser, storage, GAE, update, checkpoints,
 #                      training loop over the VecEnv interface
 #   jetbot_rl_ppo_ros  the trainer's and the policy node's logic (over jetbot_rl_client)
+# and the deploy node (cmake/deploy.cmake) on jetbot_rl_ppo.
 add_library(jetbot_rl_ppo
   src/ppo/action_scaler.cpp
   src/ppo/actor_critic.cpp
@@ -29,10 +30,8 @@ target_include_directories(jetbot_rl_ppo SYSTEM PUBLIC ${TORCH_INCLUDE_DIRS})
 target_link_libraries(jetbot_rl_ppo PUBLIC jetbot_rl_core ${TORCH_LIBRARIES})
 
 add_library(jetbot_rl_ppo_ros
-  src/ppo/ros/navigation_driver.cpp
   src/ppo/ros/policy_node.cpp
   src/ppo/ros/policy_params.cpp
-  src/ppo/ros/robot_mode.cpp
   src/ppo/ros/trainer_node.cpp
   src/ppo/ros/trainer_params.cpp
 )

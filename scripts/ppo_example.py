@@ -183,7 +183,7 @@ def train(args):
             interrupted = True
             break
         t0 = time.monotonic()
-        outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, failure
+        outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, collision
         for t in range(steps):
             o = torch.from_numpy(obs)
             agent.update_normalizer(o)

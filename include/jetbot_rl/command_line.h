@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/former_names.h"
 
 namespace jetbot_rl {
 
@@ -49,14 +50,11 @@ inline bool parseOptions(
     int argc, char** argv,
     const std::function<bool(const std::string&, const std::string&, std::string&)>& take,
     std::string& error) {
-  // Options of earlier versions and their names now.
-  static const std::vector<std::pair<std::string, std::string>> renamed{{"--envs", "--num-envs"},
-                                                                        {"--nodes", "--env-nodes"}};
   for (int i = 1; i < argc; i += 2) {
     const std::string option = argv[i];
-    for (const auto& [old_name, new_name] : renamed) {
-      if (option == old_name) {
-        error = old_name + " was renamed " + new_name;
+    for (const FormerName& former : formerNames()) {
+      if (option == former.name) {
+        error = option + " " + former.refusal();
         return false;
       }
     }

@@ -6,27 +6,50 @@
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/task.h"
+#include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/task_observer.h"
 
 namespace jetbot_rl {
+
+/// The command task's observation: [dot(forward, command), cross(forward, command).z, v_body.x],
+/// forward being the body +x axis in the measured frame.
+class CommandObserver : public TaskObserver {
+ public:
+  std::vector<std::string> observationNames() const override {
+    return {"forward_dot_command", "forward_cross_command_z", "lin_vel_b_x"};
+  }
+  void observationBounds(std::vector<float>& low, std::vector<float>& high) const override;
+  bool takesCommand() const override { return true; }
+  void observe(const MeasuredState& state, float* obs) const override;
+};
+
+/// cos and sin of the angle from the root's forward (body +x) axis to `command` (a unit vector
+/// in the same frame), counter-clockwise positive.
+struct CommandHeading {
+  double dot;
+  double cross;
+};
+CommandHeading commandHeading(const RootState& root, const Eigen::Vector2d& command);
+
+/// `values` (x, y) as a unit command; InputError naming `what` and the values when there are not
+/// two or they are zero or not finite.
+Eigen::Vector2d unitCommand(const std::vector<double>& values, const std::string& what);
 
 /**
  * The walkthrough's command-following task: every reset draws a random unit command in the ground
  * plane from the env's seeded stream; the robot should turn towards it and drive along it.
  *
- * Observation: [dot(forward, command), cross(forward, command).z, v_body.x], forward being the body
- * +x axis in the world frame. Reward by `Variant`: kExp v_x * exp(dot) (the walkthrough's final
- * choice), kSum v_x + dot (naive), kProduct v_x * dot (learns to reverse).
+ * Observation: CommandObserver's. Reward by `Variant`: kExp v_x * exp(dot) (the walkthrough's
+ * final choice), kSum v_x + dot (naive), kProduct v_x * dot (learns to reverse).
  */
-class CommandTask : public Task {
+class CommandTask : public Task, public Commandable, public ArrowDrawing {
  public:
   enum class Variant { kExp, kSum, kProduct };
 
   explicit CommandTask(Variant variant = Variant::kExp) : variant_(variant) {}
 
   std::string name() const override { return "command"; }
-  std::vector<std::string> observationNames() const override {
-    return {"forward_dot_command", "forward_cross_command_z", "lin_vel_b_x"};
-  }
+  const TaskObserver& observer() const override { return observer_; }
   void resize(int num_envs) override {
     commands_.assign(num_envs, Eigen::Vector2d::UnitX());
     held_.assign(num_envs, 0);
@@ -53,13 +76,8 @@ class CommandTask : public Task {
   bool held(int env) const { return held_.at(env) != 0; }
 
  private:
-  struct Heading {
-    double dot;    ///< cos of the angle from forward to the command
-    double cross;  ///< sin of that angle (counter-clockwise positive)
-  };
-  Heading heading(int env, const RootState& state) const;
-
   Variant variant_;
+  CommandObserver observer_;
   std::vector<Eigen::Vector2d> commands_;
   std::vector<unsigned char> held_;  // per env; not vector<bool>: envs are written concurrently
 };

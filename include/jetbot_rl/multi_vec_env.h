@@ -21,7 +21,11 @@ class MultiVecEnv : public VecEnv {
   /// field when a part's spec disagrees with the first's (everything but num_envs must agree).
   MultiVecEnv(std::vector<std::unique_ptr<VecEnv>> parts, std::vector<std::string> names);
 
-  /// The seed part `k` is reset with: `seed` + k x 2^32 (part 0 keeps `seed`); < 0 stays < 0.
+  /// Seeds of consecutive parts lie this far apart (Reset.srv's NODE_SEED_STRIDE, which the ROS
+  /// client checks against it at compile time): every env of the batch has a stream of its own.
+  static constexpr std::int64_t kSeedStride = std::int64_t{1} << 32;
+  /// The seed part `k` is reset with: `seed` + k x kSeedStride (part 0 keeps `seed`); < 0 stays
+  /// < 0.
   static std::int64_t partSeed(std::int64_t seed, std::size_t k);
 
   const BatchSpec& spec() const override { return spec_; }

@@ -6,6 +6,8 @@
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/task.h"
+#include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/task_observer.h"
 
 namespace jetbot_rl {
 
@@ -49,15 +51,45 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
 }
 
 /**
+ * The navigation task's observation: K scan beams (each clamped into [range_min, range_max] and
+ * divided by range_max), the goal's distance and direction (cos, sin) in the robot frame, the
+ * forward speed, the yaw rate and the last action; the goal is reached within goal_radius of the
+ * root link origin.
+ */
+class NavigationObserver : public TaskObserver {
+ public:
+  /// `beams` beams of a scanner reading [range_min, range_max] [m]; `action_dim` last actions.
+  NavigationObserver(int beams, double range_min, double range_max, int action_dim,
+                     double goal_radius);
+
+  std::vector<std::string> observationNames() const override;
+  void observationBounds(std::vector<float>& low, std::vector<float>& high) const override;
+  int scanBeams() const override { return beams_; }
+  bool hasGoal() const override { return true; }
+  void observe(const MeasuredState& state, float* obs) const override;
+  bool reached(const MeasuredState& state) const override;
+
+  /// A reading as the observation holds it: NaN and +inf as range_max, -inf as range_min,
+  /// clamped into [range_min, range_max], divided by range_max.
+  float beamValue(float range) const;
+  int actionDim() const { return action_dim_; }
+
+ private:
+  int beams_, action_dim_;
+  float range_min_, range_max_;
+  double goal_radius_;
+};
+
+/**
  * Goal-reaching without hitting anything (docs/navigation.md): at every reset each env draws a
  * goal (distance range from the start, clearance from the world, from its stream); the robot
  * observes K beams of its laser scan, the goal in its own frame, its forward speed and yaw rate
- * and its last action; it is rewarded for progress towards the goal (variant progress) or only
- * for the outcome (sparse), plus goal_reward on reaching it, minus collision_penalty on a
- * collision and step_cost per step; reaching the goal or colliding terminates the episode.
- * Needs a laser scanner.
+ * and its last action (NavigationObserver); it is rewarded for progress towards the goal (variant
+ * progress) or only for the outcome (sparse), plus goal_reward on reaching it, minus
+ * collision_penalty on a collision and step_cost per step; reaching the goal or colliding
+ * terminates the episode. Needs a laser scanner.
  */
-class NavigationTask : public Task {
+class NavigationTask : public Task, public ScanObserving, public WorldDrawing, public ArrowDrawing {
  public:
   enum class Variant { kProgress, kSparse };
 
@@ -65,7 +97,7 @@ class NavigationTask : public Task {
                           Variant variant = Variant::kProgress);
 
   std::string name() const override { return "navigation"; }
-  std::vector<std::string> observationNames() const override;
+  const TaskObserver& observer() const override { return observer_; }
   void attach(const TaskContext& context) override;
   void resize(int num_envs) override;
   void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
@@ -87,22 +119,14 @@ class NavigationTask : public Task {
   const NavigationConfig& config() const { return config_; }
   Variant variant() const { return variant_; }
 
-  /// The observation as it is computed from its parts, for a robot elsewhere (the policy node's
-  /// robot mode): `beams` finite ranges divided by range_max, the goal in the robot frame [m],
-  /// forward speed [m/s], yaw rate [rad/s] and the last action.
-  static void observation(const std::vector<float>& beams, const Eigen::Vector2d& goal_in_robot,
-                          double forward_speed, double yaw_rate, const float* action,
-                          int action_dim, float* obs);
-
  private:
-  /// The action's size: the batch's, or 2 (wheels or a twist) before attach().
-  int actionDim() const { return context_.action_dim > 0 ? context_.action_dim : 2; }
   double distance(int env, const RootState& state) const;
   void drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start, const WorldModel* world);
 
   NavigationConfig config_;
   Variant variant_;
   TaskContext context_;
+  NavigationObserver observer_;         // its scanner's range once attached
   std::vector<int> beam_index_;         // per observation beam: its sample
   std::vector<Eigen::Vector2d> goals_;  // per env
   std::vector<unsigned char> drawn_;    // per env: the goal was drawn in the world at this reset

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -50,6 +52,19 @@ struct OccupancyMap {
   bool isObstacle(int x, int y) const;
   /// A cell where starts and goals may be drawn: value 0.
   bool isFree(int x, int y) const { return at(x, y) == 0; }
+  /// The lower-left cell's corner pose (origin) in the map's parent frame.
+  Eigen::Isometry2d pose() const {
+    return Eigen::Isometry2d(Eigen::Translation2d(origin_x, origin_y) *
+                             Eigen::Rotation2Dd(origin_yaw));
+  }
+  /// The cell (column x, row y) holding `p` (in the map's parent frame, as `origin`); false when
+  /// `p` lies outside the map.
+  bool cellOf(const Eigen::Vector2d& p, int& x, int& y) const {
+    const Eigen::Vector2d q = pose().inverse() * p;
+    x = static_cast<int>(std::floor(q.x() / resolution));
+    y = static_cast<int>(std::floor(q.y() / resolution));
+    return x >= 0 && y >= 0 && x < width && y < height;
+  }
 };
 
 }  // namespace jetbot_rl

@@ -11,6 +11,7 @@
 namespace jetbot_rl {
 
 struct ScannerSpec;
+class TaskObserver;
 class WorldModel;
 
 /// What a task may use of the batch it runs in, given once before any per-env call.
@@ -32,9 +33,9 @@ struct EnvSenses {
 
 /// How an ended episode ended, as a task judges it (for success, collision and time-out rates).
 enum class Outcome : std::uint8_t {
-  kTimeOut = 0,  ///< Truncated (or a task without goals).
-  kSuccess = 1,  ///< The task's goal was reached.
-  kFailure = 2,  ///< It ended badly (a collision).
+  kTimeOut = 0,    ///< Truncated (or a task without goals).
+  kSuccess = 1,    ///< The task's goal was reached.
+  kCollision = 2,  ///< The robot hit the world (navigation).
 };
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).
@@ -51,7 +52,9 @@ struct RootState {
 };
 
 /**
- * Observation, reward and termination of an RL task, apart from the stepping code.
+ * Observation, reward and termination of an RL task, apart from the stepping code: what every
+ * task has. What only some tasks do (take a command, observe a scan, draw into the world, draw
+ * arrows) are capabilities a task opts into by deriving from them (task_capabilities.h).
  *
  * Called concurrently for different envs from the stepping threads: an implementation keeps
  * per-env state in per-env slots only.
@@ -61,38 +64,25 @@ class Task {
   virtual ~Task() = default;
   /// Name as given to the `task` parameter.
   virtual std::string name() const = 0;
-  /// One name per observation component.
-  virtual std::vector<std::string> observationNames() const = 0;
+  /// How the task observes: its observation's names, bounds and values, from a measured state
+  /// (the same code a robot elsewhere observes with).
+  virtual const TaskObserver& observer() const = 0;
+  /// One name per observation component (the observer's).
+  std::vector<std::string> observationNames() const;
   /// Checks what the task needs of the batch (ConfigError naming what is missing) and keeps
   /// what it uses; called once, before resize().
   virtual void attach(const TaskContext& context) { (void)context; }
   /// Sizes per-env state; called once before any other per-env call.
   virtual void resize(int num_envs) { (void)num_envs; }
-  /// At a reset of an env with a world, after its start was drawn and before its obstacles:
-  /// draws what the task keeps free of obstacles (a goal) from `rng` and appends its points to
-  /// `keep_free`.
-  virtual void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
-                           std::vector<Eigen::Vector2d>& keep_free) {
+  /// Called whenever env `env` is reset, after its root state was reset.
+  virtual void resetEnv(int env, Rng& rng) {
     (void)env;
     (void)rng;
-    (void)world;
-    (void)start;
-    (void)keep_free;
   }
   /// Gives env `env`'s senses for the calls that follow (only tasks that need them keep them).
   virtual void sense(int env, const EnvSenses& senses) {
     (void)env;
     (void)senses;
-  }
-  /// How env `env`'s episode ended, asked right after it ended (before its reset).
-  virtual Outcome outcome(int env) const {
-    (void)env;
-    return Outcome::kTimeOut;
-  }
-  /// Called whenever env `env` is reset, after its root state was reset.
-  virtual void resetEnv(int env, Rng& rng) {
-    (void)env;
-    (void)rng;
   }
   /// Writes observationNames().size() values to `obs`.
   virtual void observe(int env, const RootState& state, float* obs) const = 0;
@@ -104,40 +94,21 @@ class Task {
     (void)state;
     return false;
   }
-
-  /// Size of the command a user can set per env (SetCommand's x, y); 0: the task takes none.
-  virtual int commandDim() const { return 0; }
-  /// Sets env `env`'s command (`commandDim()` values), kept across its resets when `hold`;
-  /// throws InputError naming the env and value when invalid, or when the task takes none.
-  virtual void setCommand(int env, const std::vector<double>& command, bool hold) {
+  /// How env `env`'s episode ended, asked right after it ended (before its reset).
+  virtual Outcome outcome(int env) const {
     (void)env;
-    (void)command;
-    (void)hold;
-    throw InputError("task '" + name() + "' takes no command");
-  }
-  /// Angles [rad, in the scanner's frame] of the scan beams the observation holds, in order: the
-  /// geometry a robot elsewhere resamples its own scan to. Empty: the task observes no scan.
-  virtual std::vector<double> scanBeamAngles() const { return {}; }
-  /// Names of the directions to draw per env besides the robot's forward arrow (marker
-  /// namespaces), one per arrowDirection() index.
-  virtual std::vector<std::string> arrowNames() const { return {}; }
-  /// Unit direction `arrow` of env `env` in the env frame's ground plane.
-  virtual Eigen::Vector2d arrowDirection(int env, int arrow) const {
-    (void)env;
-    (void)arrow;
-    return Eigen::Vector2d::UnitX();
+    return Outcome::kTimeOut;
   }
 };
 
-/// The seed task: observation is the body-frame COM velocity, reward its norm, never terminal.
-class VelocityTask : public Task {
- public:
-  std::string name() const override { return "velocity"; }
-  std::vector<std::string> observationNames() const override {
-    return {"lin_vel_b_x", "lin_vel_b_y", "lin_vel_b_z"};
-  }
-  void observe(int env, const RootState& state, float* obs) const override;
-  float reward(int env, const RootState& state) const override;
-};
+/// `task` as capability C (task_capabilities.h), or nullptr when it does not have it.
+template <class C>
+C* capability(Task& task) {
+  return dynamic_cast<C*>(&task);
+}
+template <class C>
+const C* capability(const Task& task) {
+  return dynamic_cast<const C*>(&task);
+}
 
 }  // namespace jetbot_rl

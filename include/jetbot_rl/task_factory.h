@@ -8,6 +8,8 @@
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/task.h"
+#include "jetbot_rl/task_observer.h"
+#include "jetbot_rl/velocity_task.h"
 
 namespace jetbot_rl {
 
@@ -62,5 +64,10 @@ void checkFieldRules(const TaskConfig& config);
 
 /// Builds the configured task (ConfigError for a reward variant it does not take).
 std::unique_ptr<Task> makeTask(const TaskConfig& config);
+
+/// The observer of task `spec.task` for a robot elsewhere (the same code the simulated task
+/// observes with); ConfigError naming `task` for an unknown one, or a navigation observer
+/// without its beams or range.
+std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec);
 
 }  // namespace jetbot_rl

@@ -11,6 +11,8 @@
 
 namespace jetbot_rl {
 
+class WorldDrawing;
+
 /// A box or a vertical cylinder standing on the ground, in an env's frame.
 struct Obstacle {
   enum class Shape { kBox, kCylinder };
@@ -80,6 +82,9 @@ class WorldModel {
   /// in placement_tries draws is left out (placed false) and counted in layout.given_up.
   void drawObstacles(Rng& rng, const std::vector<Eigen::Vector2d>& keep_free,
                      EnvLayout& layout) const;
+  /// Draws env `env`'s layout of a new episode from its stream `rng`: the start, then what
+  /// `task` keeps free of obstacles (a goal; nothing without a task), then the obstacles.
+  void drawLayout(Rng& rng, int env, WorldDrawing* task, EnvLayout& layout) const;
 
  private:
   void mergeObstacleCells();

@@ -1,6 +1,8 @@
 #include "action_layout.h"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "jetbot_rl/errors.h"
 
@@ -37,6 +39,44 @@ ActionLayout makeActionLayout(const RobotModel& robot, const EnvConfig& config,
   a.high = {static_cast<float>(v), static_cast<float>(w)};
   a.names = {"linear_x", "angular_z"};
   return a;
+}
+
+void checkActions(const ActionLayout& layout, int num_envs, const float* actions,
+                  std::size_t count) {
+  const std::size_t a = layout.low.size();
+  const std::size_t expected = static_cast<std::size_t>(num_envs) * a;
+  if (actions == nullptr || count != expected) {
+    std::ostringstream s;
+    s << "actions: expected " << expected << " values (" << num_envs << " envs x " << a
+      << " dofs), got " << (actions == nullptr ? 0 : count);
+    throw InputError(s.str());
+  }
+  for (std::size_t i = 0; i < expected; ++i) {
+    if (!std::isfinite(actions[i])) {
+      std::ostringstream s;
+      s << "actions[env " << i / a << ", " << layout.names[i % a] << "] = " << actions[i]
+        << " is not finite";
+      throw InputError(s.str());
+    }
+  }
+}
+
+void actionsToTargets(const ActionLayout& layout, int num_envs, std::size_t dofs,
+                      const float* actions, bool raw, float* clamped, float* targets) {
+  const std::size_t a = layout.low.size();
+  const std::size_t count = static_cast<std::size_t>(num_envs) * a;
+  for (std::size_t i = 0; i < count; ++i) {
+    clamped[i] = std::clamp(actions[i], layout.low[i % a], layout.high[i % a]);
+  }
+  if (layout.drive) {
+    for (int e = 0; e < num_envs; ++e) {
+      const std::array<double, 2> wheels =
+          layout.drive->wheelTargets({clamped[2 * e], clamped[2 * e + 1]});
+      for (std::size_t d = 0; d < dofs; ++d) targets[e * dofs + d] = static_cast<float>(wheels[d]);
+    }
+  } else {
+    std::copy(raw ? actions : clamped, (raw ? actions : clamped) + count, targets);
+  }
 }
 
 }  // namespace jetbot_rl

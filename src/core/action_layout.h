@@ -27,4 +27,16 @@ struct ActionLayout {
 ActionLayout makeActionLayout(const RobotModel& robot, const EnvConfig& config,
                               const std::vector<double>& wheel_limits);
 
+/// Checks a batch's actions (num_envs x layout size): InputError naming the env, the action and
+/// the value for a wrong count or a value that is not finite.
+void checkActions(const ActionLayout& layout, int num_envs, const float* actions,
+                  std::size_t count);
+
+/// Clamps `actions` (num_envs x layout size) into the bounds (`clamped`) and gives each env's
+/// dof targets [rad/s] (num_envs x `dofs`): a twist through the drive (the curvature kept within
+/// the wheels' limits), wheel targets as clamped, or as given when `raw` (action noise is added
+/// before clamping).
+void actionsToTargets(const ActionLayout& layout, int num_envs, std::size_t dofs,
+                      const float* actions, bool raw, float* clamped, float* targets);
+
 }  // namespace jetbot_rl

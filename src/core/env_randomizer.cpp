@@ -100,7 +100,7 @@ void EnvRandomizer::reseed(int env, std::uint64_t seed) {
 
 // The order of the draws is documented in docs/core.md, "Domain randomisation": changing it changes
 // every randomised trajectory.
-void EnvRandomizer::resetEnv(int env, Rng& rng, EnvWorld& world) {
+void EnvRandomizer::resetEnv(int env, Rng& rng, EnvPhysics& world) {
   Draw& d = draws_[env];
   PhysicalDraw& p = d.physical;
   p.mass_scale = drawIn(config_.mass_scale, rng);

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "env_world.h"
+#include "env_physics.h"
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/randomization.h"
 #include "jetbot_rl/rng.h"
@@ -38,9 +38,9 @@ class EnvRandomizer {
 
   /// Restarts env `env`'s noise stream for `seed` (with reset(env_ids, seed)).
   void reseed(int env, std::uint64_t seed);
-  /// At a reset of env `env`, after EnvWorld::reset(): draws its values from `rng` and applies
+  /// At a reset of env `env`, after EnvPhysics::reset(): draws its values from `rng` and applies
   /// them to `world`; refills its delay line with the wheel targets of its initial speed.
-  void resetEnv(int env, Rng& rng, EnvWorld& world);
+  void resetEnv(int env, Rng& rng, EnvPhysics& world);
   /// Turns env `env`'s targets [rad/s] (raw when noisesActions(), else clamped) into its drives'
   /// velocity targets: noise, clamping, delay, motor model.
   void shapeTargets(int env, float* targets);

@@ -54,7 +54,7 @@ MultiVecEnv::MultiVecEnv(std::vector<std::unique_ptr<VecEnv>> parts, std::vector
 }
 
 std::int64_t MultiVecEnv::partSeed(std::int64_t seed, std::size_t k) {
-  return seed < 0 ? seed : seed + static_cast<std::int64_t>(k) * (std::int64_t{1} << 32);
+  return seed < 0 ? seed : seed + static_cast<std::int64_t>(k) * kSeedStride;
 }
 
 const StepResult& MultiVecEnv::reset(std::int64_t seed,

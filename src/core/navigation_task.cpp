@@ -19,21 +19,68 @@ double yawOf(const RootState& state) {
 
 }  // namespace
 
-NavigationTask::NavigationTask(const NavigationConfig& config, Variant variant)
-    : config_(config), variant_(variant) {
-  validateConfig(config_);
-}
+NavigationObserver::NavigationObserver(int beams, double range_min, double range_max,
+                                       int action_dim, double goal_radius)
+    : beams_(beams),
+      action_dim_(action_dim),
+      range_min_(static_cast<float>(range_min)),
+      range_max_(static_cast<float>(range_max)),
+      goal_radius_(goal_radius) {}
 
-std::vector<std::string> NavigationTask::observationNames() const {
+std::vector<std::string> NavigationObserver::observationNames() const {
   std::vector<std::string> names;
-  for (int i = 0; i < config_.beams; ++i) names.push_back("beam_" + std::to_string(i));
+  for (int i = 0; i < beams_; ++i) names.push_back("beam_" + std::to_string(i));
   for (const char* n : {"goal_distance", "goal_cos", "goal_sin", "lin_vel_b_x", "ang_vel_z"}) {
     names.push_back(n);
   }
-  for (int a = 0; a < actionDim(); ++a) {
-    names.push_back("last_action_" + std::to_string(a));
-  }
+  for (int a = 0; a < action_dim_; ++a) names.push_back("last_action_" + std::to_string(a));
   return names;
+}
+
+void NavigationObserver::observationBounds(std::vector<float>& low,
+                                           std::vector<float>& high) const {
+  TaskObserver::observationBounds(low, high);  // ±inf: speeds and the last actions
+  for (int i = 0; i < beams_; ++i) {
+    low[i] = range_min_ / range_max_;
+    high[i] = 1.0f;
+  }
+  low[beams_] = 0.0f;  // goal distance
+  for (int k = beams_ + 1; k < beams_ + 3; ++k) {
+    low[k] = -1.0f;  // goal cos, sin
+    high[k] = 1.0f;
+  }
+}
+
+float NavigationObserver::beamValue(float range) const {
+  float r = range;
+  if (std::isnan(r) || r == kNoReturn) r = range_max_;
+  if (r == kTooClose) r = range_min_;
+  return std::clamp(r, range_min_, range_max_) / range_max_;
+}
+
+void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
+  std::size_t k = 0;
+  for (int i = 0; i < beams_; ++i) obs[k++] = state.scan ? beamValue(state.scan[i]) : 1.0f;
+  const double yaw = yawOf(state.root);
+  const Eigen::Vector2d in_robot =
+      Eigen::Rotation2Dd(-yaw) * (state.goal - state.root.position.head<2>());
+  const double d = in_robot.norm();
+  obs[k++] = static_cast<float>(d);
+  obs[k++] = static_cast<float>(d > 1e-9 ? in_robot.x() / d : 1.0);
+  obs[k++] = static_cast<float>(d > 1e-9 ? in_robot.y() / d : 0.0);
+  obs[k++] = static_cast<float>(state.root.comLinearVelocityBody().x());
+  obs[k++] = static_cast<float>(state.root.angular_velocity.z());
+  for (int a = 0; a < action_dim_; ++a) obs[k++] = state.last_action ? state.last_action[a] : 0.0f;
+}
+
+bool NavigationObserver::reached(const MeasuredState& state) const {
+  return (state.goal - state.root.position.head<2>()).norm() < goal_radius_;
+}
+
+// Until attach() gives the scanner and the action size: a range of [0, 1] m and two actions.
+NavigationTask::NavigationTask(const NavigationConfig& config, Variant variant)
+    : config_(config), variant_(variant), observer_(config.beams, 0.0, 1.0, 2, config.goal_radius) {
+  validateConfig(config_);
 }
 
 void NavigationTask::attach(const TaskContext& context) {
@@ -53,6 +100,9 @@ void NavigationTask::attach(const TaskContext& context) {
     beam_index_.push_back(
         static_cast<int>(static_cast<long long>(i) * context.scanner->samples / config_.beams));
   }
+  observer_ =
+      NavigationObserver(config_.beams, context.scanner->range_min, context.scanner->range_max,
+                         context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius);
 }
 
 std::vector<double> NavigationTask::scanBeamAngles() const {
@@ -121,43 +171,29 @@ double NavigationTask::distance(int env, const RootState& state) const {
   return (goals_[env] - state.position.head<2>()).norm();
 }
 
-void NavigationTask::observation(const std::vector<float>& beams,
-                                 const Eigen::Vector2d& goal_in_robot, double forward_speed,
-                                 double yaw_rate, const float* action, int action_dim, float* obs) {
-  std::size_t k = 0;
-  for (float b : beams) obs[k++] = b;
-  const double d = goal_in_robot.norm();
-  obs[k++] = static_cast<float>(d);
-  obs[k++] = static_cast<float>(d > 1e-9 ? goal_in_robot.x() / d : 1.0);
-  obs[k++] = static_cast<float>(d > 1e-9 ? goal_in_robot.y() / d : 0.0);
-  obs[k++] = static_cast<float>(forward_speed);
-  obs[k++] = static_cast<float>(yaw_rate);
-  for (int a = 0; a < action_dim; ++a) obs[k++] = action ? action[a] : 0.0f;
-}
-
 void NavigationTask::observe(int env, const RootState& state, float* obs) const {
-  const EnvSenses& s = senses_[env];
-  const ScannerSpec& scanner = *context_.scanner;
   thread_local std::vector<float> beams;
   beams.resize(beam_index_.size());
-  for (std::size_t i = 0; i < beam_index_.size(); ++i) {
-    const float r = s.scan ? finiteRange(s.scan[beam_index_[i]], scanner) : kNoReturn;
-    beams[i] = (s.scan ? r : static_cast<float>(scanner.range_max)) /
-               static_cast<float>(scanner.range_max);
-  }
-  const double yaw = yawOf(state);
-  const Eigen::Vector2d rel = goals_[env] - state.position.head<2>();
-  const Eigen::Vector2d in_robot = Eigen::Rotation2Dd(-yaw) * rel;
+  const float* scan = senses_[env].scan;
+  for (std::size_t i = 0; i < beam_index_.size(); ++i)
+    beams[i] = scan ? scan[beam_index_[i]] : 0.0f;
+  MeasuredState measured;
+  measured.root = state;
+  measured.scan = scan ? beams.data() : nullptr;
+  measured.goal = goals_[env];
+  measured.last_action = senses_[env].action;
   position_[env] = state.position.head<2>();
-  observation(beams, in_robot, state.comLinearVelocityBody().x(), state.angular_velocity.z(),
-              s.action, actionDim(), obs);
+  observer_.observe(measured, obs);
 }
 
 bool NavigationTask::terminated(int env, const RootState& state) const {
   Outcome o = Outcome::kTimeOut;
+  MeasuredState measured;
+  measured.root = state;
+  measured.goal = goals_[env];
   if (senses_[env].collided) {
-    o = Outcome::kFailure;
-  } else if (distance(env, state) < config_.goal_radius) {
+    o = Outcome::kCollision;
+  } else if (observer_.reached(measured)) {
     o = Outcome::kSuccess;
   }
   outcome_[env] = static_cast<unsigned char>(o);
@@ -181,7 +217,7 @@ float NavigationTask::reward(int env, const RootState& state) const {
   last_distance_[env] = d;
   const auto o = static_cast<Outcome>(outcome_[env]);
   if (o == Outcome::kSuccess) r += config_.goal_reward;
-  if (o == Outcome::kFailure) r -= config_.collision_penalty;
+  if (o == Outcome::kCollision) r -= config_.collision_penalty;
   return static_cast<float>(r);
 }
 

@@ -14,7 +14,7 @@ namespace jetbot_rl {
 
 /**
  * The Bullet side of the robot: collision shapes, masses and joint frames, built once from a
- * RobotModel and shared read-only by every env (MuJoCo's mjModel to EnvWorld's mjData).
+ * RobotModel and shared read-only by every env (MuJoCo's mjModel to EnvPhysics's mjData).
  */
 class PhysicsModel {
  public:

@@ -1,12 +1,18 @@
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/velocity_task.h"
 
 namespace jetbot_rl {
 
-void VelocityTask::observe(int, const RootState& state, float* obs) const {
-  const Eigen::Vector3d v = state.comLinearVelocityBody();
+void VelocityObserver::observe(const MeasuredState& state, float* obs) const {
+  const Eigen::Vector3d v = state.root.comLinearVelocityBody();
   obs[0] = static_cast<float>(v.x());
   obs[1] = static_cast<float>(v.y());
   obs[2] = static_cast<float>(v.z());
+}
+
+void VelocityTask::observe(int, const RootState& state, float* obs) const {
+  MeasuredState measured;
+  measured.root = state;
+  observer_.observe(measured, obs);
 }
 
 float VelocityTask::reward(int, const RootState& state) const {

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/task_capabilities.h"
 
 namespace jetbot_rl {
 namespace {
@@ -85,8 +86,7 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius) : config_
     } catch (const ConfigError& e) {
       throw ConfigError(std::string("world/map: ") + e.what());
     }
-    map_pose_ =
-        Eigen::Translation2d(map_->origin_x, map_->origin_y) * Eigen::Rotation2Dd(map_->origin_yaw);
+    map_pose_ = map_->pose();
     obstacle_cells_.resize(map_->data.size());
     for (int y = 0; y < map_->height; ++y) {
       for (int x = 0; x < map_->width; ++x) {
@@ -204,10 +204,8 @@ double WorldModel::staticClearance(const Eigen::Vector2d& p) const {
   double clearance = std::numeric_limits<double>::infinity();
   for (const Obstacle& w : walls_) clearance = std::min(clearance, w.distance(p));
   if (map_) {
-    const Eigen::Vector2d q = map_pose_.inverse() * p;
-    const int x = static_cast<int>(std::floor(q.x() / map_->resolution));
-    const int y = static_cast<int>(std::floor(q.y() / map_->resolution));
-    if (x < 0 || y < 0 || x >= map_->width || y >= map_->height || !map_->isFree(x, y)) return 0.0;
+    int x = 0, y = 0;
+    if (!map_->cellOf(p, x, y) || !map_->isFree(x, y)) return 0.0;
     // Cell centre to cell centre, less a cell's diagonal: a lower bound from any point.
     const double cells = distance_[static_cast<std::size_t>(y) * map_->width + x];
     clearance = std::min(clearance, (cells - std::sqrt(2.0)) * map_->resolution);
@@ -231,6 +229,13 @@ std::optional<Eigen::Vector2d> WorldModel::drawFreePoint(Rng& rng, double cleara
     if (staticClearance(p) >= clearance) return p;
   }
   return std::nullopt;
+}
+
+void WorldModel::drawLayout(Rng& rng, int env, WorldDrawing* task, EnvLayout& layout) const {
+  drawStart(rng, layout);
+  std::vector<Eigen::Vector2d> keep_free{layout.start};
+  if (task) task->drawInWorld(env, rng, *this, layout.start, keep_free);
+  drawObstacles(rng, keep_free, layout);
 }
 
 void WorldModel::drawStart(Rng& rng, EnvLayout& layout) const {

@@ -199,7 +199,7 @@ class JetbotVecEnv(_Base):
             final_mask[ids] = True
             infos['final_obs'] = final_obs
             infos['_final_obs'] = final_mask
-            # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2 failure),
+            # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2 collision),
             # for the envs in _final_obs.
             outcome = np.zeros(self.num_envs, dtype=np.uint8)
             outcome[ids] = np.concatenate([b.outcomes for b in batches])

@@ -18,8 +18,7 @@ int main(int argc, char** argv) {
   nodelet::Loader loader;  // load_nodelet, unload_nodelet, list on the manager's name
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  // The handler only sets `stop`, which nothing can wait on: checked every 50 ms.
-  while (!stop.load() && ros::ok()) ros::WallDuration(0.05).sleep();
+  jetbot_rl::waitForStop(stop);
   loader.clear();  // each nodelet ends (and publishes its last messages) while ROS is up
   spinner.stop();
   ros::shutdown();

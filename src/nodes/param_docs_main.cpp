@@ -15,8 +15,8 @@
 
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/ppo/ros/policy_params.h"
-#include "jetbot_rl/ppo/ros/robot_mode.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
+#include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/env_node/node_params.h"
 #include "lockstep_bench.h"
 
@@ -100,13 +100,7 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},
       {"ppo", [] { return rowsOf(ppo::PpoConfig{}); }},
       {"policy_node", [] { return rowsOf(ppo::PolicyParams{}); }},
-      {"robot_mode",
-       [] {
-         // Named, not temporaries: GCC 12 warns (falsely) of uninitialised vectors otherwise.
-         const ppo::RobotModeParams robot;
-         const TaskConfig task;
-         return rowsWithout(rowsOf(robot), task);
-       }},
+      {"deploy_node", [] { return rowsOf(DeployParams{}); }},
       {"lockstep_bench_nodelet", [] { return rowsOf(LockstepBenchParams{}); }},
   };
   return t;
@@ -118,12 +112,8 @@ const std::map<std::string, std::function<std::string()>>& nodes() {
       {"jetbot_env_node", [] { return fieldsToYaml(NodeParams{}); }},
       {"env_setup", [] { return fieldsToYaml(EnvSetup{}); }},
       {"jetbot_ppo_trainer", [] { return fieldsToYaml(ppo::TrainerConfig{}); }},
-      {"jetbot_policy_node",
-       [] {
-         const ppo::PolicyParams policy;
-         const ppo::RobotModeParams robot;
-         return fieldsToYaml(policy) + fieldsToYaml(robot);
-       }},
+      {"jetbot_policy_node", [] { return fieldsToYaml(ppo::PolicyParams{}); }},
+      {"jetbot_deploy_node", [] { return fieldsToYaml(DeployParams{}); }},
       {"lockstep_bench_nodelet", [] { return fieldsToYaml(LockstepBenchParams{}); }},
   };
   return n;

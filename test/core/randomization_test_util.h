@@ -9,7 +9,7 @@ namespace test {
 /// Forward body speed [m/s] of env 0 after `steps` steps at (left, right) targets [rad/s].
 inline double speedAfter(BatchedEnv& env, int steps, float left = 20.0f, float right = 20.0f) {
   for (int s = 0; s < steps; ++s) env.step(uniformActions(env, left, right));
-  return env.rootState(0).comLinearVelocityBody().x();
+  return env.view(0).rootState().comLinearVelocityBody().x();
 }
 
 /// Every randomisation on, and the motor model.

@@ -69,7 +69,7 @@ TEST(BadInput, UnknownOrDuplicateResetIdsResetNothing) {
 
 TEST(BadInput, InvalidRootStateIsRejected) {
   Twins t;
-  RootState s = t.victim.rootState(0);
+  RootState s = t.victim.view(0).rootState();
   s.com_linear_velocity.x() = std::nan("");
   expectInputError([&] { t.victim.setRootState(0, s); }, {"env 0", "finite"});
   expectInputError([&] { t.victim.setRootState(5, RootState()); }, {"env 5", "out of range"});
@@ -79,7 +79,7 @@ TEST(BadInput, InvalidRootStateIsRejected) {
 TEST(BadInput, ADivergedEnvIsResetAloneAndReported) {
   Twins t;
   for (int s = 0; s < 20; ++s) t.stepBoth(s);
-  RootState absurd = t.victim.rootState(1);
+  RootState absurd = t.victim.view(1).rootState();
   absurd.com_linear_velocity = Eigen::Vector3d(1e6, 0, 0);
   t.victim.setRootState(1, absurd);
   const StepResult& r = t.victim.step(randomActions(3, 20));

@@ -54,7 +54,7 @@ TEST(Kinematics, TargetsBeyondTheLimitAreClamped) {
   ASSERT_FLOAT_EQ(env.actionHigh()[0], 20.0f);
   const Averages avg = drive(env, 1000.0f, 1000.0f, 120, 60);
   EXPECT_NEAR(avg.body_velocity.x(), 20.0 * kWheelRadius, 0.05 * 20.0 * kWheelRadius);
-  EXPECT_LE(env.dofVelocity(0, 0), 20.0 * 1.02);
+  EXPECT_LE(env.view(0).dofVelocity(0), 20.0 * 1.02);
 }
 
 TEST(Kinematics, WheelsStayOnTheChassisThroughReversals) {
@@ -69,7 +69,7 @@ TEST(Kinematics, WheelsStayOnTheChassisThroughReversals) {
     const bool turn = (s / 60) % 2;
     const float left = sign * 20.0f, right = turn ? -left : left;
     env.step(uniformActions(env, left, right));
-    worst = std::max(worst, env.maxJointError(0));
+    worst = std::max(worst, env.view(0).maxJointError());
   }
   EXPECT_LT(worst, 1e-3);
 }

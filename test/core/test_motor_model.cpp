@@ -23,7 +23,7 @@ TEST(MotorModel, VelocityTargetOnHandComputedValues) {
 std::pair<double, double> wheelSpeeds(const EnvConfig& c, float left, float right) {
   BatchedEnv env(jetbot(), c);
   speedAfter(env, 60, left, right);
-  return {env.dofVelocity(0, 0), env.dofVelocity(0, 1)};
+  return {env.view(0).dofVelocity(0), env.view(0).dofVelocity(1)};
 }
 
 TEST(MotorModel, DeadZoneStopsSlowWheels) {
@@ -62,7 +62,7 @@ TEST(MotorModel, RangesPerDofSetEachSide) {
   c.motor.dead_zone = {0.3, 0.3, 0.0, 0.0};
   BatchedEnv env(jetbot(), c);
   for (int e = 0; e < 4; ++e) {
-    const RandomizationDraw r = env.randomization(e);
+    const RandomizationDraw r = env.view(e).randomization();
     EXPECT_EQ(r.motor_trim, (std::vector<double>{1.0, 0.95}));
     EXPECT_EQ(r.motor_dead_zone, (std::vector<double>{0.3, 0.0}));
   }
@@ -77,7 +77,7 @@ TEST(MotorModel, RangesPerDofSetEachSide) {
   c.motor.dead_zone = {0.0, 0.0};
   BatchedEnv drawn(jetbot(), c);
   for (int e = 0; e < 4; ++e) {
-    const RandomizationDraw r = drawn.randomization(e);
+    const RandomizationDraw r = drawn.view(e).randomization();
     EXPECT_TRUE(r.motor_trim[0] >= 0.5 && r.motor_trim[0] <= 0.6) << r.motor_trim[0];
     EXPECT_TRUE(r.motor_trim[1] >= 0.9 && r.motor_trim[1] <= 1.0) << r.motor_trim[1];
   }
@@ -106,14 +106,14 @@ TEST(MotorModel, TrimsDrawnPerSideMakeTheRobotTurn) {
   for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 10.0f, 10.0f));
   int turning = 0;
   for (int e = 0; e < 16; ++e) {
-    const RandomizationDraw r = env.randomization(e);
+    const RandomizationDraw r = env.view(e).randomization();
     // In a turn the wheels track their targets within a few per cent (as without the model).
-    EXPECT_NEAR(env.dofVelocity(e, 0), 10.0 * r.motor_trim[0], 0.07 * 10.0 * r.motor_trim[0]);
-    EXPECT_NEAR(env.dofVelocity(e, 1), 10.0 * r.motor_trim[1], 0.07 * 10.0 * r.motor_trim[1]);
+    EXPECT_NEAR(env.view(e).dofVelocity(0), 10.0 * r.motor_trim[0], 0.07 * 10.0 * r.motor_trim[0]);
+    EXPECT_NEAR(env.view(e).dofVelocity(1), 10.0 * r.motor_trim[1], 0.07 * 10.0 * r.motor_trim[1]);
     // The weaker side is on the inside of the turn (counter-clockwise when the left is weaker).
     if (std::abs(r.motor_trim[0] - r.motor_trim[1]) > 0.05) {
       ++turning;
-      const double yaw_rate = env.rootState(e).angular_velocity.z();
+      const double yaw_rate = env.view(e).rootState().angular_velocity.z();
       EXPECT_EQ(yaw_rate > 0, r.motor_trim[0] < r.motor_trim[1]) << "env " << e;
     }
   }

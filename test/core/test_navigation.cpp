@@ -105,7 +105,7 @@ TEST(NavigationTask, RewardsProgressAndEndsOnTheGoalOrACollision) {
   wall.task.reward(0, at(0.5, 0, 0));  // the progress reference
   wall.sense(true);
   EXPECT_TRUE(wall.task.terminated(0, at(0.5, 0, 0)));
-  EXPECT_EQ(wall.task.outcome(0), Outcome::kFailure);
+  EXPECT_EQ(wall.task.outcome(0), Outcome::kCollision);
   EXPECT_LT(wall.task.reward(0, at(0.5, 0, 0)), -9.0f);
   // Sparse: no progress term.
   Fixture sparse({2.0, 0.0}, config, NavigationTask::Variant::kSparse);
@@ -155,7 +155,7 @@ TEST(NavigationTask, GoalsAreDrawnInFreeSpaceAwayFromObstacles) {
   for (int s = 0; s < 40; ++s) {
     env.step(std::vector<float>(32, 5.0f));
     for (int e = 0; e < 16; ++e, ++checked) {
-      const EnvLayout& l = env.layout(e);
+      const EnvLayout& l = env.view(e).layout();
       const Eigen::Vector2d g = task.goal(e);
       const double d = (g - l.start).norm();
       EXPECT_GE(d, 1.0 - 1e-9);
@@ -178,7 +178,7 @@ TEST(NavigationTask, OutcomesOfEndedEpisodesAreReported) {
   BatchedEnv env(test::jetbot(), c, navigation());
   const auto& task = dynamic_cast<const NavigationTask&>(env.task());
   // Env 0 put on its goal: a success at the next step. Env 1 drives on until it hits a wall.
-  RootState s = env.rootState(0);
+  RootState s = env.view(0).rootState();
   s.position.head<2>() = task.goal(0);
   env.setRootState(0, s);
   bool success = false, failure = false;
@@ -193,7 +193,7 @@ TEST(NavigationTask, OutcomesOfEndedEpisodesAreReported) {
         success = true;
       }
       if (r.reset_env_ids[i] == 1) {
-        EXPECT_EQ(r.outcomes[i], static_cast<std::uint8_t>(Outcome::kFailure));
+        EXPECT_EQ(r.outcomes[i], static_cast<std::uint8_t>(Outcome::kCollision));
         EXPECT_LT(r.rewards[1], -9.0f);
         failure = true;
       }
@@ -257,10 +257,10 @@ TEST(ActionSpace, TwistActionsDriveThroughTheDifferentialDrive) {
   EXPECT_NEAR(env.actionHigh()[1], 2 * 20.0 * 0.03 / 0.1125, 1e-4);  // omega, wheels opposed
   EXPECT_EQ(env.spec().action_names, (std::vector<std::string>{"linear_x", "angular_z"}));
   for (int k = 0; k < 120; ++k) env.step({0.3f, 0.0f});
-  EXPECT_NEAR(env.rootTwist(0).linear.x(), 0.3, 0.015);
-  EXPECT_NEAR(env.dofVelocity(0, 0), 10.0, 0.5);
+  EXPECT_NEAR(env.view(0).rootTwist().linear.x(), 0.3, 0.015);
+  EXPECT_NEAR(env.view(0).dofVelocity(0), 10.0, 0.5);
   for (int k = 0; k < 120; ++k) env.step({0.0f, 2.0f});
-  EXPECT_NEAR(env.rootTwist(0).angular.z(), 2.0, 0.15);
+  EXPECT_NEAR(env.view(0).rootTwist().angular.z(), 2.0, 0.15);
   // Beyond the bounds: clamped, the curvature kept by DiffDrive.
   EXPECT_NO_THROW(env.step({5.0f, 0.0f}));
   EXPECT_THROW(env.step({std::nanf(""), 0.0f}), InputError);
@@ -276,12 +276,12 @@ TEST(ActionSpace, TwistReverseSpeedBoundsBackwardsTwistsOnly) {
   EXPECT_NEAR(env.actionHigh()[0], 0.6, 1e-5);  // forwards and turns as before
   EXPECT_NEAR(env.actionLow()[1], -env.actionHigh()[1], 1e-6);
   for (int k = 0; k < 120; ++k) env.step({-0.3f, 0.0f});  // clamped to standing still
-  EXPECT_NEAR(env.rootTwist(0).linear.x(), 0.0, 1e-3);
+  EXPECT_NEAR(env.view(0).rootTwist().linear.x(), 0.0, 1e-3);
   c.twist_reverse_speed = 0.1;
   BatchedEnv slow(test::jetbot(), c);
   EXPECT_FLOAT_EQ(slow.actionLow()[0], -0.1f);
   for (int k = 0; k < 120; ++k) slow.step({-0.3f, 0.0f});
-  EXPECT_NEAR(slow.rootTwist(0).linear.x(), -0.1, 0.01);
+  EXPECT_NEAR(slow.view(0).rootTwist().linear.x(), -0.1, 0.01);
   // Faster than the wheels allow, negative other than -1, or wheel actions: refused naming it.
   const std::vector<std::pair<double, std::string>> bad{
       {0.7, "0.7: must not exceed"}, {-0.5, "-0.5: must be -1"}, {0.2, "0.2: bounds twist"}};

@@ -19,7 +19,7 @@ TEST(Randomization, AHeavierChassisAcceleratesSlower) {
   EnvConfig heavy = smallConfig(1);
   heavy.randomization.mass_scale = {3.0, 3.0};
   BatchedEnv light_env(jetbot(), smallConfig(1)), heavy_env(jetbot(), heavy);
-  EXPECT_EQ(heavy_env.randomization(0).mass_scale, 3.0);
+  EXPECT_EQ(heavy_env.view(0).randomization().mass_scale, 3.0);
   const double v_light = speedAfter(light_env, 5), v_heavy = speedAfter(heavy_env, 5);
   EXPECT_LT(v_heavy, 0.7 * v_light) << v_light << " " << v_heavy;
   // The heavy robot is torque-limited: a = 2 x 0.08 N m / 0.03 m over the chassis and caster
@@ -35,11 +35,12 @@ TEST(Randomization, LowerFrictionSlips) {
   EnvConfig slippery = smallConfig(1);
   slippery.randomization.wheel_friction = {0.05, 0.05};
   BatchedEnv grip_env(jetbot(), smallConfig(1)), slip_env(jetbot(), slippery);
-  EXPECT_EQ(slip_env.randomization(0).wheel_friction, 0.05);
+  EXPECT_EQ(slip_env.view(0).randomization().wheel_friction, 0.05);
   // Slip: the wheels' rim speed less the body's speed, 10 steps after a full-speed start.
   const auto slip = [](BatchedEnv& env) {
     const double v = speedAfter(env, 10);
-    const double rim = 0.5 * (env.dofVelocity(0, 0) + env.dofVelocity(0, 1)) * kWheelRadius;
+    const double rim =
+        0.5 * (env.view(0).dofVelocity(0) + env.view(0).dofVelocity(1)) * kWheelRadius;
     return rim - v;
   };
   const double grip = slip(grip_env), slipping = slip(slip_env);
@@ -66,15 +67,15 @@ TEST(Randomization, BiggerWheelsDriveFasterAndStartOnTheGround) {
   EnvConfig small = smallConfig(1);
   small.randomization.wheel_radius_scale = {0.8, 0.8};
   BatchedEnv big_env(jetbot(), big), small_env(jetbot(), small);
-  const double z_rest = BatchedEnv(jetbot(), smallConfig(1)).rootState(0).position.z();
-  EXPECT_NEAR(big_env.rootState(0).position.z(), z_rest + 0.2 * kWheelRadius, 1e-9);
-  EXPECT_EQ(small_env.rootState(0).position.z(), z_rest);  // dropped onto its wheels
+  const double z_rest = BatchedEnv(jetbot(), smallConfig(1)).view(0).rootState().position.z();
+  EXPECT_NEAR(big_env.view(0).rootState().position.z(), z_rest + 0.2 * kWheelRadius, 1e-9);
+  EXPECT_EQ(small_env.view(0).rootState().position.z(), z_rest);  // dropped onto its wheels
   // Top speed = wheel speed x radius.
   const double v_big = speedAfter(big_env, 200, 10.0f, 10.0f);
   const double v_small = speedAfter(small_env, 200, 10.0f, 10.0f);
   EXPECT_NEAR(v_big, 10.0 * 1.2 * kWheelRadius, 0.03 * v_big);
   EXPECT_NEAR(v_small, 10.0 * 0.8 * kWheelRadius, 0.03 * v_small);
-  EXPECT_LT(big_env.maxJointError(0), 1e-3);
+  EXPECT_LT(big_env.view(0).maxJointError(), 1e-3);
 }
 
 TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
@@ -85,11 +86,11 @@ TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
   const auto& task = static_cast<const CommandTask&>(env.task());
   std::vector<double> yaws;
   for (int e = 0; e < 8; ++e) {
-    const RandomizationDraw r = env.randomization(e);
+    const RandomizationDraw r = env.view(e).randomization();
     yaws.push_back(r.initial_yaw);
     EXPECT_GE(r.initial_yaw, -3.0);
     EXPECT_LE(r.initial_yaw, 3.0);
-    const RootState s = env.rootState(e);
+    const RootState s = env.view(e).rootState();
     const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
     EXPECT_NEAR(std::atan2(forward.y(), forward.x()), r.initial_yaw, 1e-6);
     // [dot(forward, command), cross.z, v_x]
@@ -98,7 +99,7 @@ TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
     EXPECT_NEAR(obs[0], std::cos(std::atan2(cmd.y(), cmd.x()) - r.initial_yaw), 1e-5);
     EXPECT_NEAR(obs[2], 0.3, 1e-6);
     // The wheels roll with it.
-    EXPECT_NEAR(env.dofVelocity(e, 0) * kWheelRadius, 0.3, 1e-6);
+    EXPECT_NEAR(env.view(e).dofVelocity(0) * kWheelRadius, 0.3, 1e-6);
   }
   EXPECT_GT(
       *std::max_element(yaws.begin(), yaws.end()) - *std::min_element(yaws.begin(), yaws.end()),
@@ -115,7 +116,7 @@ TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
 int firstMovingStep(BatchedEnv& env) {
   for (int s = 1; s <= 50; ++s) {
     env.step(uniformActions(env, 20.0f, 20.0f));
-    if (env.rootState(0).comLinearVelocityBody().x() > 1e-3) return s;
+    if (env.view(0).rootState().comLinearVelocityBody().x() > 1e-3) return s;
   }
   return -1;
 }
@@ -128,7 +129,7 @@ TEST(Randomization, ADelayOfKStepsStartsTheResponseKStepsLater) {
     EnvConfig c = smallConfig(1);
     c.randomization.action_delay_steps = {k, k};
     BatchedEnv delayed(jetbot(), c);
-    EXPECT_EQ(delayed.randomization(0).action_delay_steps, k);
+    EXPECT_EQ(delayed.view(0).randomization().action_delay_steps, k);
     EXPECT_EQ(firstMovingStep(delayed), first + k) << "delay " << k;
   }
   // A range draws per env, and the drawn delay is the one applied.
@@ -136,17 +137,18 @@ TEST(Randomization, ADelayOfKStepsStartsTheResponseKStepsLater) {
   c.randomization.action_delay_steps = {0, 3};
   BatchedEnv batch(jetbot(), c);
   std::vector<int> seen(4, 0);
-  for (int e = 0; e < 16; ++e) ++seen.at(batch.randomization(e).action_delay_steps);
+  for (int e = 0; e < 16; ++e) ++seen.at(batch.view(e).randomization().action_delay_steps);
   for (int k = 0; k < 4; ++k) EXPECT_GT(seen[k], 0) << "no env drew delay " << k;
   std::vector<int> moved(16, -1);
   for (int s = 1; s <= 10; ++s) {
     batch.step(uniformActions(batch, 20.0f, 20.0f));
     for (int e = 0; e < 16; ++e) {
-      if (moved[e] < 0 && batch.rootState(e).comLinearVelocityBody().x() > 1e-3) moved[e] = s;
+      if (moved[e] < 0 && batch.view(e).rootState().comLinearVelocityBody().x() > 1e-3)
+        moved[e] = s;
     }
   }
   for (int e = 0; e < 16; ++e) {
-    EXPECT_EQ(moved[e], 1 + batch.randomization(e).action_delay_steps) << "env " << e;
+    EXPECT_EQ(moved[e], 1 + batch.view(e).randomization().action_delay_steps) << "env " << e;
   }
 }
 
@@ -160,8 +162,8 @@ TEST(Randomization, ADelayedTargetIsTheOneGivenKStepsBefore) {
     const float target = s < 20 ? 12.0f : -5.0f;
     prompt.step(uniformActions(prompt, target, target));
     delayed.step(uniformActions(delayed, target, target));
-    prompt_wheel.push_back(prompt.dofVelocity(0, 0));
-    delayed_wheel.push_back(delayed.dofVelocity(0, 0));
+    prompt_wheel.push_back(prompt.view(0).dofVelocity(0));
+    delayed_wheel.push_back(delayed.view(0).dofVelocity(0));
   }
   for (int s = 0; s + 2 < 40; ++s) {
     EXPECT_NEAR(delayed_wheel[s + 2], prompt_wheel[s], 0.05) << "step " << s;
@@ -187,7 +189,7 @@ TEST(Randomization, ActionNoiseChangesTheTrajectoryReproduciblyPerSeed) {
   EXPECT_FALSE(bitEqual(noisy.state().observations, other.state().observations));
   EXPECT_FALSE(bitEqual(envObs(noisy, 0), envObs(noisy, 1))) << "envs share their noise";
   // Noisy targets turn the robot a little; on average it still drives at about 8 rad/s.
-  EXPECT_NEAR(noisy.rootState(0).comLinearVelocityBody().x(), 8.0 * kWheelRadius, 0.05);
+  EXPECT_NEAR(noisy.view(0).rootState().comLinearVelocityBody().x(), 8.0 * kWheelRadius, 0.05);
   // The noise stream restarts with a reseeding reset.
   noisy.reset({}, 3);
   again.reset({}, 3);
@@ -264,7 +266,7 @@ bool sameValues(const RandomizationDraw& a, const RandomizationDraw& b) {
 TEST(Randomization, DrawsAreInRangeDifferPerEnvAndRepeatPerSeed) {
   BatchedEnv env(jetbot(), everythingOn(6, 1));
   for (int e = 0; e < 6; ++e) {
-    const RandomizationDraw r = env.randomization(e);
+    const RandomizationDraw r = env.view(e).randomization();
     EXPECT_GE(r.mass_scale, 0.8);
     EXPECT_LE(r.mass_scale, 1.3);
     EXPECT_GE(r.wheel_friction, 0.6);
@@ -275,19 +277,19 @@ TEST(Randomization, DrawsAreInRangeDifferPerEnvAndRepeatPerSeed) {
     ASSERT_EQ(r.motor_dead_zone.size(), 2u);
     EXPECT_NE(r.motor_trim[0], r.motor_trim[1]);
     if (e > 0) {
-      EXPECT_FALSE(sameValues(r, env.randomization(e - 1))) << "env " << e;
+      EXPECT_FALSE(sameValues(r, env.view(e - 1).randomization())) << "env " << e;
     }
   }
   // Every reset draws anew; a reset with the seed repeats the first draws.
-  const RandomizationDraw first = env.randomization(2);
+  const RandomizationDraw first = env.view(2).randomization();
   env.reset({2});
-  EXPECT_FALSE(sameValues(env.randomization(2), first));
+  EXPECT_FALSE(sameValues(env.view(2).randomization(), first));
   env.reset({2}, 0);
-  EXPECT_TRUE(sameValues(env.randomization(2), first));
+  EXPECT_TRUE(sameValues(env.view(2).randomization(), first));
   // A time-out draws anew too.
-  const RandomizationDraw before_timeout = env.randomization(4);
+  const RandomizationDraw before_timeout = env.view(4).randomization();
   for (int s = 0; s < env.maxEpisodeLength(); ++s) env.step(uniformActions(env, 1.0f, 1.0f));
-  EXPECT_FALSE(sameValues(env.randomization(4), before_timeout));
+  EXPECT_FALSE(sameValues(env.view(4).randomization(), before_timeout));
 }
 
 TEST(Randomization, TrajectoriesDoNotDependOnThreadsOrTheRestOfTheBatch) {
@@ -309,8 +311,8 @@ TEST(Randomization, TrajectoriesDoNotDependOnThreadsOrTheRestOfTheBatch) {
     }
   }
   for (int e = 0; e < 7; ++e) {
-    EXPECT_TRUE(sameValues(one.randomization(e), three.randomization(e)));
-    EXPECT_TRUE(sameValues(one.randomization(e), larger.randomization(e)));
+    EXPECT_TRUE(sameValues(one.view(e).randomization(), three.view(e).randomization()));
+    EXPECT_TRUE(sameValues(one.view(e).randomization(), larger.view(e).randomization()));
   }
 }
 
@@ -322,12 +324,13 @@ TEST(Randomization, TheTribotIsRandomisedToo) {
   BatchedEnv env(tribot(), c);
   for (int e = 0; e < 4; ++e) {
     // Its wheels are 0.033 m, their joint axes rotated: the forward speed is the drawn one.
-    EXPECT_NEAR(env.rootState(e).comLinearVelocityBody().x(), 0.1, 1e-6);
-    EXPECT_NEAR(std::abs(env.dofVelocity(e, 0)) * 0.033 * env.randomization(e).wheel_radius_scale,
+    EXPECT_NEAR(env.view(e).rootState().comLinearVelocityBody().x(), 0.1, 1e-6);
+    EXPECT_NEAR(std::abs(env.view(e).dofVelocity(0)) * 0.033 *
+                    env.view(e).randomization().wheel_radius_scale,
                 0.1, 1e-3);
   }
   for (int s = 0; s < 100; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
-  for (int e = 0; e < 4; ++e) EXPECT_LT(env.maxJointError(e), 1e-3);
+  for (int e = 0; e < 4; ++e) EXPECT_LT(env.view(e).maxJointError(), 1e-3);
 }
 
 }  // namespace

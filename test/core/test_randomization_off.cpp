@@ -91,7 +91,7 @@ TEST(RandomizationOff, NothingIsDrawnFromTheEnvStreams) {
 
 TEST(RandomizationOff, ValuesAreTheDefaults) {
   BatchedEnv env(jetbot(), smallConfig(2));
-  const RandomizationDraw r = env.randomization(1);
+  const RandomizationDraw r = env.view(1).randomization();
   EXPECT_EQ(r.mass_scale, 1.0);
   EXPECT_EQ(r.wheel_friction, 1.0);
   EXPECT_EQ(r.drive_gain_scale, 1.0);
@@ -102,7 +102,7 @@ TEST(RandomizationOff, ValuesAreTheDefaults) {
   EXPECT_EQ(r.action_delay_steps, 0);
   EXPECT_TRUE(r.motor_dead_zone.empty());
   EXPECT_TRUE(r.motor_trim.empty());
-  EXPECT_THROW(env.randomization(2), InputError);
+  EXPECT_THROW(env.view(2).randomization(), InputError);
 }
 
 }  // namespace

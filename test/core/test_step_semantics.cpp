@@ -23,12 +23,13 @@ TEST(StepSemantics, EnvOriginsFormACentredSquareGrid) {
   BatchedEnv env(jetbot(), EnvConfig());
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int i = 0; i < env.numEnvs(); ++i) {
-    sum += env.envOrigin(i);
-    for (int j = 0; j < i; ++j) EXPECT_GE((env.envOrigin(i) - env.envOrigin(j)).norm(), 4.0 - 1e-9);
+    sum += env.view(i).origin();
+    for (int j = 0; j < i; ++j)
+      EXPECT_GE((env.view(i).origin() - env.view(j).origin()).norm(), 4.0 - 1e-9);
   }
   EXPECT_NEAR(sum.norm(), 0.0, 1e-9);
-  EXPECT_NEAR((env.envOrigin(1) - env.envOrigin(0)).norm(), 4.0, 1e-12);
-  EXPECT_NEAR((env.envOrigin(10) - env.envOrigin(0)).norm(), 4.0, 1e-12);
+  EXPECT_NEAR((env.view(1).origin() - env.view(0).origin()).norm(), 4.0, 1e-12);
+  EXPECT_NEAR((env.view(10).origin() - env.view(0).origin()).norm(), 4.0, 1e-12);
 }
 
 TEST(StepSemantics, RewardIsTheNormOfTheObservation) {
@@ -116,10 +117,10 @@ TEST(StepSemantics, ResetReturnsZeroRewardsAndNoEndedEnvs) {
 
 TEST(StepSemantics, LinkPosesIncludeTheEnvOrigin) {
   BatchedEnv env(jetbot(), smallConfig(4));
-  const auto poses = env.linkPoses(3);
+  const auto poses = env.view(3).linkPoses();
   ASSERT_EQ(poses.size(), 4u);  // base_link, caster_link, left_wheel, right_wheel
   EXPECT_EQ(poses[0].link, "base_link");
-  const Eigen::Vector3d expected = env.envOrigin(3) + Eigen::Vector3d(0, 0, 0.03);
+  const Eigen::Vector3d expected = env.view(3).origin() + Eigen::Vector3d(0, 0, 0.03);
   EXPECT_NEAR((poses[0].pose.translation() - expected).norm(), 0.0, 1e-4);
 }
 

@@ -38,7 +38,8 @@ TEST_F(Tribot, DrivesStraightAtWheelSpeedTimesRadius) {
   EXPECT_NEAR(avg.body_velocity.y(), 0.0, 0.01);
   EXPECT_NEAR(avg.yaw_rate, 0.0, 0.05);
   // Odometry from the wheel speeds agrees.
-  const PlanarTwist odom = kinematics.bodyTwist({env.dofVelocity(0, 0), env.dofVelocity(0, 1)});
+  const PlanarTwist odom =
+      kinematics.bodyTwist({env.view(0).dofVelocity(0), env.view(0).dofVelocity(1)});
   EXPECT_NEAR(odom.linear, expected, 0.01 * expected);
 }
 
@@ -80,7 +81,7 @@ TEST(TribotVelocityTask, RandomTargetsForTwoEpisodesStaySane) {
     const auto& r = env.step(test::randomActions(env.numEnvs(), s));
     ASSERT_TRUE(r.divergences.empty()) << r.divergences[0].reason;
     for (float reward : r.rewards) ASSERT_TRUE(std::isfinite(reward));
-    worst_joint_error = std::max(worst_joint_error, env.maxJointError(s % env.numEnvs()));
+    worst_joint_error = std::max(worst_joint_error, env.view(s % env.numEnvs()).maxJointError());
   }
   EXPECT_LT(worst_joint_error, 1e-3);
   EXPECT_EQ(env.divergedCount(), 0u);

@@ -118,11 +118,11 @@ TEST(UrdfCases, MasslessRootIsMergedAndIsTheBaseFrame) {
 
   BatchedEnv env(tribot(), tribotConfig(1));
   for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
-  const RootState root = env.rootState(0);
+  const RootState root = env.view(0).rootState();
   EXPECT_NEAR(root.position.z(), 0.0, 1e-3);  // the root state is base_footprint's
-  for (const LinkPose& link : env.linkPoses(0)) {
+  for (const LinkPose& link : env.view(0).linkPoses()) {
     if (link.link == "base_link") {
-      EXPECT_NEAR((link.pose.translation() - env.envOrigin(0)).z(), 0.010, 1e-3);
+      EXPECT_NEAR((link.pose.translation() - env.view(0).origin()).z(), 0.010, 1e-3);
     }
   }
 }
@@ -153,7 +153,7 @@ double forwardSpeed(const RobotModelConstPtr& robot, float target) {
   double sum = 0.0;
   for (int s = 0; s < 120; ++s) {
     env.step(uniformActions(env, target, target));
-    if (s >= 60) sum += env.rootState(0).comLinearVelocityBody().x();
+    if (s >= 60) sum += env.view(0).rootState().comLinearVelocityBody().x();
   }
   return sum / 60;
 }
@@ -218,8 +218,8 @@ TEST(UrdfCases, ALoneMeshStandsWhereItsVerticesAre) {
   EXPECT_NEAR(model->restHeight(), 0.0, 1e-5);
   BatchedEnv env(model, tribotConfig(1));
   for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
-  EXPECT_NEAR(env.rootState(0).position.z(), 0.0, 1e-3);
-  EXPECT_LT(env.rootState(0).comLinearVelocityBody().norm(), 1e-3);
+  EXPECT_NEAR(env.view(0).rootState().position.z(), 0.0, 1e-3);
+  EXPECT_LT(env.view(0).rootState().comLinearVelocityBody().norm(), 1e-3);
   EXPECT_NEAR(forwardSpeed(model, 5.0f), 5.0 * 0.033, 0.05 * 5.0 * 0.033);
 }
 
@@ -338,11 +338,11 @@ double coastDistance(double caster_friction) {
   config.effort_limit = 1e-6;  // [N m]: the wheels turn freely
   config.caster_friction = caster_friction;
   BatchedEnv env(tribot(), config);
-  RootState pushed = env.rootState(0);
+  RootState pushed = env.view(0).rootState();
   pushed.com_linear_velocity.x() = 0.5;
   env.setRootState(0, pushed);
   for (int s = 0; s < 60; ++s) env.step(uniformActions(env, 0.0f, 0.0f));
-  return env.rootState(0).position.x() - pushed.position.x();
+  return env.view(0).rootState().position.x() - pushed.position.x();
 }
 
 TEST(UrdfCases, CasterFrictionBrakesASlidingCaster) {
@@ -360,24 +360,24 @@ TEST(JointStates, EveryMovingJointWithItsDriveEffort) {
   BatchedEnv env(jetbot(), config);
   ASSERT_EQ(env.jointNames(), (std::vector<std::string>{"left_wheel_joint", "right_wheel_joint"}));
   JointStates js;
-  env.jointStates(0, js);
+  env.view(0).jointStates(js);
   EXPECT_EQ(js.position, (std::vector<double>{0.0, 0.0}));
   EXPECT_EQ(js.effort, (std::vector<double>{0.0, 0.0}));
   // Starting from rest, the drives push at their 0.08 N m limit, forwards and backwards.
   env.step(uniformActions(env, 20.0f, -20.0f));
-  env.jointStates(0, js);
+  env.view(0).jointStates(js);
   EXPECT_NEAR(js.effort[0], 0.08, 1e-6);
   EXPECT_NEAR(js.effort[1], -0.08, 1e-6);
   for (int s = 0; s < 240; ++s) env.step(uniformActions(env, 10.0f, 10.0f));
-  env.jointStates(0, js);
+  env.view(0).jointStates(js);
   EXPECT_NEAR(js.velocity[0], 10.0, 0.1);
-  EXPECT_NEAR(js.velocity[1], env.dofVelocity(0, 1), 1e-12);
+  EXPECT_NEAR(js.velocity[1], env.view(0).dofVelocity(1), 1e-12);
   EXPECT_GT(js.position[0], 10.0);          // [rad]: a second at up to 10 rad/s
   EXPECT_LT(std::abs(js.effort[0]), 0.08);  // cruising needs less than the limit
   const double* data = js.position.data();
-  env.jointStates(0, js);
+  env.view(0).jointStates(js);
   EXPECT_EQ(js.position.data(), data);  // a reused JointStates is not reallocated
-  EXPECT_THROW(env.jointStates(1, js), InputError);
+  EXPECT_THROW(env.view(1).jointStates(js), InputError);
 }
 
 TEST(JointStates, UndrivenJointsHaveNoEffort) {
@@ -387,7 +387,7 @@ TEST(JointStates, UndrivenJointsHaveNoEffort) {
   ASSERT_EQ(env.jointNames(), (std::vector<std::string>{"wheel_left_joint", "wheel_right_joint"}));
   for (int s = 0; s < 30; ++s) env.step(std::vector<float>{5.0f});
   JointStates js;
-  env.jointStates(0, js);
+  env.view(0).jointStates(js);
   EXPECT_NE(js.effort[0], 0.0);  // its velocity loop holds it against the scrubbing free wheel
   EXPECT_LE(std::abs(js.effort[0]), 0.3 + 1e-9);
   EXPECT_GT(js.velocity[0], 3.0);  // pivoting about the free wheel, which scrubs
@@ -399,15 +399,15 @@ TEST(RootTwist, IsTheRootLinkOriginsVelocityInItsFrame) {
   // Turning in place about base_footprint, the axle's middle: the origin stands, the COM
   // (3 cm behind) circles.
   for (int s = 0; s < 90; ++s) env.step(uniformActions(env, -5.0f, 5.0f));
-  const BodyTwist twist = env.rootTwist(0);
-  const RootState root = env.rootState(0);
+  const BodyTwist twist = env.view(0).rootTwist();
+  const RootState root = env.view(0).rootState();
   EXPECT_GT(twist.angular.z(), 1.5);
   EXPECT_NEAR(twist.angular.z(), (root.orientation.conjugate() * root.angular_velocity).z(), 1e-6);
   EXPECT_LT(twist.linear.norm(), 0.01);
   EXPECT_GT(root.comLinearVelocityBody().norm(), 0.04);
   // Driving straight: forward along the root frame's x, whichever way it faces.
   for (int s = 0; s < 90; ++s) env.step(uniformActions(env, 5.0f, 5.0f));
-  const BodyTwist straight = env.rootTwist(0);
+  const BodyTwist straight = env.view(0).rootTwist();
   EXPECT_NEAR(straight.linear.x(), 5.0 * 0.033, 0.05 * 5.0 * 0.033);
   EXPECT_NEAR(straight.linear.y(), 0.0, 0.005);
   EXPECT_NEAR(straight.angular.z(), 0.0, 0.05);

@@ -100,7 +100,7 @@ inline Averages drive(BatchedEnv& env, float left, float right, int settle, int 
   Averages avg;
   for (int s = 0; s < measure; ++s) {
     env.step(actions);
-    const RootState state = env.rootState(0);
+    const RootState state = env.view(0).rootState();
     avg.body_velocity += state.comLinearVelocityBody();
     avg.yaw_rate += state.angular_velocity.z();
   }

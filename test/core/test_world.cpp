@@ -43,7 +43,7 @@ TEST(World, ObstaclesKeepTheStartsClearanceAndEachOthersDistance) {
   for (int s = 0; s < 60; ++s) {
     env.step(actions(16, s));
     for (int e = 0; e < 16; ++e) {
-      const EnvLayout& l = env.layout(e);
+      const EnvLayout& l = env.view(e).layout();
       ++layouts;
       EXPECT_GE(env.world()->staticClearance(l.start), 0.5) << "env " << e;
       EXPECT_TRUE(env.world()->region().contains(l.start));
@@ -72,7 +72,7 @@ TEST(World, ObstaclesThatDoNotFitAreLeftOutAndCounted) {
   BatchedEnv env(test::jetbot(), c);
   EXPECT_GT(env.obstaclesGivenUp(), 0u);
   int placed = 0;
-  for (const Obstacle& o : env.layout(0).obstacles) placed += o.placed;
+  for (const Obstacle& o : env.view(0).layout().obstacles) placed += o.placed;
   EXPECT_LT(placed, 10);
 }
 
@@ -85,10 +85,10 @@ TEST(World, SameSeedSameWorldsTrajectoriesAndScansOnAnyThreadCount) {
     ASSERT_EQ(a.observations, b.observations) << "step " << s;
     ASSERT_EQ(a.reset_env_ids, b.reset_env_ids);
     for (int e = 0; e < 12; ++e) {
-      ASSERT_EQ(std::memcmp(one.scan(e), three.scan(e), 24 * sizeof(float)), 0)
+      ASSERT_EQ(std::memcmp(one.view(e).scan(), three.view(e).scan(), 24 * sizeof(float)), 0)
           << "step " << s << " env " << e;
-      ASSERT_EQ(one.collided(e), three.collided(e));
-      ASSERT_EQ(one.layout(e).start, three.layout(e).start);
+      ASSERT_EQ(one.view(e).collided(), three.view(e).collided());
+      ASSERT_EQ(one.view(e).layout().start, three.view(e).layout().start);
     }
   }
 }
@@ -104,19 +104,19 @@ TEST(World, ARobotDrivingIntoAWallCollidesAndItsScanSeesTheWall) {
   c.scan.range = {0.0, 3.0};
   BatchedEnv env(test::jetbot(), c);
   // base_link is 0.03 m above the ground: the beam sees the wall's inner face.
-  EXPECT_NEAR(env.scan(0)[0], 0.5, 1e-4);
+  EXPECT_NEAR(env.view(0).scan()[0], 0.5, 1e-4);
   env.step({10.0f, 10.0f});
-  EXPECT_FALSE(env.collided(0));  // still 0.5 m away
+  EXPECT_FALSE(env.view(0).collided());  // still 0.5 m away
   bool collided = false;
   int steps = 1;
   for (; steps < 300 && !collided; ++steps) {
     env.step({10.0f, 10.0f});
-    collided = env.collided(0);
+    collided = env.view(0).collided();
   }
   ASSERT_TRUE(collided) << "after " << steps << " steps";
   // The chassis' front (0.03 m ahead of base_link) or a wheel touches the wall.
-  EXPECT_GT(env.rootState(0).position.x(), 0.35);
-  EXPECT_LT(env.scan(0)[0], 0.2f);
+  EXPECT_GT(env.view(0).rootState().position.x(), 0.35);
+  EXPECT_LT(env.view(0).scan()[0], 0.2f);
 }
 
 TEST(World, AWorldWithNoFreeStartIsRefusedNamingTheField) {
@@ -161,7 +161,7 @@ TEST(World, TheLidarJetbotDrivesBitForBitAsTheJetbot) {
     ASSERT_EQ(plain.step(actions(6, s)).observations, scanning.step(actions(6, s)).observations);
   }
   // On an empty plane nothing returns.
-  for (int k = 0; k < 360; ++k) EXPECT_EQ(scanning.scan(0)[k], kNoReturn);
+  for (int k = 0; k < 360; ++k) EXPECT_EQ(scanning.view(0).scan()[k], kNoReturn);
 }
 
 TEST(GazeboBlocks, TheTribotsDiffDrivePluginGivesItsJointsWheelsAndTorque) {
@@ -198,7 +198,7 @@ double heldWheelSpeed(const RobotModelConstPtr& robot, DriveMode drive, float ta
   int n = 0;
   for (int s = 1; s <= 180; ++s) {
     env.step({target, target});
-    if (s > 90) sum += env.dofVelocity(0, 0), ++n;
+    if (s > 90) sum += env.view(0).dofVelocity(0), ++n;
   }
   return sum / n;
 }

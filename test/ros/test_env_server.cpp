@@ -106,18 +106,18 @@ TEST(EnvServer, RealtimeTicksWithTheNewestValidTargetsThenBrakes) {
   EXPECT_EQ(server.state()->step, 0u);
   for (int k = 0; k < 30; ++k) server.onTick(t0 + std::chrono::milliseconds(k));
   EXPECT_EQ(server.state()->step, 30u);
-  const double driving = env->dofVelocity(0, 0);
+  const double driving = env->view(0).dofVelocity(0);
   EXPECT_GT(driving, 15.0);
 
   // An invalid message is rejected at the next tick; the previous targets stay in force.
   server.onWheelTargets(targets(0, {20}), t0 + std::chrono::milliseconds(40));
   server.onTick(t0 + std::chrono::milliseconds(41));
   EXPECT_EQ(server.counters().rejections, 1u);
-  EXPECT_GT(env->dofVelocity(0, 0), 15.0);
+  EXPECT_GT(env->view(0).dofVelocity(0), 15.0);
 
   // Older than action_timeout: the wheels brake to 0.
   for (int k = 0; k < 60; ++k) server.onTick(t0 + std::chrono::milliseconds(600 + k));
-  EXPECT_LT(std::abs(env->dofVelocity(0, 0)), 0.5);
+  EXPECT_LT(std::abs(env->view(0).dofVelocity(0)), 0.5);
 
   Step::Request req;
   Step::Response res;
@@ -141,7 +141,7 @@ TEST(EnvServer, CommandsGoToTasksThatTakeThem) {
   EnvServer command_server(*command, EnvMode::kLockstep, 0.5);
   command_server.onSetCommand(req, res);
   EXPECT_TRUE(res.success) << res.message;
-  EXPECT_NEAR(command->task().arrowDirection(0, 0).y(), 1.0, 1e-12);
+  EXPECT_NEAR(capability<ArrowDrawing>(command->task())->arrowDirection(0, 0).y(), 1.0, 1e-12);
   req.env_id = 2;
   command_server.onSetCommand(req, res);
   EXPECT_FALSE(res.success);

@@ -40,7 +40,7 @@ TEST(RandomizationService, AnswersTheListedEnvsInOrder) {
   ASSERT_EQ(m.motor_trim.size(), 4u);
   ASSERT_EQ(m.motor_dead_zone.size(), 4u);
   for (std::size_t i = 0; i < 2; ++i) {
-    const RandomizationDraw r = env.randomization(static_cast<int>(m.env_ids[i]));
+    const RandomizationDraw r = env.view(static_cast<int>(m.env_ids[i])).randomization();
     EXPECT_EQ(m.mass_scale.at(i), r.mass_scale);
     EXPECT_EQ(m.wheel_friction.at(i), r.wheel_friction);
     EXPECT_EQ(m.drive_gain_scale.at(i), r.drive_gain_scale);

@@ -144,28 +144,28 @@ TEST(EnvServerCmdVel, RealtimeFreshCmdVelDrivesItsEnvOverWheelTargetsThenHandsBa
   server.onWheelTargets(wheels({5, 5, 5, 5}), t0);
   EXPECT_TRUE(server.onCmdVel(0, twist(-0.3, 0.0), t0));  // -10 rad/s on both wheels
   for (int k = 0; k < 30; ++k) server.onTick(t0 + milliseconds(k));
-  EXPECT_NEAR(env->dofVelocity(0, 0), -10.0, 1.0);  // env 0: cmd_vel wins
-  EXPECT_NEAR(env->dofVelocity(0, 1), -10.0, 1.0);
-  EXPECT_NEAR(env->dofVelocity(1, 0), 5.0, 0.5);  // env 1: WheelTargets
-  EXPECT_NEAR(env->dofVelocity(1, 1), 5.0, 0.5);
+  EXPECT_NEAR(env->view(0).dofVelocity(0), -10.0, 1.0);  // env 0: cmd_vel wins
+  EXPECT_NEAR(env->view(0).dofVelocity(1), -10.0, 1.0);
+  EXPECT_NEAR(env->view(1).dofVelocity(0), 5.0, 0.5);  // env 1: WheelTargets
+  EXPECT_NEAR(env->view(1).dofVelocity(1), 5.0, 0.5);
 
   // cmd_vel older than cmd_vel_timeout (0.3 s), WheelTargets still fresh (0.5 s): env 0 goes
   // back to WheelTargets
   for (int k = 0; k < 60; ++k) server.onTick(t0 + milliseconds(320 + k));
-  EXPECT_NEAR(env->dofVelocity(0, 0), 5.0, 0.5);
+  EXPECT_NEAR(env->view(0).dofVelocity(0), 5.0, 0.5);
 
   // a fresh cmd_vel again, with no fresh WheelTargets: env 0 drives, env 1 brakes
   const auto t1 = t0 + milliseconds(1000);
   EXPECT_TRUE(server.onCmdVel(0, twist(0.0, 2.0), t1));  // -/+ 3.75 rad/s
   for (int k = 0; k < 60; ++k) server.onTick(t1 + milliseconds(k));
-  EXPECT_NEAR(env->dofVelocity(0, 0), -3.75, 0.4);
-  EXPECT_NEAR(env->dofVelocity(0, 1), 3.75, 0.4);
-  EXPECT_LT(std::abs(env->dofVelocity(1, 0)), 0.5);
+  EXPECT_NEAR(env->view(0).dofVelocity(0), -3.75, 0.4);
+  EXPECT_NEAR(env->view(0).dofVelocity(1), 3.75, 0.4);
+  EXPECT_LT(std::abs(env->view(1).dofVelocity(0)), 0.5);
 
   // ... and after cmd_vel_timeout without anything: every env brakes
   for (int k = 0; k < 60; ++k) server.onTick(t1 + milliseconds(400 + k));
-  EXPECT_LT(std::abs(env->dofVelocity(0, 0)), 0.5);
-  EXPECT_LT(std::abs(env->dofVelocity(0, 1)), 0.5);
+  EXPECT_LT(std::abs(env->view(0).dofVelocity(0)), 0.5);
+  EXPECT_LT(std::abs(env->view(0).dofVelocity(1)), 0.5);
   EXPECT_EQ(server.counters().cmd_vel_rejections, 0u);
 }
 
@@ -182,7 +182,7 @@ TEST(EnvServerCmdVel, RealtimeNonFiniteCmdVelIsCountedAndThePreviousCommandStays
             std::string::npos)
       << server.counters().last_cmd_vel_rejection;
   for (int k = 0; k < 30; ++k) server.onTick(t0 + milliseconds(31 + k));
-  EXPECT_NEAR(env->dofVelocity(0, 0), 10.0, 0.5) << "the previous command did not stay";
+  EXPECT_NEAR(env->view(0).dofVelocity(0), 10.0, 0.5) << "the previous command did not stay";
 
   // an invalid WheelTargets is still rejected as a whole while cmd_vel drives
   server.onWheelTargets(wheels({1, 2, 3}), t0 + milliseconds(70));
@@ -244,8 +244,8 @@ TEST(TfTree, OneTreePerEnvFromWorldThroughOdomAndTheRootToEveryLink) {
   ASSERT_EQ(tree.statics().size(), 2u);
   EXPECT_EQ(tree.statics()[1].header.frame_id, "world");
   EXPECT_EQ(tree.statics()[1].child_frame_id, "env_1/odom");
-  EXPECT_NEAR(tree.statics()[1].transform.translation.x, env->envOrigin(1).x(), 1e-12);
-  EXPECT_NEAR(tree.statics()[1].transform.translation.y, env->envOrigin(1).y(), 1e-12);
+  EXPECT_NEAR(tree.statics()[1].transform.translation.x, env->view(1).origin().x(), 1e-12);
+  EXPECT_NEAR(tree.statics()[1].transform.translation.y, env->view(1).origin().y(), 1e-12);
   ASSERT_EQ(tree.transforms().size(), 8u);  // 2 envs x 4 links
 
   const auto& ts = tree.transforms();
@@ -258,7 +258,7 @@ TEST(TfTree, OneTreePerEnvFromWorldThroughOdomAndTheRootToEveryLink) {
   // world -> odom -> base_link -> wheel is the wheel's simulated pose
   const Eigen::Isometry3d world_odom = toPose(tree.statics()[1].transform);
   const Eigen::Isometry3d odom_base = toPose(find(ts, "env_1/base_link").transform);
-  for (const LinkPose& link : env->linkPoses(1)) {
+  for (const LinkPose& link : env->view(1).linkPoses()) {
     const Eigen::Isometry3d composed =
         link.link == "base_link"
             ? world_odom * odom_base
@@ -267,7 +267,7 @@ TEST(TfTree, OneTreePerEnvFromWorldThroughOdomAndTheRootToEveryLink) {
     EXPECT_LT((composed.matrix() - link.pose.matrix()).cwiseAbs().maxCoeff(), 1e-6) << link.link;
   }
   // odom -> base_link is the odometry's pose
-  const RootState root = env->rootState(1);
+  const RootState root = env->view(1).rootState();
   EXPECT_LT((odom_base.translation() - root.position).norm(), 1e-7);
   EXPECT_LT(Eigen::Quaterniond(odom_base.rotation()).angularDistance(root.orientation), 1e-6);
 }
@@ -313,7 +313,7 @@ TEST(RobotState, OdometryAndJointStatesOfTheSimulatedState) {
   EXPECT_EQ(odom.child_frame_id, "env_1/base_link");
   updateOdometry(*env, 1, ros::Time(1.5), odom);
   EXPECT_EQ(odom.header.stamp, ros::Time(1.5));
-  const RootState root = env->rootState(1);
+  const RootState root = env->view(1).rootState();
   EXPECT_NEAR(odom.pose.pose.position.x, root.position.x(), 1e-12);
   EXPECT_GT(odom.pose.pose.position.x, 0.3);  // in the env's frame, not the world's
   EXPECT_LT(odom.pose.pose.position.x, 0.5);
@@ -331,7 +331,7 @@ TEST(RobotState, OdometryAndJointStatesOfTheSimulatedState) {
   updateJointState(*env, 1, ros::Time(1.5), scratch, state);
   EXPECT_EQ(state.name, (std::vector<std::string>{"left_wheel_joint", "right_wheel_joint"}));
   ASSERT_EQ(state.velocity.size(), 2u);
-  EXPECT_NEAR(state.velocity[0], env->dofVelocity(1, 0), 1e-12);
+  EXPECT_NEAR(state.velocity[0], env->view(1).dofVelocity(0), 1e-12);
   EXPECT_NEAR(state.velocity[1], 10.0, 0.5);
   EXPECT_GT(state.position[0], 10.0);  // about 14 rad in 1.5 s
   EXPECT_EQ(state.effort.size(), 2u);

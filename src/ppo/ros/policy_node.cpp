@@ -16,12 +16,10 @@
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/policy_params.h"
-#include "jetbot_rl/ppo/ros/robot_mode.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
 #include "jetbot_rl/ros/client/ros_vec_env.h"
 #include "jetbot_rl/ros/common/param_reader.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
-#include "jetbot_rl/ros/env_node/node_params.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -48,8 +46,6 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
   ROS_INFO("policy from iteration %lld (%lld env steps), best mean reward per step %.4f",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().best_reward);
-  if (params.robot) return runRobotMode(nh, pnh, *policy, params.checkpoint, stop);
-
   ros::Publisher return_pub = pnh.advertise<std_msgs::Float32>("episode_return", 100);
   int code = 0;
   try {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "jetbot_rl/former_names.h"
+
 namespace jetbot_rl {
 
 void GraphNames::check(const std::string& name, const std::vector<std::string>& names) const {
@@ -19,18 +21,10 @@ void GraphName::check(const std::string& name, const std::string& graph_name) co
   }
 }
 
-const std::vector<std::pair<std::string, std::string>>& renamedParams() {
-  static const std::vector<std::pair<std::string, std::string>> renamed{
-      {"env", "env_nodes"}, {"envs", "env_nodes"}, {"reward", "reward_variant"}};
-  return renamed;
-}
-
-void refuseRenamedParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields) {
-  for (const auto& [old_name, new_name] : renamedParams()) {
-    const bool ours = std::find(fields.begin(), fields.end(), new_name) != fields.end();
-    if (ours && pnh.hasParam(old_name)) {
-      throwInvalid(old_name, "(set)", "was renamed " + new_name);
-    }
+void refuseFormerParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields) {
+  for (const FormerName& former : formerNames()) {
+    const bool ours = std::find(fields.begin(), fields.end(), former.replaced_by) != fields.end();
+    if (ours && pnh.hasParam(former.name)) throwInvalid(former.name, "(set)", former.refusal());
   }
 }
 

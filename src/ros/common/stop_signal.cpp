@@ -1,5 +1,6 @@
 #include "jetbot_rl/ros/common/stop_signal.h"
 
+#include <ros/ros.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -23,6 +24,17 @@ const std::atomic<bool>& installStopSignalHandlers() {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   return g_stop;
+}
+
+void waitForStop(const std::atomic<bool>& stop, ros::CallbackQueue* queue) {
+  const ros::WallDuration period(0.1);
+  while (!stop.load() && ros::ok()) {
+    if (queue) {
+      queue->callAvailable(period);
+    } else {
+      period.sleep();
+    }
+  }
 }
 
 bool endParentLaunch(const std::atomic<bool>& stop) {

@@ -25,9 +25,8 @@ namespace {
 
 // A lockstep learner has one message in flight.
 constexpr std::uint32_t kQueueSize = 16;
-// How often the spinner looks at the stop flag [s]; how long the last markers may take to be
-// written [s]: SIGINT and SIGTERM end the node within their sum and a little.
-constexpr double kStopCheck = 0.1;
+// How long the last markers may take to be written [s]: SIGINT and SIGTERM end the node within
+// this, waitForStop()'s 0.1 s and a little.
 constexpr double kFlushTimeout = 0.5;
 
 }  // namespace
@@ -257,8 +256,7 @@ int runEnvNode() {
   const std::unique_ptr<EnvNode> node = makeEnvNode(ros::NodeHandle(), pnh);
   if (!node) return 1;
   // Timers run here; topics and services in roscpp's network thread (inline_queue_).
-  ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
-  while (ros::ok() && !stop.load()) queue.callAvailable(ros::WallDuration(kStopCheck));
+  waitForStop(stop, ros::getGlobalCallbackQueue());
   if (stop.load()) ROS_INFO("%s: stopped by a signal", pnh.getNamespace().c_str());
   node->shutdown(kFlushTimeout);
   ros::shutdown();

@@ -9,6 +9,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
+#include "jetbot_rl/task_capabilities.h"
 
 namespace jetbot_rl {
 
@@ -84,14 +85,15 @@ bool EnvServer::onReset(const Reset::Request& req, Reset::Response& res) {
 
 void EnvServer::onSetCommand(const SetCommand::Request& req, SetCommand::Response& res) {
   Task& task = env_.task();
-  if (task.commandDim() == 0) {
+  Commandable* commandable = capability<Commandable>(task);
+  if (!commandable) {
     res.success = false;
     res.message = "task '" + task.name() +
                   "' has no command: start the env with a task that takes one (parameter task)";
     return;
   }
   try {
-    task.setCommand(static_cast<int>(req.env_id), {req.x, req.y}, req.hold);
+    commandable->setCommand(static_cast<int>(req.env_id), {req.x, req.y}, req.hold);
   } catch (const InputError& e) {
     res.success = false;
     res.message = e.what();

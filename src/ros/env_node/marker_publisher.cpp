@@ -77,7 +77,8 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
                                        double rate, bool enabled)
     : envs_(std::clamp(envs, 0, env.numEnvs())),
       enabled_(enabled),
-      arrows_(static_cast<int>(env.task().arrowNames().size())),
+      arrow_task_(capability<ArrowDrawing>(env.task())),
+      arrows_(arrow_task_ ? static_cast<int>(arrow_task_->arrowNames().size()) : 0),
       gate_(rate) {
   pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (!enabled_) {
@@ -94,7 +95,8 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
       break;
     }
   }
-  const std::vector<std::string> arrow_names = env.task().arrowNames();
+  const std::vector<std::string> arrow_names =
+      arrow_task_ ? arrow_task_->arrowNames() : std::vector<std::string>();
   for (int e = 0; e < envs_; ++e) {
     auto body = marker("body", e, visualization_msgs::Marker::CUBE, envColour(e, 0.0));
     body.scale.x = size.x();
@@ -118,7 +120,8 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
     std_msgs::ColorRGBA grey;
     grey.r = grey.g = grey.b = 0.55f;
     grey.a = 0.8f;
-    const int per_env = static_cast<int>(world->walls().size() + env.layout(0).obstacles.size());
+    const int per_env =
+        static_cast<int>(world->walls().size() + env.view(0).layout().obstacles.size());
     for (int e = 0; e < envs_; ++e) {
       for (int k = 0; k < per_env; ++k) {
         array_.markers.push_back(
@@ -145,10 +148,10 @@ void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr&
   const ros::Time& stamp = msg->header.stamp;
   std::size_t k = 0;
   for (int e = 0; e < envs_; ++e) {
-    const RootState s = env.rootState(e);
+    const RootState s = env.view(e).rootState();
     Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
     root.linear() = s.orientation.toRotationMatrix();
-    root.translation() = env.envOrigin(e) + s.position;
+    root.translation() = env.view(e).origin() + s.position;
     const Eigen::Isometry3d body = root * body_offset_;
     const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
     const Eigen::Vector3d arrow_base = root.translation() + Eigen::Vector3d(0, 0, kArrowHeight);
@@ -160,7 +163,7 @@ void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr&
     forward_marker.header.stamp = stamp;
     setPose(forward_marker.pose, arrow_base, yawQuaternion(std::atan2(forward.y(), forward.x())));
     for (int a = 0; a < arrows_; ++a) {
-      const Eigen::Vector2d c = env.task().arrowDirection(e, a);
+      const Eigen::Vector2d c = arrow_task_->arrowDirection(e, a);
       auto& arrow_marker = array_.markers[k++];
       arrow_marker.header.stamp = stamp;
       setPose(arrow_marker.pose, arrow_base + Eigen::Vector3d(0, 0, 0.01 * (a + 1)),
@@ -180,11 +183,11 @@ void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr&
         m.scale.z = o.height;
         m.action = o.placed ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
         const Eigen::Vector3d c =
-            env.envOrigin(e) + Eigen::Vector3d(o.center.x(), o.center.y(), 0.5 * o.height);
+            env.view(e).origin() + Eigen::Vector3d(o.center.x(), o.center.y(), 0.5 * o.height);
         setPose(m.pose, c, yawQuaternion(o.yaw));
       };
       for (const Obstacle& w : world->walls()) place(w);
-      for (const Obstacle& o : env.layout(e).obstacles) place(o);
+      for (const Obstacle& o : env.view(e).layout().obstacles) place(o);
     }
   }
   due_ = true;

@@ -33,7 +33,7 @@ void answerGetRandomization(const BatchedEnv& env, const GetRandomization::Reque
   msg.env_ids = ids;
   msg.num_dofs = 0;
   for (std::uint32_t id : ids) {
-    const RandomizationDraw r = env.randomization(static_cast<int>(id));
+    const RandomizationDraw r = env.view(static_cast<int>(id)).randomization();
     msg.mass_scale.push_back(r.mass_scale);
     msg.wheel_friction.push_back(r.wheel_friction);
     msg.drive_gain_scale.push_back(r.drive_gain_scale);

@@ -33,7 +33,7 @@ nav_msgs::Odometry odometryFrame(const BatchedEnv& env, int env_index, const Rob
 void updateOdometry(const BatchedEnv& env, int env_index, const ros::Time& stamp,
                     nav_msgs::Odometry& odom) {
   odom.header.stamp = stamp;
-  const RootState root = env.rootState(env_index);  // in the env's frame: odom's
+  const RootState root = env.view(env_index).rootState();  // in the env's frame: odom's
   geometry_msgs::Pose& pose = odom.pose.pose;
   pose.position.x = root.position.x();
   pose.position.y = root.position.y();
@@ -42,7 +42,8 @@ void updateOdometry(const BatchedEnv& env, int env_index, const ros::Time& stamp
   pose.orientation.y = root.orientation.y();
   pose.orientation.z = root.orientation.z();
   pose.orientation.w = root.orientation.w();
-  const BodyTwist twist = env.rootTwist(env_index);  // in the root link frame: child_frame_id's
+  const BodyTwist twist =
+      env.view(env_index).rootTwist();  // in the root link frame: child_frame_id's
   toMsg(twist.linear, odom.twist.twist.linear);
   toMsg(twist.angular, odom.twist.twist.angular);
 }
@@ -51,7 +52,7 @@ void updateJointState(const BatchedEnv& env, int env_index, const ros::Time& sta
                       JointStates& scratch, sensor_msgs::JointState& state) {
   if (state.name.empty()) state.name = env.jointNames();
   state.header.stamp = stamp;
-  env.jointStates(env_index, scratch);
+  env.view(env_index).jointStates(scratch);
   // assign() of equal sizes reuses the capacity
   state.position.assign(scratch.position.begin(), scratch.position.end());
   state.velocity.assign(scratch.velocity.begin(), scratch.velocity.end());

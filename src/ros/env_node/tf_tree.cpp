@@ -40,7 +40,7 @@ TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool li
     origin.header.frame_id = kWorldFrame;
     origin.child_frame_id = names.frame(e, map ? kMapFrame : kOdomFrame);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.translation() = env.envOrigin(e);
+    pose.translation() = env.view(e).origin();
     toTransform(pose, origin.transform);
     statics_.push_back(origin);
     if (map) {
@@ -64,9 +64,9 @@ void TfTree::update(const BatchedEnv& env, const ros::Time& stamp) {
   std::size_t k = 0;
   for (int e = 0; e < envs_; ++e) {
     // The root relative to the env's origin is the odometry; the others relative to their parent.
-    const std::vector<LinkPose> poses = env.linkPoses(e);
+    const std::vector<LinkPose> poses = env.view(e).linkPoses();
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
-    origin.translation() = env.envOrigin(e);
+    origin.translation() = env.view(e).origin();
     for (std::size_t l = 0; l < poses.size(); ++l) {
       const int parent = parent_[l];
       if (parent >= 0 && !link_tf_) continue;

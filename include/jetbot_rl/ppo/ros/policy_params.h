@@ -8,19 +8,19 @@
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
-#include "jetbot_rl/ros/env_node/node_params.h"
+#include "jetbot_rl/ros/common/env_mode.h"
 
 namespace jetbot_rl {
 namespace ppo {
 
-/// Private parameters of jetbot_policy_node (besides the robot mode's, RobotModeParams).
+/// Private parameters of jetbot_policy_node (a policy driving env nodes; a robot:
+/// jetbot_deploy_node).
 struct PolicyParams {
   std::string checkpoint;    ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
   EnvNodesParams env_nodes;  ///< The env nodes to drive as one batch, step_timeout.
   EnvMode mode = EnvMode::kRealtime;  ///< The env's mode.
   int steps = 0;                      ///< Control steps to drive; 0: until Ctrl-C.
   int reset_seed = -1;                ///< Seed of the initial reset; < 0 keeps the env's stream.
-  bool robot = false;  ///< Robot mode: odometry in, cmd_vel out (RobotModeParams), no env node.
 };
 
 template <typename C, typename V>
@@ -32,8 +32,6 @@ IfConfig<C, PolicyParams> visitFields(C& c, V&& v) {
   v("steps", c.steps, atLeast(0, "control steps", "0: until Ctrl-C"), "Control steps to drive.");
   v("reset_seed", c.reset_seed, atLeast(std::numeric_limits<int>::min(), "", "< 0: no reseed"),
     "Seed of the initial reset.");
-  v("robot", c.robot, AnyValue{},
-    "Robot mode: odometry in, cmd_vel out (the robot mode's parameters), no env node.");
 }
 
 /// checkpoint must be given.

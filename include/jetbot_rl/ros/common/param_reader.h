@@ -72,20 +72,17 @@ void readFields(const ros::NodeHandle& pnh, C& config) {
   });
 }
 
-/// Parameters of earlier versions and their names now: {old, new}.
-const std::vector<std::pair<std::string, std::string>>& renamedParams();
-
-/// Throws ConfigError ("invalid OLD = (set): was renamed NEW") when `pnh` has a parameter of an
-/// earlier version whose new name is one of `fields`.
-void refuseRenamedParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields);
+/// Throws ConfigError ("invalid OLD = (set): was renamed NEW", or why it is gone) when `pnh` has
+/// a parameter of an earlier version (formerNames()) that one of `fields` replaced.
+void refuseFormerParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields);
 
 /// Reads the fields of T present under `pnh` over T's defaults and validates them (every field's
-/// rule, then T's rules between fields); an old name of one of them is refused. Throws
+/// rule, then T's rules between fields); a former name of one of them is refused. Throws
 /// ConfigError naming the parameter and its value.
 template <typename T>
 T readParams(const ros::NodeHandle& pnh) {
   T config;
-  refuseRenamedParams(pnh, fieldNames(config));
+  refuseFormerParams(pnh, fieldNames(config));
   readFields(pnh, config);
   validateConfig(config);
   return config;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <ros/callback_queue.h>
+
 #include <atomic>
 
 namespace jetbot_rl {
@@ -9,6 +11,11 @@ namespace jetbot_rl {
 /// (a message published after that never leaves), and SIGTERM's default ends the process. Use
 /// with ros::init_options::NoSigintHandler.
 const std::atomic<bool>& installStopSignalHandlers();
+
+/// Returns once `stop` is set or ROS shuts down. The signal handler only sets `stop`, which
+/// nothing can wait on: it is looked at every 0.1 s, meanwhile serving `queue`'s callbacks
+/// (timers, say) when one is given, else sleeping (a spinner serves the callbacks).
+void waitForStop(const std::atomic<bool>& stop, ros::CallbackQueue* queue = nullptr);
 
 /// When this process was started by roslaunch, ends that launch as Ctrl-C would (SIGINT to it)
 /// and waits up to 10 s for roslaunch's own SIGINT to set `stop`: a node that roslaunch sees

@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "jetbot_rl/ros/env_node/state_output.h"
+#include "jetbot_rl/task_capabilities.h"
 
 namespace jetbot_rl {
 
@@ -35,7 +36,8 @@ class EnvMarkerPublisher : public StateOutput {
   ros::Publisher pub_;
   int envs_;
   bool enabled_;
-  int arrows_;  // the task's arrows per env
+  const ArrowDrawing* arrow_task_;  // the task, when it draws arrows
+  int arrows_;                      // the task's arrows per env
   SimRateGate gate_;
   bool due_ = false;
   visualization_msgs::MarkerArray array_;  // reused: names, colours and scales are set once

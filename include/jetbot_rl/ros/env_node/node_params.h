@@ -7,20 +7,9 @@
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/ros/common/env_mode.h"
 
 namespace jetbot_rl {
-
-/// How the node advances the simulation.
-enum class EnvMode {
-  kLockstep,  ///< One control step per accepted WheelTargets or ~step call (training).
-  kRealtime,  ///< Steps on a wall-clock timer with the latest targets (driving by hand).
-};
-
-inline const EnumNameList<EnvMode>& enumNames(EnvMode) {
-  static const EnumNameList<EnvMode> names{{EnvMode::kLockstep, "lockstep"},
-                                           {EnvMode::kRealtime, "realtime"}};
-  return names;
-}
 
 /// Every private parameter of jetbot_env_node; defaults match config/jetbot_env.yaml (a test
 /// checks it).

@@ -11,6 +11,13 @@
 
 namespace jetbot_rl {
 
+/// The LaserScan of env `env_index`'s scanner (its link's frame under `names`, angles, range,
+/// scan time; ranges sized), empty without a scanner.
+sensor_msgs::LaserScan scanFrame(const BatchedEnv& env, int env_index, const RobotNames& names);
+/// Sets `scan`'s stamp and ranges (REP 117 values) from env `env_index`'s latest scan.
+void updateScan(const BatchedEnv& env, int env_index, const ros::Time& stamp,
+                sensor_msgs::LaserScan& scan);
+
 /**
  * `env_<i>/scan` (sensor_msgs/LaserScan) of the robot envs, at the scanner's rate: a message
  * after each step in which an env took a new scan, in the scanner link's frame, stamped with

@@ -1,25 +1,20 @@
 #pragma once
 
-#include <ros/node_handle.h>
-
-#include <atomic>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/config_fields.h"
-#include "jetbot_rl/env_config.h"
-#include "jetbot_rl/ppo/policy.h"
-#include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
-namespace ppo {
 
-/// jetbot_policy_node's robot mode: odometry in, cmd_vel out, for a real robot's driver (or the
-/// env node's robot view). Defaults suit the stock Jetbot's ROS 2 driver (dusty-nv/jetbot_ros).
-/// The control rate, the action bounds and whether the actions are wheel targets or a twist come
-/// from the checkpoint (the env it was trained on), not from parameters.
-struct RobotModeParams {
-  TaskConfig task;  ///< The task the policy was trained on (unset: the checkpoint's).
+/// Private parameters of jetbot_deploy_node: a trained policy driving a robot (odometry, and a
+/// scan and goals for navigation, in; cmd_vel out). Defaults suit the stock Jetbot's ROS 2 driver
+/// (dusty-nv/jetbot_ros). What the policy was trained with (task, control rate, action bounds,
+/// whether the actions are wheel targets or a twist, the observed scan beams) comes from the
+/// checkpoint; these are the robot's side only (no simulation parameter, no reward).
+struct DeployParams {
+  std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
+  std::string task;        ///< The task the policy was trained on; "": the checkpoint's.
   std::string odom_topic = "odom";                ///< nav_msgs/Odometry of the robot.
   std::string cmd_vel_topic = "/jetbot/cmd_vel";  ///< geometry_msgs/Twist the driver takes.
   std::string command_topic = "~command";         ///< geometry_msgs/Vector3: command task's (x, y).
@@ -31,26 +26,31 @@ struct RobotModeParams {
   double wheel_separation = 0.1016;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  // ---- the navigation task (NavigationDriver) ----
+  // ---- a task with a goal (navigation) ----
   std::string scan_topic = "scan";                    ///< sensor_msgs/LaserScan of the robot.
   std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
   std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
   double scan_timeout = 0.5;                          ///< An older scan stops the robot [s, wall].
-  /// The policy's beams, [first, last] angle [rad] in the scanner's frame: empty, the
-  /// checkpoint's; only a checkpoint that predates them needs it (nav/beams evenly spread).
+  double goal_radius = 0.2;  ///< A goal is reached within this of the robot's origin [m].
+  /// The policy's beams, only for a checkpoint written before checkpoints held them: their
+  /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
+  /// trained scanner's [range_min, range_max] [m]; given with a newer checkpoint they must agree.
+  int scan_beams = 0;
   std::vector<double> scan_angles;
-  /// The policy's [range_min, range_max] [m]: empty, the checkpoint's (likewise).
   std::vector<double> scan_range;
   std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
 };
 
 template <typename C, typename V>
-IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
-  visitFields(c.task, v);
+IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
+  v("checkpoint", c.checkpoint, AnyValue{"", "required"},
+    "Checkpoint file, or a run directory (its checkpoints/best.pt).");
+  v("task", c.task, AnyValue{"", "empty: the checkpoint's"},
+    "The task the policy was trained on; given, it must be the checkpoint's.");
   v("odom_topic", c.odom_topic, AnyValue{}, "nav_msgs/Odometry of the robot.");
   v("cmd_vel_topic", c.cmd_vel_topic, AnyValue{}, "geometry_msgs/Twist the robot's driver takes.");
   v("command_topic", c.command_topic, AnyValue{},
-    "geometry_msgs/Vector3: the command task's command (x, y).");
+    "Command task: geometry_msgs/Vector3, the command (x, y) in the odometry frame.");
   v("odom_timeout", c.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
   v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
     "Wheel radius for wheel targets -> Twist: the driver's (stock Jetbot: 0.0603 m wheels).");
@@ -63,14 +63,19 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "Navigation: geometry_msgs/PoseStamped goals (RViz's 2D Nav Goal), transformed into the "
     "odometry frame with tf2.");
   v("outcome_topic", c.outcome_topic, AnyValue{},
-    "Navigation: std_msgs/String, what became of each goal (reached, refused: ...).");
+    "Navigation: std_msgs/String, what became of each goal (accepted, reached, refused: ...).");
   v("scan_timeout", c.scan_timeout, positive("s, wall"),
     "Navigation: an older scan stops the robot.");
+  v("goal_radius", c.goal_radius, positiveUpTo(100.0, "m"),
+    "Navigation: a goal is reached within this of the robot's odometry origin.");
+  v("scan_beams", c.scan_beams, inRange(0, 100000, "", "0: the checkpoint's"),
+    "Navigation: the policy's beam count; only a checkpoint written before checkpoints held "
+    "their beams needs it (with scan_angles and scan_range; given, it must agree).");
   v("scan_angles", c.scan_angles,
     EachValue<double>{Range<double>{-10.0, 10.0, false, false, "rad"}},
     "Navigation: [first, last] angle in the scanner's frame of the beams the robot's scan is "
     "resampled to. Empty: the checkpoint's (given, it must agree with them); only a checkpoint "
-    "written before checkpoints held their beams needs it, with nav/beams evenly spread.");
+    "written before checkpoints held their beams needs it, with scan_beams evenly spread.");
   v("scan_range", c.scan_range, EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
     "Navigation: [range_min, range_max] readings are clamped into and divided by the max of. "
     "Empty: the checkpoint's (likewise).");
@@ -79,27 +84,7 @@ IfConfig<C, RobotModeParams> visitFields(C& c, V&& v) {
     "refused.");
 }
 
-/// dof_names must name two wheel joints; scan_angles and scan_range none or two values.
-void checkFieldRules(const RobotModeParams& params);
+/// checkpoint given; dof_names two wheel joints; scan_angles and scan_range none or two values.
+void checkFieldRules(const DeployParams& params);
 
-/// How the checkpoint's policy runs: at 1 / its control step, with its action bounds, its actions
-/// wheel targets or a twist (v, omega). ConfigError naming the file for a checkpoint without its
-/// env's spec (format 1).
-struct PolicyRun {
-  double control_rate = 0.0;  ///< [Hz]
-  bool twist = false;         ///< Actions (linear_x, angular_z) rather than wheel targets.
-  std::vector<double> action_high;
-  std::string checkpoint;  ///< Its file, for messages.
-};
-PolicyRun policyRunOf(const Policy& policy, const std::string& checkpoint);
-
-/// Runs the robot mode until `stop` or ROS shutdown: reads the parameters above under `pnh`,
-/// then at the policy's control rate turns the newest odometry into the task's observation, acts
-/// with the policy's mean and publishes its action as a Twist. The policy's memory starts over
-/// when it starts driving: at start-up, at a new command (goal) and after a stop for stale input.
-/// Returns the exit code.
-int runRobotMode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Policy& policy,
-                 const std::string& checkpoint, const std::atomic<bool>& stop);
-
-}  // namespace ppo
 }  // namespace jetbot_rl

@@ -1,16 +1,17 @@
-// The robot mode's scan handling without a master: a LaserScan resampled to the policy's beams
-// (wrapping, REP 117's infinities, NaN, refusal of uncovered beams), and the beams taken from
-// the checkpoint, parameters that disagree with it refused naming them.
+// The deploy node's scan handling without a master: a LaserScan resampled to the policy's beams
+// (wrapping, refusal of uncovered beams) and read as the navigation task's observer reads a
+// simulated scan (REP 117's infinities, NaN, clamping), and the beams taken from the checkpoint,
+// parameters that disagree with it refused naming them.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/ppo/ros/navigation_driver.h"
+#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/ros/deploy/scan_beams.h"
 
 namespace jetbot_rl {
-namespace ppo {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -26,6 +27,18 @@ sensor_msgs::LaserScan scan(int n, double angle_min, double increment) {
   return s;
 }
 
+/// The scan's readings at `angles` as the navigation observer of a scanner of [range_min,
+/// range_max] holds them.
+std::vector<float> observedBeams(const sensor_msgs::LaserScan& s, const std::vector<double>& angles,
+                                 double range_min, double range_max, std::string& error) {
+  std::vector<float> ranges;
+  if (!resampleScan(s, angles, ranges, error)) return {};
+  const NavigationObserver observer(static_cast<int>(angles.size()), range_min, range_max, 2, 0.2);
+  std::vector<float> beams;
+  for (float r : ranges) beams.push_back(observer.beamValue(r));
+  return beams;
+}
+
 TEST(ResampleScan, NearestSampleOfAFullTurnWrapsAndInfinitiesReadTheRangeEnds) {
   sensor_msgs::LaserScan s = scan(8, 0.0, kPi / 4);  // 0 .. 7 pi / 4: a full turn
   s.ranges[4] = kInf;                                // beyond range_max (REP 117)
@@ -33,9 +46,16 @@ TEST(ResampleScan, NearestSampleOfAFullTurnWrapsAndInfinitiesReadTheRangeEnds) {
   s.ranges[6] = std::numeric_limits<float>::quiet_NaN();
   std::string error;
   // -pi/4 wraps to sample 7; 0.1 rad is nearest sample 0; pi/2 is 2; pi is 4; -pi/2 wraps to 6.
+  std::vector<float> ranges;
+  ASSERT_TRUE(resampleScan(s, {-kPi / 4, 0.1, kPi / 2, kPi, -kPi / 2}, ranges, error)) << error;
+  ASSERT_EQ(ranges.size(), 5u);
+  EXPECT_EQ(ranges[0], 1.7f);
+  EXPECT_EQ(ranges[1], 1.0f);
+  EXPECT_EQ(ranges[2], -kInf);  // as the scan holds them: the observer reads them
+  EXPECT_EQ(ranges[3], kInf);
+  EXPECT_TRUE(std::isnan(ranges[4]));
   const std::vector<float> b =
-      resampleScan(s, {-kPi / 4, 0.1, kPi / 2, kPi, -kPi / 2}, 0.15, 2.0, error);
-  ASSERT_EQ(error, "");
+      observedBeams(s, {-kPi / 4, 0.1, kPi / 2, kPi, -kPi / 2}, 0.15, 2.0, error);
   ASSERT_EQ(b.size(), 5u);
   EXPECT_FLOAT_EQ(b[0], 1.7f / 2.0f);
   EXPECT_FLOAT_EQ(b[1], 1.0f / 2.0f);
@@ -43,13 +63,14 @@ TEST(ResampleScan, NearestSampleOfAFullTurnWrapsAndInfinitiesReadTheRangeEnds) {
   EXPECT_FLOAT_EQ(b[3], 1.0f);          // +inf: range_max
   EXPECT_FLOAT_EQ(b[4], 1.0f);          // NaN: range_max
   // Readings beyond the policy's range are clamped into it.
-  EXPECT_FLOAT_EQ(resampleScan(s, {5 * kPi / 4}, 0.15, 1.2, error)[0], 1.0f);
+  EXPECT_FLOAT_EQ(observedBeams(s, {5 * kPi / 4}, 0.15, 1.2, error)[0], 1.0f);
 }
 
 TEST(ResampleScan, ABeamOutsideAPartialScanIsRefusedNamingTheAngles) {
   const sensor_msgs::LaserScan s = scan(5, -1.0, 0.5);  // [-1, 1] rad
   std::string error;
-  EXPECT_TRUE(resampleScan(s, {0.0, 2.0}, 0.1, 4.0, error).empty());
+  std::vector<float> ranges;
+  EXPECT_FALSE(resampleScan(s, {0.0, 2.0}, ranges, error));
   EXPECT_NE(error.find("the policy needs a beam at 2.0"), std::string::npos) << error;
   EXPECT_NE(error.find("the scan covers [-1.0"), std::string::npos) << error;
 }
@@ -64,18 +85,19 @@ BatchSpec trainedWithBeams() {
 }
 
 TEST(ScanBeamsOf, TheCheckpointsBeamsAndParametersThatAgreeWithThem) {
-  RobotModeParams p;
+  DeployParams p;
   ScanBeams beams = scanBeamsOf(trainedWithBeams(), p, "nav.pt");
   EXPECT_EQ(beams.angles, (std::vector<double>{-1.0, 0.0, 1.0}));
   EXPECT_EQ(beams.range_min, 0.15);
   EXPECT_EQ(beams.range_max, 3.5);
   p.scan_angles = {-1.0, 1.0};
   p.scan_range = {0.15, 3.5};
+  p.scan_beams = 3;
   EXPECT_EQ(scanBeamsOf(trainedWithBeams(), p, "nav.pt").angles, beams.angles);
 }
 
 TEST(ScanBeamsOf, ParametersThatDisagreeWithTheCheckpointAreRefusedNamingThem) {
-  RobotModeParams p;
+  DeployParams p;
   p.scan_range = {0.12, 12.0};
   try {
     scanBeamsOf(trainedWithBeams(), p, "nav.pt");
@@ -95,23 +117,34 @@ TEST(ScanBeamsOf, ParametersThatDisagreeWithTheCheckpointAreRefusedNamingThem) {
     EXPECT_NE(std::string(e.what()).find("scan_angles = [-3.14159, 3.14159]"), std::string::npos)
         << e.what();
   }
+  p.scan_angles.clear();
+  p.scan_beams = 24;
+  try {
+    scanBeamsOf(trainedWithBeams(), p, "nav.pt");
+    FAIL() << "accepted another beam count than the checkpoint's";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("scan_beams = 24: the policy of nav.pt was trained with 3"),
+        std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ScanBeamsOf, ACheckpointWithoutItsBeamsNeedsTheParameters) {
   BatchSpec old_spec = trainedWithBeams();
   old_spec.scan_beam_angles.clear();
   old_spec.scan_range.clear();
-  RobotModeParams p;
+  DeployParams p;
   try {
     scanBeamsOf(old_spec, p, "old.pt");
     FAIL() << "accepted a checkpoint without beams and no parameters";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("scan_angles = []: checkpoint old.pt does not hold"),
+    EXPECT_NE(std::string(e.what()).find("scan_beams = 0: checkpoint old.pt does not hold"),
               std::string::npos)
         << e.what();
   }
-  // Given: nav/beams evenly spread over [first, last].
-  p.task.navigation.beams = 5;
+  // Given: scan_beams evenly spread over [first, last].
+  p.scan_beams = 5;
   p.scan_angles = {-2.0, 2.0};
   p.scan_range = {0.2, 6.0};
   const ScanBeams beams = scanBeamsOf(old_spec, p, "old.pt");
@@ -121,5 +154,4 @@ TEST(ScanBeamsOf, ACheckpointWithoutItsBeamsNeedsTheParameters) {
 }
 
 }  // namespace
-}  // namespace ppo
 }  // namespace jetbot_rl

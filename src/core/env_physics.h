@@ -20,7 +20,7 @@
 
 namespace jetbot_rl {
 
-/// Scratch of one stepping thread, lent to whichever world it steps (EnvWorld::useContext): the
+/// Scratch of one stepping thread, lent to whichever world it steps (EnvPhysics::useContext): the
 /// solver is not thread-safe and carries no state from one world's step to the next. Aligned so
 /// that two threads' solvers, written on every iteration, never share a cache line.
 struct alignas(64) WorkerContext {
@@ -45,15 +45,15 @@ struct PhysicalDraw {
  * The robot is a btMultiBody (Featherstone, reduced coordinates): joints cannot drift apart and
  * the light wheels on the heavy chassis need no extra solver iterations.
  */
-class EnvWorld {
+class EnvPhysics {
  public:
   /// With `shapes`, the world's static geometry (map, walls) is added, and `num_obstacles`
   /// obstacle slots for setObstacles().
-  EnvWorld(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes = nullptr,
-           int num_obstacles = 0);
-  ~EnvWorld();
-  EnvWorld(const EnvWorld&) = delete;
-  EnvWorld& operator=(const EnvWorld&) = delete;
+  EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes = nullptr,
+             int num_obstacles = 0);
+  ~EnvPhysics();
+  EnvPhysics(const EnvPhysics&) = delete;
+  EnvPhysics& operator=(const EnvPhysics&) = delete;
 
   /// Puts the robot at its rest pose with zero velocity and forgets contacts.
   void reset();

@@ -1,8 +1,10 @@
-#include "env_world.h"
+#include "env_physics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+
+#include "bullet_conversions.h"
 
 namespace jetbot_rl {
 namespace {
@@ -31,13 +33,12 @@ constexpr double kMinHeight = -1.0;             // [m]: below means it fell thro
 constexpr double kMaxLinearVelocity = 100.0;    // [m/s]
 constexpr double kMaxAngularVelocity = 1000.0;  // [rad/s]
 
-Eigen::Vector3d toEigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 
 }  // namespace
 
-EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
-                   int num_obstacles)
+EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
+                       int num_obstacles)
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
@@ -136,7 +137,7 @@ EnvWorld::EnvWorld(const PhysicsModel& model, WorkerContext& context, const Worl
   reset();
 }
 
-EnvWorld::~EnvWorld() {
+EnvPhysics::~EnvPhysics() {
   for (auto& c : constraints_) world_->removeMultiBodyConstraint(c.get());
   for (auto& c : colliders_) world_->removeCollisionObject(c.get());
   world_->removeMultiBody(robot_.get());
@@ -145,7 +146,7 @@ EnvWorld::~EnvWorld() {
   for (auto& o : obstacles_) world_->removeCollisionObject(o.get());
 }
 
-void EnvWorld::moveRobot(const Eigen::Vector2d& offset) {
+void EnvPhysics::moveRobot(const Eigen::Vector2d& offset) {
   btTransform base = robot_->getBaseWorldTransform();
   base.getOrigin() +=
       btVector3(static_cast<btScalar>(offset.x()), static_cast<btScalar>(offset.y()), 0);
@@ -153,7 +154,7 @@ void EnvWorld::moveRobot(const Eigen::Vector2d& offset) {
   syncColliders();
 }
 
-void EnvWorld::setObstacles(const std::vector<Obstacle>& obstacles) {
+void EnvPhysics::setObstacles(const std::vector<Obstacle>& obstacles) {
   for (std::size_t i = 0; i < obstacles_.size(); ++i) {
     btCollisionObject& object = *obstacles_[i];
     btTransform pose;
@@ -172,7 +173,7 @@ void EnvWorld::setObstacles(const std::vector<Obstacle>& obstacles) {
   }
 }
 
-bool EnvWorld::touchesWorld() const {
+bool EnvPhysics::touchesWorld() const {
   for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
     const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
     if (m->getBody0()->getUserIndex() != kWorldUserIndex &&
@@ -186,14 +187,14 @@ bool EnvWorld::touchesWorld() const {
   return false;
 }
 
-void EnvWorld::syncColliders() {
+void EnvPhysics::syncColliders() {
   btAlignedObjectArray<btQuaternion> rotations;
   btAlignedObjectArray<btVector3> offsets;
   robot_->updateCollisionObjectWorldTransforms(rotations, offsets);
   for (auto& c : colliders_) world_->updateSingleAabb(c.get());
 }
 
-void EnvWorld::reset() {
+void EnvPhysics::reset() {
   const PhysicsModel::Body& root = model_.bodies()[0];
   robot_->setBaseWorldTransform(root.rest_pose);
   robot_->setBaseVel(btVector3(0, 0, 0));
@@ -218,7 +219,7 @@ void EnvWorld::reset() {
   collided_ = false;
 }
 
-void EnvWorld::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
+void EnvPhysics::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
   const auto& bodies = model_.bodies();
   robot_->setBaseMass(static_cast<btScalar>(bodies[0].mass * draw.mass_scale));
   robot_->setBaseInertia(bodies[0].inertia * static_cast<btScalar>(draw.mass_scale));
@@ -249,17 +250,17 @@ void EnvWorld::randomize(const PhysicalDraw& draw, const std::vector<double>& wh
   syncColliders();
 }
 
-void EnvWorld::useContext(WorkerContext& context) {
+void EnvPhysics::useContext(WorkerContext& context) {
   if (&context == context_) return;
   world_->setMultiBodyConstraintSolver(&context.solver);
   context_ = &context;
 }
 
-void EnvWorld::setTargets(const float* targets) {
+void EnvPhysics::setTargets(const float* targets) {
   std::copy(targets, targets + targets_.size(), targets_.begin());
 }
 
-void EnvWorld::step(double dt) {
+void EnvPhysics::step(double dt) {
   const auto& dofs = model_.dofs();
   const bool loop = model_.velocityLoop();
   for (size_t d = 0; d < dofs.size(); ++d) {
@@ -292,17 +293,17 @@ void EnvWorld::step(double dt) {
   if (!statics_.empty() || !obstacles_.empty()) collided_ = collided_ || touchesWorld();
 }
 
-btTransform EnvWorld::comPose(int body) const {
+btTransform EnvPhysics::comPose(int body) const {
   // Colliders carry the poses after the last integration (a link's m_cachedWorldTransform is the
   // one before it).
   return colliders_[body]->getWorldTransform();
 }
 
-btTransform EnvWorld::linkPose(int body) const {
+btTransform EnvPhysics::linkPose(int body) const {
   return comPose(body) * model_.bodies()[body].com_in_link.inverse();
 }
 
-RootState EnvWorld::rootState() const {
+RootState EnvPhysics::rootState() const {
   const btTransform link = linkPose(0);
   const btQuaternion q = link.getRotation();
   RootState s;
@@ -313,7 +314,7 @@ RootState EnvWorld::rootState() const {
   return s;
 }
 
-void EnvWorld::setRootState(const RootState& state) {
+void EnvPhysics::setRootState(const RootState& state) {
   const Eigen::Quaterniond q = state.orientation.normalized();
   const btTransform link(btQuaternion(q.x(), q.y(), q.z(), q.w()), toBullet(state.position));
   robot_->setBaseWorldTransform(link * model_.bodies()[0].com_in_link);
@@ -322,7 +323,7 @@ void EnvWorld::setRootState(const RootState& state) {
   syncColliders();
 }
 
-std::string EnvWorld::divergence() const {
+std::string EnvPhysics::divergence() const {
   const auto& models = model_.robot().bodies();
   const btVector3 v = robot_->getBaseVel();
   const btVector3 w = robot_->getBaseOmega();
@@ -360,7 +361,7 @@ std::string EnvWorld::divergence() const {
   return {};
 }
 
-double EnvWorld::maxJointError() const {
+double EnvPhysics::maxJointError() const {
   double worst = 0.0;
   for (const auto& j : model_.joints()) {
     const btVector3 from_parent = comPose(j.parent) * j.parent_com_to_pivot;
@@ -371,7 +372,7 @@ double EnvWorld::maxJointError() const {
   return worst;
 }
 
-int EnvWorld::contactPoints(int* pairs) const {
+int EnvPhysics::contactPoints(int* pairs) const {
   int points = 0;
   for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
     points += dispatcher_->getManifoldByIndexInternal(i)->getNumContacts();
@@ -380,13 +381,13 @@ int EnvWorld::contactPoints(int* pairs) const {
   return points;
 }
 
-double EnvWorld::dofEffort(int dof) const {
+double EnvPhysics::dofEffort(int dof) const {
   btMultiBodyJointMotor* motor = motors_[dof];
   if (!stepped_ || last_dt_ <= 0.0 || motor->getNumRows() < 1) return 0.0;
   return motor->getAppliedImpulse(0) / last_dt_;
 }
 
-void EnvWorld::rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const {
+void EnvPhysics::rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const {
   const btTransform link = linkPose(0);
   const btVector3 com = comPose(0).getOrigin();
   const btVector3 omega = robot_->getBaseOmega();
@@ -396,7 +397,7 @@ void EnvWorld::rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) 
   angular = toEigen(to_link * omega);
 }
 
-double EnvWorld::dofVelocity(int dof) const {
+double EnvPhysics::dofVelocity(int dof) const {
   return robot_->getJointVel(model_.joints()[model_.dofs()[dof].joint].child - 1);
 }
 

@@ -1,0 +1,20 @@
+# The deploy node: a trained policy driving a robot (odometry, scan and goals in, cmd_vel out).
+#   jetbot_rl_deploy  the driver, its inputs and parameters (over jetbot_rl_ppo's Policy and the
+#                     core's task observers)
+add_library(jetbot_rl_deploy
+  src/ros/deploy/deploy_driver.cpp
+  src/ros/deploy/deploy_node.cpp
+  src/ros/deploy/deploy_params.cpp
+  src/ros/deploy/goal_input.cpp
+  src/ros/deploy/scan_beams.cpp
+)
+target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_ppo jetbot_rl_ros_common)
+
+add_executable(jetbot_deploy_node src/nodes/jetbot_deploy_node.cpp)
+target_link_libraries(jetbot_deploy_node jetbot_rl_deploy)
+
+install(TARGETS jetbot_rl_deploy
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
+install(TARGETS jetbot_deploy_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

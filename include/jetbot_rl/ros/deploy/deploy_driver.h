@@ -1,0 +1,98 @@
+#pragma once
+
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/Vector3.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <ros/subscriber.h>
+#include <ros/wall_timer.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ros/common/drop_counter.h"
+#include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/ros/deploy/fresh_input.h"
+#include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/deploy/scan_beams.h"
+#include "jetbot_rl/task_observer.h"
+
+namespace jetbot_rl {
+
+/// How a checkpoint's policy runs: at 1 / its control step, with its action bounds, its actions
+/// wheel targets or a twist (v, omega).
+struct PolicyRun {
+  double control_rate = 0.0;  ///< [Hz]
+  bool twist = false;         ///< Actions (linear_x, angular_z) rather than wheel targets.
+  std::vector<double> action_high;
+  std::string checkpoint;  ///< Its file, for messages.
+};
+
+/// The PolicyRun of `policy`'s checkpoint; ConfigError naming the file for a checkpoint without
+/// its env's spec (format 1).
+PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint);
+
+/// The observer of the task `trained` (a checkpoint's env spec) was trained on, with the policy's
+/// `beams` (none for a task without a scan) and goal test within `goal_radius` [m]: the same code
+/// the simulated task observes with. ConfigError when its observation's names are not the ones
+/// the policy of `checkpoint` was trained on.
+std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
+                                         double goal_radius, const std::string& checkpoint);
+
+/// The robot's state as the task's observer takes it from an odometry message: the pose in the
+/// odometry frame, the twist (given in the child frame) rotated into it, as RootState keeps it.
+RootState rootStateOf(const nav_msgs::Odometry& odometry);
+
+/**
+ * The deploy node's driver, one for every task: the robot's inputs the task's observer needs
+ * (odometry always; a scan resampled to the policy's beams and goals for navigation; a command
+ * for the command task), each with its freshness, become the observation through the same
+ * TaskObserver the simulated task observes with; the policy's mean action goes out as a Twist at
+ * the policy's control rate. The robot stands (zero Twists) while an input is stale, while a task
+ * with goals has none, and on arrival (the observer's goal test); the policy's memory starts over
+ * with each goal or command and after each stop for stale input. A 1 Hz DiagnosticStatus
+ * "<node>: deploy" tells the inputs' ages and why the robot stands.
+ */
+class DeployDriver {
+ public:
+  /// `beams`: the policy's scan beams (a task that observes a scan); `kinematics`: wheel targets
+  /// -> Twist for a policy with wheel actions.
+  DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
+               const TaskObserver& observer, const DeployParams& p, const PolicyRun& run,
+               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics);
+  /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
+  void stop();
+
+ private:
+  void onTick(const ros::WallTimerEvent&);
+  void onStatus(const ros::WallTimerEvent&);
+  void onCommand(const geometry_msgs::Vector3::ConstPtr& msg);
+  /// The twist of one policy step on the current inputs (which are fresh).
+  geometry_msgs::Twist act(const MeasuredState& state);
+  /// Stops with a zero last action; `fresh_start`: the memory starts over too.
+  void stand(const std::string& why, bool fresh_start);
+
+  ppo::Policy& policy_;
+  const TaskObserver& observer_;
+  PolicyRun run_;
+  ScanBeams beams_;
+  std::optional<DiffDrive> kinematics_;
+  DropCounter drops_;
+  FreshInput<nav_msgs::Odometry> odom_;
+  std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
+  std::unique_ptr<GoalInput> goals_;                          // a task with goals
+  ros::Subscriber command_sub_;                               // a task with a command
+  ros::Publisher cmd_vel_pub_, status_pub_;
+  ros::WallTimer timer_, status_timer_;
+  Eigen::Vector2d command_ = Eigen::Vector2d::UnitX();
+  std::vector<float> ranges_, obs_, actions_, last_action_;
+  std::string standing_;  // why the robot stands ("" while it drives), for diagnostics
+};
+
+}  // namespace jetbot_rl

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <sensor_msgs/LaserScan.h>
+
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/step_result.h"
+
+namespace jetbot_rl {
+
+/// The scan beams a navigation policy observes.
+struct ScanBeams {
+  std::vector<double> angles;  ///< In the scanner's frame, in observation order [rad].
+  double range_min = 0.0;      ///< The trained scanner's range: readings are clamped into it...
+  double range_max = 0.0;      ///< ... and divided by range_max [m] (the observer does).
+};
+
+/// The beams of the policy trained on `trained` (its checkpoint's env spec); scan_beams,
+/// scan_angles and scan_range, when given, must agree with them. A checkpoint written before it
+/// held its beams takes them from those parameters (scan_beams evenly spread over scan_angles),
+/// which it then needs. ConfigError naming the parameter and both values.
+ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
+                      const std::string& checkpoint);
+
+/// The readings of `scan` at `beam_angles` (the nearest sample to each; a scan over a full turn
+/// wraps) into `ranges`, as the scan holds them (REP 117 values, NaN included: the observer turns
+/// them into what the policy saw). False with `error` naming the angles when a beam lies outside
+/// what the scan covers.
+bool resampleScan(const sensor_msgs::LaserScan& scan, const std::vector<double>& beam_angles,
+                  std::vector<float>& ranges, std::string& error);
+
+}  // namespace jetbot_rl

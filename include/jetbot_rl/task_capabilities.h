@@ -1,0 +1,57 @@
+#pragma once
+
+// What only some tasks do. A task opts in by deriving from the capability as well as from Task;
+// the code that serves it asks for it with capability<C>(task) (task.h).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/rng.h"
+
+namespace jetbot_rl {
+
+class WorldModel;
+
+/// A task with a command a user can set per env (served by the env node's ~set_command).
+class Commandable {
+ public:
+  virtual ~Commandable() = default;
+  /// Size of the command (SetCommand's x, y).
+  virtual int commandDim() const = 0;
+  /// Sets env `env`'s command (`commandDim()` values), kept across its resets when `hold`;
+  /// throws InputError naming the env and value when invalid.
+  virtual void setCommand(int env, const std::vector<double>& command, bool hold) = 0;
+};
+
+/// A task whose observation holds beams of the laser scan.
+class ScanObserving {
+ public:
+  virtual ~ScanObserving() = default;
+  /// Angles [rad, in the scanner's frame] of the scan beams the observation holds, in order: the
+  /// geometry a robot elsewhere resamples its own scan to.
+  virtual std::vector<double> scanBeamAngles() const = 0;
+};
+
+/// A task that places something in an env's world at each reset (a goal kept free of obstacles).
+class WorldDrawing {
+ public:
+  virtual ~WorldDrawing() = default;
+  /// At a reset of an env with a world, after its start was drawn and before its obstacles:
+  /// draws what the task keeps free of obstacles from `rng` and appends its points to
+  /// `keep_free`.
+  virtual void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
+                           std::vector<Eigen::Vector2d>& keep_free) = 0;
+};
+
+/// A task with directions worth drawing per env besides the robot's forward arrow (markers).
+class ArrowDrawing {
+ public:
+  virtual ~ArrowDrawing() = default;
+  /// Names of the directions (marker namespaces), one per arrowDirection() index.
+  virtual std::vector<std::string> arrowNames() const = 0;
+  /// Unit direction `arrow` of env `env` in the env frame's ground plane.
+  virtual Eigen::Vector2d arrowDirection(int env, int arrow) const = 0;
+};
+
+}  // namespace jetbot_rl

@@ -1,0 +1,238 @@
+#include "jetbot_rl/ros/deploy/deploy_driver.h"
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <ros/console.h>
+#include <ros/this_node.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/command_task.h"
+#include "jetbot_rl/ros/common/private_topic.h"
+#include "jetbot_rl/ros/common/publication_flush.h"
+#include "jetbot_rl/task_factory.h"
+
+namespace jetbot_rl {
+namespace {
+
+std::string checkOdometry(const nav_msgs::Odometry& m) {
+  const auto& p = m.pose.pose.position;
+  const auto& q = m.pose.pose.orientation;
+  const auto& v = m.twist.twist.linear;
+  const auto& w = m.twist.twist.angular;
+  for (double x : {p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
+    if (!std::isfinite(x)) return "with a non-finite value or a zero quaternion";
+  }
+  if (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w <= 1e-12) {
+    return "with a non-finite value or a zero quaternion";
+  }
+  return "";
+}
+
+}  // namespace
+
+PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) {
+  const BatchSpec& spec = policy.meta().spec;
+  if (spec.control_dt <= 0.0 || spec.action_high.size() != 2) {
+    throw ConfigError("checkpoint " + checkpoint +
+                      " does not hold the control step and the action bounds it was trained with "
+                      "(a checkpoint of format 1): train it again, or resume it for one iteration "
+                      "(train.launch resume:=RUN_DIR/checkpoints/latest.pt iterations:=N+1), "
+                      "which saves it in format 2");
+  }
+  PolicyRun run;
+  run.control_rate = 1.0 / spec.control_dt;
+  run.twist = spec.action_names == std::vector<std::string>{"linear_x", "angular_z"};
+  run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
+  run.checkpoint = checkpoint;
+  return run;
+}
+
+std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
+                                         double goal_radius, const std::string& checkpoint) {
+  ObserverSpec o;
+  o.task = trained.task;
+  o.action_dim = trained.action_dim;
+  o.scan_beams = static_cast<int>(beams.angles.size());
+  o.range_min = beams.range_min;
+  o.range_max = beams.range_max;
+  o.goal_radius = goal_radius;
+  std::unique_ptr<TaskObserver> observer = makeObserver(o);
+  const std::vector<std::string> names = observer->observationNames();
+  if (names != trained.observation_names) {
+    throw ConfigError("the " + trained.task + " task observes " + listText(names) +
+                      "; the policy of " + checkpoint + " was trained on " +
+                      listText(trained.observation_names));
+  }
+  return observer;
+}
+
+RootState rootStateOf(const nav_msgs::Odometry& odometry) {
+  const auto& pose = odometry.pose.pose;
+  const auto& v = odometry.twist.twist;
+  RootState state;
+  state.position = {pose.position.x, pose.position.y, pose.position.z};
+  state.orientation = Eigen::Quaterniond(pose.orientation.w, pose.orientation.x, pose.orientation.y,
+                                         pose.orientation.z)
+                          .normalized();
+  state.com_linear_velocity =
+      state.orientation * Eigen::Vector3d(v.linear.x, v.linear.y, v.linear.z);
+  state.angular_velocity =
+      state.orientation * Eigen::Vector3d(v.angular.x, v.angular.y, v.angular.z);
+  return state;
+}
+
+DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
+                           const TaskObserver& observer, const DeployParams& p,
+                           const PolicyRun& run, const ScanBeams& beams,
+                           const std::optional<DiffDrive>& kinematics)
+    : policy_(policy),
+      observer_(observer),
+      run_(run),
+      beams_(beams),
+      kinematics_(kinematics),
+      drops_(nh, ros::this_node::getName() + ": deploy input", "dropped input"),
+      odom_(nh, p.odom_topic, "odometry", p.odom_timeout, checkOdometry, drops_) {
+  if (!run.twist && !kinematics_) throw Error("DeployDriver: wheel actions need kinematics");
+  if (observer.scanBeams() != static_cast<int>(beams_.angles.size())) {
+    throw ConfigError("the policy observes " + std::to_string(observer.scanBeams()) +
+                      " scan beams; " + std::to_string(beams_.angles.size()) + " are known");
+  }
+  last_action_.assign(static_cast<std::size_t>(policy.actionDim()), 0.0f);
+  cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.cmd_vel_topic, 10);
+  status_pub_ = nh.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  std::string inputs = odom_.topic();
+  if (observer.scanBeams() > 0) {
+    scan_ = std::make_unique<FreshInput<sensor_msgs::LaserScan>>(
+        nh, p.scan_topic, "scan", p.scan_timeout,
+        [this](const sensor_msgs::LaserScan& scan) {
+          std::string error;
+          return resampleScan(scan, beams_.angles, ranges_, error) ? "" : "refused: " + error;
+        },
+        drops_);
+    inputs += ", " + scan_->topic();
+  }
+  if (observer.hasGoal()) {
+    goals_ = std::make_unique<GoalInput>(
+        nh, pnh, p.goal_topic, p.outcome_topic, p.map_topic,
+        [this] { return odom_.latest() ? odom_.latest()->header.frame_id : std::string(); },
+        [this] { policy_.resetMemory(); });  // each goal is an episode
+    inputs += " and goals on " + goals_->topic();
+  }
+  if (observer.takesCommand()) {
+    command_sub_ =
+        nh.subscribe(resolvePrivateTopic(pnh, p.command_topic), 10, &DeployDriver::onCommand, this);
+    inputs += " and commands on " + command_sub_.getTopic();
+  }
+  timer_ =
+      nh.createWallTimer(ros::WallDuration(1.0 / run.control_rate), &DeployDriver::onTick, this);
+  status_timer_ = nh.createWallTimer(ros::WallDuration(1.0), &DeployDriver::onStatus, this);
+  std::ostringstream s;
+  s << "deploying " << run.checkpoint << ": " << inputs << " -> policy"
+    << (policy.hasMemory() ? " (with memory)" : "") << " -> " << cmd_vel_pub_.getTopic() << " at "
+    << run.control_rate << " Hz (" << (run.twist ? "twist" : "wheel") << " actions"
+    << (kinematics_ ? ", " + kinematics_->describe() : std::string()) << "; the checkpoint's)";
+  if (scan_) {
+    s << "; " << beams_.angles.size() << " beams over [" << beams_.angles.front() << ", "
+      << beams_.angles.back() << "] rad, range [" << beams_.range_min << ", " << beams_.range_max
+      << "] m";
+  }
+  ROS_INFO("%s", s.str().c_str());
+}
+
+void DeployDriver::stop() {
+  timer_.stop();
+  status_timer_.stop();
+  cmd_vel_pub_.publish(geometry_msgs::Twist());
+  flushPublications(0.5);
+}
+
+void DeployDriver::onCommand(const geometry_msgs::Vector3::ConstPtr& msg) {
+  try {
+    command_ = unitCommand({msg->x, msg->y}, "command on " + command_sub_.getTopic());
+    policy_.resetMemory();  // a new command starts a new episode, as in training
+  } catch (const InputError& e) {
+    ROS_WARN_THROTTLE(1.0, "command ignored: %s", e.what());
+  }
+}
+
+void DeployDriver::stand(const std::string& why, bool fresh_start) {
+  standing_ = why;
+  std::fill(last_action_.begin(), last_action_.end(), 0.0f);
+  if (fresh_start) policy_.resetMemory();
+}
+
+void DeployDriver::onTick(const ros::WallTimerEvent&) {
+  geometry_msgs::Twist twist;  // zero: stand
+  const FreshInput<nav_msgs::Odometry>* stale_odom = odom_.fresh() ? nullptr : &odom_;
+  const bool stale_scan = scan_ && !scan_->fresh();
+  if (goals_ && !goals_->goal()) {
+    stand("no goal", false);
+  } else if (stale_odom || stale_scan) {
+    const std::string what =
+        stale_odom ? "odometry on " + odom_.topic() : "scan on " + scan_->topic();
+    ROS_WARN_THROTTLE(2.0, "no fresh %s: stopping the robot", what.c_str());
+    stand("no fresh " + what, true);  // its memory starts over with the next drive
+  } else {
+    MeasuredState state;
+    state.root = rootStateOf(*odom_.latest());
+    if (scan_) {
+      std::string error;
+      resampleScan(*scan_->latest(), beams_.angles, ranges_, error);  // it took it: it covers them
+      state.scan = ranges_.data();
+    }
+    if (goals_) state.goal = *goals_->goal();
+    state.command = command_;
+    state.last_action = last_action_.data();
+    if (goals_ && observer_.reached(state)) {
+      ROS_INFO("goal (%.2f, %.2f) reached", state.goal.x(), state.goal.y());
+      goals_->end("reached");
+      stand("goal reached", false);
+    } else {
+      twist = act(state);
+      standing_.clear();
+    }
+  }
+  cmd_vel_pub_.publish(twist);
+}
+
+geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
+  obs_.resize(static_cast<std::size_t>(policy_.obsDim()));
+  observer_.observe(state, obs_.data());
+  policy_.act(obs_, 1, actions_);
+  std::copy(actions_.begin(), actions_.begin() + last_action_.size(), last_action_.begin());
+  geometry_msgs::Twist twist;
+  if (run_.twist) {
+    twist.linear.x = actions_[0];
+    twist.angular.z = actions_[1];
+  } else {
+    const PlanarTwist body = kinematics_->bodyTwist({actions_[0], actions_[1]});
+    twist.linear.x = body.linear;
+    twist.angular.z = body.angular;
+  }
+  return twist;
+}
+
+void DeployDriver::onStatus(const ros::WallTimerEvent&) {
+  diagnostic_msgs::DiagnosticStatus status;
+  status.name = ros::this_node::getName() + ": deploy";
+  const bool stale = standing_.rfind("no fresh", 0) == 0;
+  status.level =
+      stale ? diagnostic_msgs::DiagnosticStatus::WARN : diagnostic_msgs::DiagnosticStatus::OK;
+  status.message = standing_.empty() ? "driving" : "standing: " + standing_;
+  const auto add = [&status](const std::string& key, const std::string& value) {
+    diagnostic_msgs::KeyValue kv;
+    kv.key = key;
+    kv.value = value;
+    status.values.push_back(kv);
+  };
+  add("odometry age [s]", std::to_string(odom_.age()));
+  if (scan_) add("scan age [s]", std::to_string(scan_->age()));
+  add("dropped input", std::to_string(drops_.count()));
+  diagnostic_msgs::DiagnosticArray msg;
+  msg.header.stamp = ros::Time::now();
+  msg.status.push_back(std::move(status));
+  status_pub_.publish(msg);
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,176 @@
+// The task observers: for every task, the observer a robot elsewhere builds from the env's spec
+// (makeObserver) computes from the env's measured state (root state, the scan at the observed
+// beams, goal or command, last action) exactly the observation the simulated task gave, bit for
+// bit, step after step; and the navigation observer's goal test is the task's success test.
+#include <cmath>
+#include <random>
+
+#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/command_task.h"
+#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/task_factory.h"
+#include "test_util.h"
+
+namespace jetbot_rl {
+namespace {
+
+EnvConfig config(TaskKind task) {
+  EnvConfig c = test::smallConfig(3, 2);
+  c.episode_length_s = 2.0;  // episodes end within the run
+  if (task == TaskKind::kNavigation) {
+    c.action_space = ActionSpace::kTwist;
+    c.world.arena_size = {4.0, 4.0};
+    c.world.num_boxes = 2;
+    c.world.num_cylinders = 2;
+    c.world.random_start = true;
+    c.scan.link = "base_link";
+    c.scan.samples = 36;
+    c.scan.range = {0.15, 3.5};
+    c.scan.noise_std = 0.01;
+  }
+  return c;
+}
+
+/// The observer of `spec` as a robot elsewhere builds it (its beam angles and range).
+std::unique_ptr<TaskObserver> observerOf(const BatchSpec& spec) {
+  ObserverSpec o;
+  o.task = spec.task;
+  o.action_dim = spec.action_dim;
+  o.scan_beams = static_cast<int>(spec.scan_beam_angles.size());
+  if (!spec.scan_range.empty()) {
+    o.range_min = spec.scan_range[0];
+    o.range_max = spec.scan_range[1];
+  }
+  return makeObserver(o);
+}
+
+/// Env `e`'s scan at the spec's beam angles: the sample nearest each angle, as a robot's scan
+/// is resampled.
+std::vector<float> scanAtBeams(const BatchedEnv& env, int e, const BatchSpec& spec) {
+  const ScannerSpec& s = *env.scanner();
+  std::vector<float> ranges;
+  for (double angle : spec.scan_beam_angles) {
+    const long k = std::lround((angle - s.min_angle) / s.angleIncrement());
+    ranges.push_back(env.view(e).scan()[k]);
+  }
+  return ranges;
+}
+
+class TaskObservers : public ::testing::TestWithParam<TaskKind> {};
+
+TEST_P(TaskObservers, TheObserverOfTheSpecObservesWhatTheSimulatedTaskObserved) {
+  TaskConfig t;
+  t.task = GetParam();
+  BatchedEnv env(test::jetbot(), config(GetParam()), makeTask(t));
+  const BatchSpec spec = env.spec();
+  const std::unique_ptr<TaskObserver> observer = observerOf(spec);
+  ASSERT_EQ(observer->observationNames(), spec.observation_names);
+  std::mt19937 gen(3);
+  std::vector<float> actions(static_cast<std::size_t>(env.numEnvs()) * env.actionDim());
+  std::vector<float> obs(static_cast<std::size_t>(env.obsDim()));
+  int compared = 0, ended = 0;
+  for (int step = 0; step < 150; ++step) {
+    for (std::size_t i = 0; i < actions.size(); ++i) {
+      const std::size_t a = i % env.actionDim();
+      std::uniform_real_distribution<float> in(env.actionLow()[a], env.actionHigh()[a]);
+      actions[i] = in(gen);  // within the bounds: the last action the policy took
+    }
+    const StepResult& r = env.step(actions);
+    ended += static_cast<int>(r.reset_env_ids.size());
+    for (int e = 0; e < env.numEnvs(); ++e) {
+      const bool reset = std::find(r.reset_env_ids.begin(), r.reset_env_ids.end(),
+                                   static_cast<std::uint32_t>(e)) != r.reset_env_ids.end();
+      MeasuredState m;
+      m.root = env.view(e).rootState();
+      std::vector<float> beams;
+      if (observer->scanBeams() > 0) {
+        beams = scanAtBeams(env, e, spec);
+        m.scan = beams.data();
+      }
+      if (const auto* nav = dynamic_cast<const NavigationTask*>(&env.task())) m.goal = nav->goal(e);
+      if (const auto* cmd = dynamic_cast<const CommandTask*>(&env.task())) {
+        m.command = cmd->command(e);
+      }
+      const std::vector<float> zeros(env.actionDim(), 0.0f);
+      m.last_action =
+          reset ? zeros.data() : &actions[static_cast<std::size_t>(e) * env.actionDim()];
+      observer->observe(m, obs.data());
+      for (int k = 0; k < env.obsDim(); ++k) {
+        ASSERT_EQ(obs[k], r.observations[static_cast<std::size_t>(e) * env.obsDim() + k])
+            << spec.observation_names[k] << " of env " << e << " at step " << step;
+      }
+      // An env that goes on has not reached its goal.
+      if (!reset) EXPECT_FALSE(observer->reached(m)) << "env " << e << " at step " << step;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 150 * env.numEnvs());
+  EXPECT_GT(ended, 0);  // resets happened: first observations compared too
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryTask, TaskObservers,
+                         ::testing::Values(TaskKind::kVelocity, TaskKind::kCommand,
+                                           TaskKind::kNavigation),
+                         [](const ::testing::TestParamInfo<TaskKind>& i) {
+                           return enumName(i.param);
+                         });
+
+TEST(NavigationObserver, ItsGoalTestIsTheTasksSuccess) {
+  NavigationConfig c;
+  c.goal_radius = 0.3;
+  NavigationTask task(c);
+  ScannerSpec scanner;
+  scanner.samples = 24;
+  scanner.range_min = 0.15;
+  scanner.range_max = 3.5;
+  TaskContext context;
+  context.scanner = &scanner;
+  context.action_dim = 2;
+  task.attach(context);
+  task.resize(1);
+  Rng rng(1);
+  task.resetEnv(0, rng);
+  const Eigen::Vector2d goal(1.0, -0.5);
+  task.setGoal(0, goal);
+  std::vector<float> scan(24, 1.0f);
+  task.sense(0, {scan.data(), false, nullptr});
+  ObserverSpec o;
+  o.task = "navigation";
+  o.scan_beams = 24;
+  o.range_min = 0.15;
+  o.range_max = 3.5;
+  o.goal_radius = 0.3;
+  const std::unique_ptr<TaskObserver> observer = makeObserver(o);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> offset(-0.5, 0.5);
+  int inside = 0;
+  for (int k = 0; k < 2000; ++k) {
+    RootState s;
+    s.position = Eigen::Vector3d(goal.x() + offset(gen), goal.y() + offset(gen), 0.03);
+    MeasuredState m;
+    m.root = s;
+    m.goal = goal;
+    const bool success = task.terminated(0, s) && task.outcome(0) == Outcome::kSuccess;
+    ASSERT_EQ(observer->reached(m), success) << "at " << s.position.transpose();
+    inside += success;
+  }
+  EXPECT_GT(inside, 100);  // both answers were tried
+  EXPECT_LT(inside, 1900);
+}
+
+TEST(MakeObserver, RefusesAnUnknownTaskAndANavigationObserverWithoutBeams) {
+  ObserverSpec o;
+  o.task = "dance";
+  EXPECT_THROW(makeObserver(o), ConfigError);
+  o.task = "navigation";
+  try {
+    makeObserver(o);
+    FAIL() << "built a navigation observer without beams";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("0 scan beams"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace jetbot_rl
