@@ -8,6 +8,7 @@ pkg_check_modules(STB REQUIRED stb)
 find_package(yaml-cpp REQUIRED)
 add_library(jetbot_rl_core
   src/core/action_layout.cpp
+  src/core/batch_spec.cpp
   src/core/batched_env.cpp
   src/core/command_task.cpp
   src/core/config_fields.cpp

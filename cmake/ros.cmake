@@ -8,6 +8,7 @@ add_library(jetbot_rl_ros_common
   src/ros/common/drop_counter.cpp
   src/ros/common/inline_callback_queue.cpp
   src/ros/common/msg_conversion.cpp
+  src/ros/common/msg_fields.cpp
   src/ros/common/package_resolver.cpp
   src/ros/common/param_reader.cpp
   src/ros/common/publication_flush.cpp

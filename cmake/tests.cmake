@@ -60,6 +60,7 @@ catkin_add_gtest(test_ros_adapter
   test/ros/test_bounded_deserialization.cpp
   test/ros/test_robot_view.cpp
   test/ros/test_randomization_service.cpp
+  test/ros/test_spec_schema.cpp
 )
 target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
 target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
@@ -107,9 +108,9 @@ foreach(_scenario train train_command train_navigation train_tribot determinism 
   add_rostest(test/ppo/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 
-# ---- sim-to-real: a policy trained with randomisation drives the env's robot view ----
+# ---- sim-to-real: a policy trained with randomisation drives the env's robot view (deploy node) ----
 foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation closed_loop_memory
-    robot_mode)
+    deploy_node)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

@@ -14,6 +14,8 @@ add_library(jetbot_rl_ppo
   src/ppo/obs_normalizer.cpp
   src/ppo/policy.cpp
   src/ppo/policy_export.cpp
+  src/ppo/policy_memory.cpp
+  src/ppo/policy_memory_script.cpp
   src/ppo/ppo.cpp
   src/ppo/ppo_config.cpp
   src/ppo/ppo_losses.cpp

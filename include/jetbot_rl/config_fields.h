@@ -165,8 +165,13 @@ inline void writeValue(std::ostream& s, bool v) { s << (v ? "true" : "false"); }
 inline void writeValue(std::ostream& s, int v) { s << v; }
 inline void writeValue(std::ostream& s, std::int64_t v) { s << v; }
 inline void writeValue(std::ostream& s, std::uint64_t v) { s << v; }
-/// The shortest text that reads back as the same double (0.99, not 0.98999999999999999).
+/// The shortest text that reads back as the same double (0.99, not 0.98999999999999999);
+/// infinities and NaN as YAML writes them (.inf, -.inf, .nan).
 inline void writeValue(std::ostream& s, double v) {
+  if (!std::isfinite(v)) {
+    s << (std::isnan(v) ? ".nan" : v > 0 ? ".inf" : "-.inf");
+    return;
+  }
   char text[32];
   const std::to_chars_result end = std::to_chars(text, text + sizeof(text), v);
   s.write(text, end.ptr - text);
@@ -270,10 +275,12 @@ void readValue(const std::string& field, const std::string& text, int& v);
 void readValue(const std::string& field, const std::string& text, std::int64_t& v);
 void readValue(const std::string& field, const std::string& text, std::uint64_t& v);
 void readValue(const std::string& field, const std::string& text, double& v);
+void readValue(const std::string& field, const std::string& text, float& v);
 void readValue(const std::string& field, const std::string& text, std::string& v);
 void readValue(const std::string& field, const std::string& text, std::vector<int>& v);
 /// A flow list of numbers, or one number for a list of one.
 void readValue(const std::string& field, const std::string& text, std::vector<double>& v);
+void readValue(const std::string& field, const std::string& text, std::vector<float>& v);
 void readValue(const std::string& field, const std::string& text, std::vector<std::string>& v);
 template <typename E, typename = std::enable_if_t<IsNamedEnum<E>::value>>
 void readValue(const std::string& field, const std::string& text, E& v) {
@@ -317,16 +324,23 @@ std::string describeFields(const C& config) {
   return s.str();
 }
 
-/// One "name: value" line per field, readable by fieldsFromYaml().
-template <typename C>
-std::string fieldsToYaml(const C& config) {
+/// One "name: value" line per field that `visit(config, visitor)` names (a field list, or a part
+/// of one such as PpoConfig's visitNetworkFields), readable by fieldsFromYaml().
+template <typename C, typename Visit>
+std::string fieldsToYaml(const C& config, Visit&& visit) {
   std::ostringstream s;
-  visitFields(config, [&s](const char* name, const auto& value, const auto&, const char*) {
+  visit(config, [&s](const char* name, const auto& value, const auto&, const char*) {
     s << name << ": ";
     writeValue(s, value);
     s << "\n";
   });
   return s.str();
+}
+
+/// One "name: value" line per field, readable by fieldsFromYaml().
+template <typename C>
+std::string fieldsToYaml(const C& config) {
+  return fieldsToYaml(config, [](const C& c, auto&& v) { visitFields(c, v); });
 }
 
 /// "key: value" lines of YAML (comments dropped), in order; a line of a block ("world:" and its

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/config_fields.h"
+
 namespace jetbot_rl {
 
 /// An env that was reset on its own because its physics diverged.
@@ -28,7 +30,11 @@ struct StepResult {
   std::vector<Divergence> divergences;  ///< Envs among reset_env_ids that diverged.
 };
 
-/// What a learner needs to know about a batch (the content of the EnvSpec message).
+/// What a learner needs to know about a batch (the content of the EnvSpec message). One schema
+/// (its visitFields below) drives the message conversion, the checkpoint's and meta.yaml's copy,
+/// the agreement checks (env nodes of one batch, a checkpoint and an env) and the docs; the
+/// Python client reads the fields from the message: a new field is added here, in its field
+/// list, in EnvSpec.msg and where it is used.
 struct BatchSpec {
   int num_envs = 0;
   int obs_dim = 0;
@@ -38,11 +44,63 @@ struct BatchSpec {
   int max_episode_length = 0;                  ///< [control steps]
   std::string task;
   std::vector<std::string> observation_names;  ///< One per observation component.
-  std::vector<std::string> action_names;       ///< One per action component (the dof names).
+  /// Per observation component, the range it stays in (±inf where none is known).
+  std::vector<float> observation_low, observation_high;
+  std::vector<std::string> action_names;  ///< One per action component (the dof names).
+  /// The robot's cmd_vel kinematics (DiffDrive); 0 when it is no differential drive [m].
+  double wheel_radius = 0.0, wheel_separation = 0.0;
   /// The scan beams the observation holds (navigation): their angles [rad, in the scanner's frame],
   /// and the scanner's [range_min, range_max] [m] they are clamped into and divided by. Empty
   /// when the task observes no scan.
   std::vector<double> scan_beam_angles, scan_range;
 };
+
+/// The fields of BatchSpec a trained policy is bound to: an env it acts on must have the same
+/// (what it observes and how it acts).
+template <typename C, typename V>
+IfConfig<C, BatchSpec> visitPolicyBoundFields(C& c, V&& v) {
+  v("task", c.task, AnyValue{}, "The RL task.");
+  v("obs_dim", c.obs_dim, AnyValue{}, "Observation components per env.");
+  v("action_dim", c.action_dim, AnyValue{}, "Action components per env.");
+  v("observation_names", c.observation_names, AnyValue{}, "One per observation component.");
+  v("action_names", c.action_names, AnyValue{},
+    "One per action component: the dof names, or linear_x, angular_z (a twist).");
+  v("scan_beam_angles", c.scan_beam_angles, AnyValue{"rad"},
+    "The scan beams the observation holds, in the scanner's frame (empty: no scan observed).");
+  v("scan_range", c.scan_range, AnyValue{"m"},
+    "The scanner's [range_min, range_max] the beams are clamped into and divided by the max of.");
+}
+
+/// Every field of BatchSpec (EnvSpec.msg names the same).
+template <typename C, typename V>
+IfConfig<C, BatchSpec> visitFields(C& c, V&& v) {
+  v("num_envs", c.num_envs, AnyValue{}, "Envs in the batch.");
+  visitPolicyBoundFields(c, v);
+  v("action_low", c.action_low, AnyValue{},
+    "Lower action bounds, per component [rad/s for wheels; m/s, rad/s for a twist].");
+  v("action_high", c.action_high, AnyValue{}, "Upper action bounds, per component.");
+  v("control_dt", c.control_dt, AnyValue{"s"}, "Control step.");
+  v("max_episode_length", c.max_episode_length, AnyValue{"control steps"},
+    "Episodes are truncated at step max_episode_length - 1.");
+  v("observation_low", c.observation_low, AnyValue{},
+    "Per observation component, the lowest value it takes (-inf where none is known).");
+  v("observation_high", c.observation_high, AnyValue{},
+    "Per observation component, the highest value it takes (inf where none is known).");
+  v("wheel_radius", c.wheel_radius, AnyValue{"m"},
+    "The cmd_vel kinematics' wheel radius; 0: the robot is no differential drive.");
+  v("wheel_separation", c.wheel_separation, AnyValue{"m"},
+    "The cmd_vel kinematics' wheel separation; 0: the robot is no differential drive.");
+}
+
+/// Sizes that fit: num_envs, obs_dim and action_dim >= 1, as many names and bounds as
+/// components, max_episode_length >= 2, control_dt > 0, scan_range two values with the beams;
+/// ConfigError naming the field and its value.
+void checkFieldRules(const BatchSpec& spec);
+
+/// One line "FIELD: THEIRS differs from MINE" per field of `theirs` that differs from `mine`,
+/// over every field but num_envs, or only the policy-bound ones; a field `mine` does not hold (at
+/// its default: written before the field existed) is not compared when `skip_unset`.
+std::vector<std::string> specDifferences(const BatchSpec& mine, const BatchSpec& theirs,
+                                         bool policy_bound_only, bool skip_unset);
 
 }  // namespace jetbot_rl

@@ -2,19 +2,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "action_layout.h"
 #include "env_physics.h"
 #include "env_randomizer.h"
+#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/task_observer.h"
 #include "physics_model.h"
 #include "scan_sensor.h"
 #include "thread_pool.h"
 #include "world_shapes.h"
 
 namespace jetbot_rl {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+}  // namespace
 
 BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
                        std::unique_ptr<Task> task)
@@ -281,7 +289,19 @@ BatchSpec BatchedEnv::spec() const {
   spec.max_episode_length = maxEpisodeLength();
   spec.task = task_->name();
   spec.observation_names = task_->observationNames();
+  task_->observer().observationBounds(spec.observation_low, spec.observation_high);
+  if (randomizer_->noisesObservations()) {  // noise may take any value anywhere
+    std::fill(spec.observation_low.begin(), spec.observation_low.end(), -kInfinity);
+    std::fill(spec.observation_high.begin(), spec.observation_high.end(), kInfinity);
+  }
   spec.action_names = actions_layout_->names;
+  try {
+    const DiffDrive drive = DiffDrive::fromEnv(*this);
+    spec.wheel_radius = drive.wheelRadius();
+    spec.wheel_separation = drive.wheelSeparation();
+  } catch (const Error&) {
+    // No differential drive: its kinematics stay 0.
+  }
   if (const auto* scan_task = capability<ScanObserving>(*task_)) {
     spec.scan_beam_angles = scan_task->scanBeamAngles();
     spec.scan_range = {scan_->spec().range_min, scan_->spec().range_max};

@@ -1,5 +1,7 @@
 #include "jetbot_rl/config_fields.h"
 
+#include <cctype>
+
 namespace jetbot_rl {
 namespace {
 
@@ -74,8 +76,26 @@ void readValue(const std::string& field, const std::string& text, std::uint64_t&
 }
 
 void readValue(const std::string& field, const std::string& text, double& v) {
+  // YAML's infinities and NaN (.inf, -.inf, .nan, any case), which streams do not read.
+  std::string lower = text;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == ".inf" || lower == "+.inf" || lower == "-.inf") {
+    v = lower[0] == '-' ? -std::numeric_limits<double>::infinity()
+                        : std::numeric_limits<double>::infinity();
+    return;
+  }
+  if (lower == ".nan") {
+    v = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   std::istringstream s(text);
   if (!(s >> v) || !(s >> std::ws).eof()) badValue(field, text, "a number");
+}
+
+void readValue(const std::string& field, const std::string& text, float& v) {
+  double x = 0.0;
+  readValue(field, text, x);
+  v = static_cast<float>(x);
 }
 
 void readValue(const std::string&, const std::string& text, std::string& v) {
@@ -109,6 +129,10 @@ void readValue(const std::string& field, const std::string& text, std::vector<do
     v = {x};
     return;
   }
+  readList(field, text, "a list of numbers [a, b]", v);
+}
+
+void readValue(const std::string& field, const std::string& text, std::vector<float>& v) {
   readList(field, text, "a list of numbers [a, b]", v);
 }
 

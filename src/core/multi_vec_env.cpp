@@ -1,39 +1,17 @@
 #include "jetbot_rl/multi_vec_env.h"
 
-#include <sstream>
-
-#include "jetbot_rl/config_fields.h"
-
 namespace jetbot_rl {
 namespace {
-
-template <typename T>
-std::string text(const T& value) {
-  std::ostringstream s;
-  writeValue(s, value);
-  return s.str();
-}
 
 /// ConfigError unless `b` (part `name`) agrees with `a` (part `first`) on everything but num_envs.
 void checkAgrees(const BatchSpec& a, const std::string& first, const BatchSpec& b,
                  const std::string& name) {
-  const auto differ = [&](const char* field, const std::string& mine, const std::string& theirs) {
-    if (mine != theirs) {
-      throw ConfigError("env " + name + ": " + field + " " + theirs + " differs from " + first +
-                        "'s " + mine + " (every env of a batch must agree on all but num_envs)");
-    }
-  };
-  differ("obs_dim", text(a.obs_dim), text(b.obs_dim));
-  differ("action_dim", text(a.action_dim), text(b.action_dim));
-  differ("observation_names", text(a.observation_names), text(b.observation_names));
-  differ("action_names", text(a.action_names), text(b.action_names));
-  differ("action_low", text(a.action_low), text(b.action_low));
-  differ("action_high", text(a.action_high), text(b.action_high));
-  differ("control_dt", text(a.control_dt), text(b.control_dt));
-  differ("max_episode_length", text(a.max_episode_length), text(b.max_episode_length));
-  differ("task", "'" + a.task + "'", "'" + b.task + "'");
-  differ("scan_beam_angles", text(a.scan_beam_angles), text(b.scan_beam_angles));
-  differ("scan_range", text(a.scan_range), text(b.scan_range));
+  const std::vector<std::string> differences = specDifferences(a, b, false, false);
+  if (differences.empty()) return;
+  std::string text;
+  for (const std::string& d : differences) text += (text.empty() ? "" : "; ") + d;
+  throw ConfigError("env " + name + " differs from env " + first + ": " + text +
+                    " (every env of a batch must agree on all but num_envs)");
 }
 
 }  // namespace

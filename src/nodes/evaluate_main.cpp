@@ -66,8 +66,9 @@ int main(int argc, char** argv) {
     const int envs = env.numEnvs(), steps = env_options.steps;
     if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/best.pt";
     ppo::Policy policy(checkpoint);
-    const std::string bounds_changed = policy.setActionLimits(env.actionLow(), env.actionHigh());
-    if (!bounds_changed.empty()) std::fprintf(stderr, "warning: %s\n", bounds_changed.c_str());
+    for (const std::string& warning : policy.fitTo(env.spec())) {
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    }
     std::vector<float> actions;
     double reward_sum = 0.0;
     // With --episodes: the first ceil(N / envs) episodes of every env (a quota per env, so that

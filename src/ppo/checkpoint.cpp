@@ -15,56 +15,13 @@ namespace {
 // 2: the env's spec ("spec"); format 1 files are read without it.
 constexpr std::int64_t kFormatVersion = 2;
 
-/// BatchSpec's fields a policy runs with, as YAML (config_fields.h's format).
-struct SpecFields {
-  std::string task;
-  double control_dt = 0.0;
-  int max_episode_length = 0;
-  std::vector<std::string> observation_names, action_names;
-  std::vector<double> action_low, action_high;
-  std::vector<double> scan_beam_angles, scan_range;  // absent in files written before them
-};
-
-template <typename C, typename V>
-IfConfig<C, SpecFields> visitFields(C& c, V&& v) {
-  v("task", c.task, AnyValue{}, "");
-  v("control_dt", c.control_dt, AnyValue{}, "");
-  v("max_episode_length", c.max_episode_length, AnyValue{}, "");
-  v("observation_names", c.observation_names, AnyValue{}, "");
-  v("action_names", c.action_names, AnyValue{}, "");
-  v("action_low", c.action_low, AnyValue{}, "");
-  v("action_high", c.action_high, AnyValue{}, "");
-  v("scan_beam_angles", c.scan_beam_angles, AnyValue{}, "");
-  v("scan_range", c.scan_range, AnyValue{}, "");
-}
-
-// SpecFields and BatchSpec name the fields they share alike: one copy serves both directions.
-template <class From, class To>
-void copySpec(const From& from, To& to) {
-  to.task = from.task;
-  to.control_dt = from.control_dt;
-  to.max_episode_length = from.max_episode_length;
-  to.observation_names = from.observation_names;
-  to.action_names = from.action_names;
-  to.action_low.assign(from.action_low.begin(), from.action_low.end());
-  to.action_high.assign(from.action_high.begin(), from.action_high.end());
-  to.scan_beam_angles = from.scan_beam_angles;
-  to.scan_range = from.scan_range;
-}
-
-std::string specYaml(const BatchSpec& spec) {
-  SpecFields f;
-  copySpec(spec, f);
-  return fieldsToYaml(f);
-}
-
+/// The env's spec as YAML (its field list: config_fields.h's format); a file written before a
+/// field existed reads it at its default. obs_dim and action_dim are the meta's.
 BatchSpec specFromYaml(const std::string& yaml, int obs_dim, int action_dim) {
-  SpecFields f;
-  fieldsFromYaml(yaml, f);
   BatchSpec spec;
+  fieldsFromYaml(yaml, spec);
   spec.obs_dim = obs_dim;
   spec.action_dim = action_dim;
-  copySpec(f, spec);
   return spec;
 }
 
@@ -78,7 +35,7 @@ void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
   a.write("obs_dim", c10::IValue(static_cast<std::int64_t>(m.obs_dim)));
   a.write("action_dim", c10::IValue(static_cast<std::int64_t>(m.action_dim)));
   a.write("config", c10::IValue(toYaml(m.config)));
-  a.write("spec", c10::IValue(specYaml(m.spec)));
+  a.write("spec", c10::IValue(fieldsToYaml(m.spec)));
 }
 
 CheckpointMeta readMeta(torch::serialize::InputArchive& a) {

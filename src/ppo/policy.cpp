@@ -46,28 +46,29 @@ std::string Policy::setActionLimits(const std::vector<float>& low, const std::ve
          ": the policy's actions span the env's bounds";
 }
 
-void Policy::startMemory(int num_envs) {
-  const PpoConfig& c = meta_.config;
-  memory_envs_ = num_envs;
-  fresh_ = torch::ones({num_envs}, torch::kBool);
-  history_ = InputHistory::forConfig(c, num_envs, obsDim(), actionDim());
-  if (model_->recurrent()) actor_state_ = model_->initialState(num_envs).actor;
+std::vector<std::string> Policy::fitTo(const BatchSpec& env) {
+  const BatchSpec& trained = meta_.spec;
+  const std::vector<std::string> bound = specDifferences(trained, env, true, true);
+  if (!bound.empty()) {
+    throw ConfigError("the env does not fit the policy: the env's " + bound.front() +
+                      ", the checkpoint's (a policy observes and acts as it was trained)");
+  }
+  std::vector<std::string> warnings;
+  const std::string bounds_changed = setActionLimits(env.action_low, env.action_high);
+  if (!bounds_changed.empty()) warnings.push_back(bounds_changed);
+  for (const std::string& d : specDifferences(trained, env, false, true)) {
+    if (d.rfind("action_low", 0) == 0 || d.rfind("action_high", 0) == 0) continue;  // just said
+    warnings.push_back("the env's " + d + ", the checkpoint's");
+  }
+  return warnings;
 }
 
 void Policy::resetMemory(const std::vector<std::uint32_t>& envs) {
-  if (!fresh_.defined()) return;  // nothing remembered yet
-  bool* fresh = fresh_.data_ptr<bool>();
-  for (std::uint32_t e : envs) {
-    if (e >= static_cast<std::uint32_t>(memory_envs_)) {
-      throw InputError("resetMemory: env " + std::to_string(e) + " of " +
-                       std::to_string(memory_envs_));
-    }
-    fresh[e] = true;
-  }
+  if (memory_) memory_->reset(envs);  // before the first act() every env starts anyway
 }
 
 void Policy::resetMemory() {
-  if (fresh_.defined()) fresh_.fill_(true);
+  if (memory_) memory_->resetAll();
 }
 
 void Policy::act(const std::vector<float>& observations, int num_envs, std::vector<float>& out) {
@@ -80,26 +81,15 @@ void Policy::act(const std::vector<float>& observations, int num_envs, std::vect
   torch::NoGradGuard no_grad;
   const torch::Tensor obs = torch::from_blob(const_cast<float*>(observations.data()),
                                              {num_envs, obsDim()}, torch::kFloat);
-  if (!hasMemory()) {
-    scaler_->toEnv(model_->actionMean(normalizer_->normalize(obs)), out);
-    return;
+  if (!memory_ || memory_->numEnvs() != num_envs) {
+    memory_ = std::make_unique<PolicyMemory>(meta_.config, model_, num_envs, obsDim(), actionDim(),
+                                             /*with_critic=*/false);
   }
-  if (num_envs != memory_envs_) startMemory(num_envs);
-  // The same steps as Ppo::act: history pushed, recurrent state zeroed where an episode starts.
   const torch::Tensor input =
-      history_
-          ? history_->push(obs, fresh_,
-                           [this](const torch::Tensor& o) { return normalizer_->normalize(o); })
-          : normalizer_->normalize(obs);
-  torch::Tensor mean;
-  if (model_->recurrent()) {
-    actor_state_ = startOver(actor_state_, fresh_);
-    mean = model_->actionMean(input, &actor_state_);
-  } else {
-    mean = model_->actionMean(input);
-  }
-  if (history_) history_->pushActions(scaler_->squash(mean));
-  fresh_.zero_();
+      memory_->begin(obs, [this](const torch::Tensor& o) { return normalizer_->normalize(o); });
+  const torch::Tensor mean =
+      model_->actionMean(input, memory_->recurrent() ? &memory_->state().actor : nullptr);
+  memory_->end(scaler_->squash(mean));
   scaler_->toEnv(mean, out);
 }
 

@@ -38,14 +38,13 @@ Ppo::Ppo(const BatchSpec& spec, const PpoConfig& config)
       learning_rate_(config.learning_rate) {
   optimizer_ = std::make_unique<torch::optim::Adam>(model_->parameters(),
                                                     torch::optim::AdamOptions(learning_rate_));
-  history_ = InputHistory::forConfig(config, spec.num_envs, spec.obs_dim, spec.action_dim);
   if (model_->recurrent() && config.num_mini_batches > spec.num_envs) {
     throwInvalid("num_mini_batches", config.num_mini_batches,
                  "must be <= num_envs = " + std::to_string(spec.num_envs) +
                      " with an RNN (a minibatch holds whole env sequences)");
   }
-  state_ = model_->initialState(spec.num_envs);
-  fresh_ = torch::ones({spec.num_envs}, torch::kBool);
+  memory_ = std::make_unique<PolicyMemory>(config, model_, spec.num_envs, spec.obs_dim,
+                                           spec.action_dim, /*with_critic=*/true);
 }
 
 void Ppo::setLearningRate(double lr) {
@@ -61,11 +60,9 @@ torch::Tensor Ppo::peekValues(const torch::Tensor& rows, const torch::Tensor& ob
                               const torch::Tensor& fresh) {
   torch::NoGradGuard no_grad;
   const torch::Tensor input =
-      history_ ? history_->peek(rows, obs, fresh,
-                                [this](const torch::Tensor& o) { return normalize(o); })
-               : normalize(obs);
+      memory_->peekInput(rows, obs, fresh, [this](const torch::Tensor& o) { return normalize(o); });
   if (!model_->recurrent()) return model_->value(input);
-  const torch::Tensor critic = startOver(state_.critic.index_select(0, rows), fresh);
+  const torch::Tensor critic = memory_->peekCriticState(rows, fresh);
   return model_->value(input, &critic);
 }
 
@@ -80,21 +77,13 @@ const std::vector<float>& Ppo::act(const StepResult& state) {
   }
   const torch::Tensor obs = floats(state.observations, num_envs_, obs_dim_);
   normalizer_->update(obs);
-  obs_ = history_
-             ? history_->push(obs, fresh_, [this](const torch::Tensor& o) { return normalize(o); })
-             : normalize(obs);
-  if (model_->recurrent()) {
-    // The rollout keeps the states before step 0 and where episodes start, so that the update
-    // recomputes every step's state (RecurrentMemory::sequence) as acting did here.
-    if (step_ == 0) storage_.setInitialState(state_);
-    const torch::Tensor starts = fresh_.to(torch::kFloat);
-    storage_.addStarts(step_, starts);
-    state_.actor = startOver(state_.actor, starts);
-    state_.critic = startOver(state_.critic, starts);
-  }
-  sample_ = model_->act(obs_, &state_);
-  if (history_) history_->pushActions(scaler_.squash(sample_.actions));
-  fresh_.zero_();
+  // The rollout keeps the recurrent states before step 0 and where episodes start, so that the
+  // update recomputes every step's state (RecurrentMemory::sequence) as acting did here.
+  if (model_->recurrent() && step_ == 0) storage_.setInitialState(memory_->state());
+  obs_ = memory_->begin(obs, [this](const torch::Tensor& o) { return normalize(o); });
+  if (model_->recurrent()) storage_.addStarts(step_, memory_->starts());
+  sample_ = model_->act(obs_, &memory_->state());
+  memory_->end(scaler_.squash(sample_.actions));
   scaler_.toEnv(sample_.actions, actions_);
   acted_ = true;
   return actions_;
@@ -145,8 +134,7 @@ void Ppo::processEnvStep(const StepResult& r) {
       torch::from_blob(const_cast<float*>(r.rewards.data()), {n}, torch::kFloat).clone();
   storage_.add(step_, obs_, sample_.actions, sample_.log_probs, sample_.values, sample_.mean,
                sample_.std, rewards, flags(r.terminated), flags(r.truncated), truncated_values);
-  bool* fresh = fresh_.data_ptr<bool>();
-  for (std::uint32_t id : r.reset_env_ids) fresh[id] = true;
+  memory_->reset(r.reset_env_ids);
   ++step_;
   acted_ = false;
 }
@@ -158,7 +146,7 @@ void Ppo::computeReturns(const StepResult& state) {
   }
   const torch::Tensor last_values =
       peekValues(torch::arange(num_envs_, torch::kLong),
-                 floats(state.observations, num_envs_, obs_dim_), fresh_);
+                 floats(state.observations, num_envs_, obs_dim_), memory_->fresh());
   storage_.computeReturns(last_values, config_.gamma, config_.lam);
 }
 

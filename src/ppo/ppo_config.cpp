@@ -18,24 +18,24 @@ PpoConfig fromYaml(const std::string& yaml, PpoConfig config) {
   return config;
 }
 
+std::string networkYaml(const PpoConfig& config) {
+  return fieldsToYaml(config, [](const PpoConfig& c, auto&& v) { visitNetworkFields(c, v); });
+}
+
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b) {
-  return a.actor_hidden_dims == b.actor_hidden_dims &&
-         a.critic_hidden_dims == b.critic_hidden_dims && a.activation == b.activation &&
-         a.obs_history_length == b.obs_history_length &&
-         a.action_history_length == b.action_history_length && a.rnn_type == b.rnn_type &&
-         (a.rnn_type == RnnType::kNone ||
-          (a.rnn_hidden_size == b.rnn_hidden_size && a.rnn_num_layers == b.rnn_num_layers));
+  // Without a recurrent layer its sizes shape nothing.
+  const auto shaping = [](PpoConfig c) {
+    if (c.rnn_type == RnnType::kNone) {
+      c.rnn_hidden_size = PpoConfig().rnn_hidden_size;
+      c.rnn_num_layers = PpoConfig().rnn_num_layers;
+    }
+    return networkYaml(c);
+  };
+  return shaping(a) == shaping(b);
 }
 
 void copyArchitecture(const PpoConfig& from, PpoConfig& to) {
-  to.actor_hidden_dims = from.actor_hidden_dims;
-  to.critic_hidden_dims = from.critic_hidden_dims;
-  to.activation = from.activation;
-  to.obs_history_length = from.obs_history_length;
-  to.action_history_length = from.action_history_length;
-  to.rnn_type = from.rnn_type;
-  to.rnn_hidden_size = from.rnn_hidden_size;
-  to.rnn_num_layers = from.rnn_num_layers;
+  fieldsFromYaml(networkYaml(from), to);
 }
 
 int policyInputDim(const PpoConfig& c, int obs_dim, int action_dim) {

@@ -71,9 +71,15 @@ TEST(MultiVecEnv, PartsThatDisagreeAreRefusedNamingThePartAndTheField) {
     MultiVecEnv multi(std::move(list), {"/a", "/b"});
     FAIL() << "accepted parts of different tasks";
   } catch (const ConfigError& e) {
-    // The observation names differ first (both tasks observe 3 values).
-    EXPECT_NE(std::string(e.what()).find("env /b: observation_names"), std::string::npos)
-        << e.what();
+    // Every field that differs is named: the task, the observation names (both tasks observe 3
+    // values) and their bounds.
+    const std::string what = e.what();
+    EXPECT_NE(what.find("env /b differs from env /a: "), std::string::npos) << what;
+    EXPECT_NE(what.find("task: command differs from velocity"), std::string::npos) << what;
+    EXPECT_NE(what.find("observation_names: [forward_dot_command"), std::string::npos) << what;
+    EXPECT_NE(what.find("observation_low: [-1, -1, -.inf] differs from [-.inf, -.inf, -.inf]"),
+              std::string::npos)
+        << what;
   }
 }
 

@@ -226,6 +226,35 @@ TEST_F(CheckpointTest, OtherEnvBoundsThanTheCheckpointsAreNamed) {
   EXPECT_EQ(Policy(path).setActionLimits({-20.0f, -1.0f}, {20.0f, 1.0f}), "");
 }
 
+TEST_F(CheckpointTest, AnEnvThePolicyIsNotBoundToIsRefusedAndOtherDifferencesAreWarnings) {
+  meta.spec = testSpec();
+  meta.spec.task = "velocity";
+  meta.spec.observation_names = {"a", "b", "c"};
+  const std::string with_spec = tempPath("fit_to.pt");
+  saveCheckpoint(with_spec, *trained, meta);
+  Policy policy(with_spec);
+  BatchSpec env = meta.spec;
+  env.num_envs = 64;  // a property of the run
+  EXPECT_TRUE(policy.fitTo(env).empty());
+  env.control_dt = 0.05;
+  env.action_high = {2.0f, 1.0f};
+  const std::vector<std::string> warnings = policy.fitTo(env);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("the env's action bounds [-1, 2], [-1, 1] differ"), std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[1].find("control_dt: 0.05 differs from 0.0166"), std::string::npos)
+      << warnings[1];
+  env.observation_names = {"a", "b", "d"};
+  try {
+    policy.fitTo(env);
+    FAIL() << "acted on an env that observes something else";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("observation_names: [a, b, d] differs from [a, b, c]"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(CheckpointTest, TheExportedTorchScriptPolicyActsAsTheCheckpoint) {
   Policy policy(path);
   policy.setActionLimits({-20.0f, -10.0f}, {20.0f, 30.0f});
@@ -257,7 +286,8 @@ TEST_F(CheckpointTest, TheExportedTorchScriptPolicyActsAsTheCheckpoint) {
                         << "', _extra_files=extra)\n"
                            "obs = torch.tensor([[0.5, -1.0, 2.0]])\n"
                            "print(' '.join('%.6f' % v for v in m(obs)[0].tolist()))\n"
-                           "print(extra['meta.yaml'].decode().splitlines()[1])\n";
+                           "print([l for l in extra['meta.yaml'].decode().splitlines()\n"
+                           "       if l.startswith('task:')][0])\n";
   const std::string out_file = tempPath("check_export.out");
   ASSERT_EQ(std::system(("/usr/bin/python3 " + script + " > " + out_file).c_str()), 0);
   std::ifstream result(out_file);

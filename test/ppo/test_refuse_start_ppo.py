@@ -114,29 +114,42 @@ class TestRefuseStartPpo(unittest.TestCase):
                       'env_config/num_envs': 2},
                      'num_mini_batches = 4', 'num_envs = 2')
 
-    # --- the robot mode takes the control rate, bounds and task from the checkpoint ---
-    def test_robot_mode_control_rate_from_the_checkpoint(self):
-        self.refuses('jetbot_policy_node',
-                     {'checkpoint': self.checkpoint(), 'robot': True, 'control_rate': 60.0},
+    # --- the deploy node takes the control rate, bounds, task and beams from the checkpoint ---
+    def test_deploy_control_rate_from_the_checkpoint(self):
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.checkpoint(), 'control_rate': 60.0},
                      'control_rate = (set): comes from the checkpoint now')
 
-    def test_robot_mode_task_not_the_checkpoints(self):
-        self.refuses('jetbot_policy_node',
-                     {'checkpoint': self.checkpoint(), 'robot': True, 'task': 'command'},
+    def test_deploy_task_not_the_checkpoints(self):
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.checkpoint(), 'task': 'command'},
                      "task = 'command'", "trained on task 'velocity'")
 
-    def test_robot_mode_scan_range_not_the_checkpoints(self):
+    def test_deploy_scan_range_not_the_checkpoints(self):
         # config/navigation_env.yaml's scanner reads 0.15-3.5 m: another range would misread it
-        self.refuses('jetbot_policy_node',
-                     {'checkpoint': self.navigation_checkpoint(), 'robot': True},
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.navigation_checkpoint()},
                      'scan_range = [0.12, 12]', 'was trained with [0.15, 3.5] m',
                      lists={'scan_range': [0.12, 12.0]})
 
-    def test_robot_mode_scan_angles_not_the_checkpoints(self):
-        self.refuses('jetbot_policy_node',
-                     {'checkpoint': self.navigation_checkpoint(), 'robot': True},
+    def test_deploy_scan_angles_not_the_checkpoints(self):
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.navigation_checkpoint()},
                      'scan_angles = [-1.5, 1.5]', 'was trained with [-3.14159, 2.87979] rad',
                      lists={'scan_angles': [-1.5, 1.5]})
+
+    def test_deploy_former_names(self):
+        # A simulation parameter of the robot mode's time is refused by its name now.
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.navigation_checkpoint(), 'nav/goal_radius': 0.3},
+                     'nav/goal_radius = (set): was renamed goal_radius')
+
+    def test_deploy_without_checkpoint(self):
+        self.refuses('jetbot_deploy_node', {}, 'checkpoint')
+
+    def test_player_robot_mode_is_the_deploy_node(self):
+        self.refuses('jetbot_policy_node', {'checkpoint': '/x.pt', 'robot': True},
+                     'robot = (set): the robot mode is the node jetbot_deploy_node now')
 
     def test_iterations_zero(self):
         self.refuses('jetbot_ppo_trainer', {'iterations': 0}, 'iterations = 0')

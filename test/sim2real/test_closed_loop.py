@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Closed loop, as on a robot: a policy trained with domain randomisation (config/
-randomization.yaml) drives the env node's robot view through jetbot_policy_node's robot mode
+randomization.yaml) drives the env node's robot view through jetbot_deploy_node
 (odometry in, cmd_vel out). Velocity task: the robot reaches >= 90 % of its top speed. Command
 task: given a command on the command topic, the robot heads along it within 0.3 rad after 3 s,
 and again 3 s after a new command is set while it drives."""
@@ -47,10 +47,10 @@ class TestClosedLoop(unittest.TestCase):
         return run_dir
 
     def drive(self, run_dir, task):
-        """Starts the policy node in robot mode on env 0's robot view."""
+        """Starts jetbot_deploy_node on env 0's robot view."""
         return subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=robot_policy',
-            '_checkpoint:=' + run_dir, '_robot:=true', '_task:=' + task,
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=deploy',
+            '_checkpoint:=' + run_dir, '_task:=' + task,
             '_odom_topic:=/env_0/odom', '_cmd_vel_topic:=/env_0/cmd_vel',
             '_command_topic:=/robot_command',
             # the env's robot view converts cmd_vel with the URDF's wheels: take them from there

@@ -3,7 +3,7 @@
 policies trained with domain randomisation and the stock Jetbot's open-loop motors
 (config/randomization.yaml, config/jetbot_motors.yaml), one with memory
 (config/ppo_command_memory.yaml) and one without (config/ppo_command.yaml), drive through
-jetbot_policy_node's robot mode two realtime envs: `weak`, whose right motor is 20 % weaker than
+jetbot_deploy_node two realtime envs: `weak`, whose right motor is 20 % weaker than
 its left, with a dead zone, a heavier chassis on a slippery floor and 2 steps of delay
 (config/perturbed_weak_motor.yaml), and `nominal`. Each gets a command to the left, then one to the
 right while it drives. 4 s after each, the policy with memory heads within 0.1 rad of it at
@@ -115,8 +115,8 @@ class TestClosedLoopMemory(unittest.TestCase):
         command.publish(Vector3(math.cos(COMMANDS[0]), math.sin(COMMANDS[0]), 0.0))
         count = len(odoms)
         proc = subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=%s_%s' % (policy, robot),
-            '_checkpoint:=' + self.runs[policy], '_robot:=true',
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=%s_%s' % (policy, robot),
+            '_checkpoint:=' + self.runs[policy],
             '_odom_topic:=/%s/env_0/odom' % robot, '_cmd_vel_topic:=/%s/env_0/cmd_vel' % robot,
             '_command_topic:=/%s_command' % robot,
             # the env's robot view converts cmd_vel with the URDF's wheels: take them from there

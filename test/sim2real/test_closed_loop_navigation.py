@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Closed loop with a navigation policy, as on a robot: a policy trained in the arena with random
 obstacles (train.launch task:=navigation) drives the env node's lidar Jetbot in the office map
-through jetbot_policy_node's robot mode (scan and odometry in, cmd_vel out). A goal sent as RViz's
+through jetbot_deploy_node (scan and odometry in, cmd_vel out). A goal sent as RViz's
 "2D Nav Goal" sends it (PoseStamped on /move_base_simple/goal, in the map frame) is reached within
 a time bound without touching anything (no scan reading below range_min); goals in an obstacle or
 with a non-finite pose are refused, and the robot stays stopped."""
@@ -48,12 +48,12 @@ class TestClosedLoopNavigation(unittest.TestCase):
         cls.odoms, cls.scans, cls.outcomes = EventList(), EventList(), EventList()
         rospy.Subscriber('/env_0/odom', Odometry, cls.odoms.append)
         rospy.Subscriber('/env_0/scan', LaserScan, cls.scans.append)
-        rospy.Subscriber('/robot_policy/outcome', String, lambda m: cls.outcomes.append(m.data))
+        rospy.Subscriber('/deploy/outcome', String, lambda m: cls.outcomes.append(m.data))
         cls.goal_pub = rospy.Publisher('/move_base_simple/goal', PoseStamped, queue_size=1,
                                        latch=True)
         cls.policy = subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=robot_policy',
-            '_checkpoint:=' + cls.run_dir, '_robot:=true', '_task:=navigation',
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=deploy',
+            '_checkpoint:=' + cls.run_dir, '_task:=navigation',
             '_odom_topic:=/env_0/odom',
             '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
             '_wheel_radius:=0', '_wheel_separation:=0'])

@@ -7,8 +7,8 @@
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/checkpoint.h"
-#include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
+#include "jetbot_rl/ppo/policy_memory.h"
 #include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
@@ -29,9 +29,15 @@ class Policy {
   /// Returns "" or, when the checkpoint holds other limits, a line naming both (for a warning:
   /// the policy's normalised actions then span the env's range, not the one it was trained on).
   std::string setActionLimits(const std::vector<float>& low, const std::vector<float>& high);
+  /// Makes the policy act on an env of spec `env`: ConfigError naming the field when a field the
+  /// policy is bound to differs from the checkpoint's (task, sizes, names, scan beams; fields
+  /// the checkpoint does not hold are not compared); the env's action limits
+  /// (setActionLimits()); returns a warning for every other field that differs (bounds, control
+  /// step, episode length, ...).
+  std::vector<std::string> fitTo(const BatchSpec& env);
   /// Deterministic actions for `num_envs` observations (num_envs x obs_dim, row-major) into
-  /// `out` (num_envs x action_dim, env units, e.g. rad/s). With memory: another num_envs than
-  /// the last call's starts every env's memory over.
+  /// `out` (num_envs x action_dim, env units, e.g. rad/s); the memory steps as in training
+  /// (PolicyMemory). Another num_envs than the last call's starts every env's memory over.
   void act(const std::vector<float>& observations, int num_envs, std::vector<float>& out);
   /// Starts the memory of `envs` over: their next act() is an episode's first step.
   void resetMemory(const std::vector<std::uint32_t>& envs);
@@ -54,17 +60,11 @@ class Policy {
   int actionDim() const { return meta_.action_dim; }
 
  private:
-  /// Sizes the memory for `num_envs` envs, all starting over.
-  void startMemory(int num_envs);
-
   CheckpointMeta meta_;
   ActorCritic model_{nullptr};
   ObsNormalizer normalizer_{nullptr};
   std::unique_ptr<ActionScaler> scaler_;
-  int memory_envs_ = 0;
-  std::unique_ptr<InputHistory> history_;
-  torch::Tensor actor_state_;  // [N, S] with an RNN
-  torch::Tensor fresh_;        // [N] bool: the env's memory starts over at its next act()
+  std::unique_ptr<PolicyMemory> memory_;  // sized by the last act()
 };
 
 }  // namespace ppo

@@ -7,8 +7,8 @@
 
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/actor_critic.h"
-#include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
+#include "jetbot_rl/ppo/policy_memory.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/rollout_storage.h"
 #include "jetbot_rl/step_result.h"
@@ -64,7 +64,7 @@ class Ppo {
   /// The network's input width (the observation, or the history stacked).
   int inputDim() const { return input_dim_; }
   /// The recurrent states of every env now [N, S] (undefined tensors without an RNN).
-  const MemoryState& memoryState() const { return state_; }
+  const MemoryState& memoryState() const { return memory_->state(); }
 
   // For checkpoints and tests.
   ActorCritic& model() { return model_; }
@@ -92,9 +92,7 @@ class Ppo {
   ActionSample sample_;  // of the last act()
   torch::Tensor obs_;    // the network input of the last act()
   std::vector<float> actions_;
-  std::unique_ptr<InputHistory> history_;  // with a history
-  MemoryState state_;                      // with an RNN: after the last act()
-  torch::Tensor fresh_;                    // [N] bool: the env's next act() starts an episode
+  std::unique_ptr<PolicyMemory> memory_;  // history, recurrent states, episode starts
 };
 
 }  // namespace ppo

@@ -62,26 +62,13 @@ struct PpoConfig {
   double max_grad_norm = 1.0;          ///< Global gradient-norm clip.
 };
 
-/// The fields of PpoConfig with their rules: the one list that validation, the echo, YAML
-/// (config.yaml, checkpoints) and the ROS parameter loader share.
+/// The fields of PpoConfig that shape the network (its layers and memory): the one list that
+/// resuming (sameArchitecture, copyArchitecture) and the export's meta.yaml share.
 template <typename C, typename V>
-IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
-  v("seed", c.seed, atLeast(0),
-    "Seeds torch (weights, sampling, minibatches) and the env's reset.");
-  v("num_steps_per_env", c.num_steps_per_env, inRange(1, 100000),
-    "Control steps per env per iteration (rollout length).");
-  v("stagger_episodes", c.stagger_episodes, AnyValue{},
-    "The first reset starts env i at episode step i x (max_episode_length - 1) / num_envs, so "
-    "that episodes end at staggered steps (rsl_rl's random initial episode lengths).");
+IfConfig<C, PpoConfig> visitNetworkFields(C& c, V&& v) {
   v("actor_hidden_dims", c.actor_hidden_dims, IntList{1, 4096}, "Policy MLP hidden widths.");
   v("critic_hidden_dims", c.critic_hidden_dims, IntList{1, 4096}, "Value MLP hidden widths.");
   v("activation", c.activation, AnyValue{}, "Hidden activation of both MLPs.");
-  v("init_noise_std", c.init_noise_std, positive(),
-    "Initial policy std in normalised action units (1 = the limit).");
-  v("action_squash", c.action_squash, AnyValue{},
-    "Gaussian sample -> [-1, 1] (clip or tanh), then scaled to the env's action bounds.");
-  v("normalize_observations", c.normalize_observations, AnyValue{},
-    "Running mean/std observation normaliser (saved in checkpoints).");
   v("obs_history_length", c.obs_history_length, inRange(1, 1000, "control steps"),
     "The policy sees the last this many observations (the current one first); an episode starts "
     "with all of them its first observation.");
@@ -94,6 +81,26 @@ IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
   v("rnn_hidden_size", c.rnn_hidden_size, inRange(1, 4096),
     "The recurrent state's width per layer.");
   v("rnn_num_layers", c.rnn_num_layers, inRange(1, 16), "Stacked recurrent layers.");
+}
+
+/// The fields of PpoConfig with their rules: the one list that validation, the echo, YAML
+/// (config.yaml, checkpoints) and the ROS parameter loader share.
+template <typename C, typename V>
+IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
+  v("seed", c.seed, atLeast(0),
+    "Seeds torch (weights, sampling, minibatches) and the env's reset.");
+  v("num_steps_per_env", c.num_steps_per_env, inRange(1, 100000),
+    "Control steps per env per iteration (rollout length).");
+  v("stagger_episodes", c.stagger_episodes, AnyValue{},
+    "The first reset starts env i at episode step i x (max_episode_length - 1) / num_envs, so "
+    "that episodes end at staggered steps (rsl_rl's random initial episode lengths).");
+  visitNetworkFields(c, v);
+  v("init_noise_std", c.init_noise_std, positive(),
+    "Initial policy std in normalised action units (1 = the limit).");
+  v("action_squash", c.action_squash, AnyValue{},
+    "Gaussian sample -> [-1, 1] (clip or tanh), then scaled to the env's action bounds.");
+  v("normalize_observations", c.normalize_observations, AnyValue{},
+    "Running mean/std observation normaliser (saved in checkpoints).");
   v("num_learning_epochs", c.num_learning_epochs, inRange(1, 1000), "Passes over each rollout.");
   v("num_mini_batches", c.num_mini_batches, atLeast(1),
     "Minibatches per epoch (<= num_steps_per_env x num_envs; with an RNN <= num_envs: a "
@@ -131,9 +138,12 @@ std::string toYaml(const PpoConfig& config);
 /// Throws ConfigError for a value of the wrong type.
 PpoConfig fromYaml(const std::string& yaml, PpoConfig config = PpoConfig());
 
-/// True when both configs build the same network (hidden dims, activation, memory).
+/// True when both configs build the same network (visitNetworkFields; the recurrent layer's
+/// sizes only with one).
 bool sameArchitecture(const PpoConfig& a, const PpoConfig& b);
-/// Copies the fields that shape the network (sameArchitecture's) from `from` into `to`.
+/// The fields that shape the network (visitNetworkFields) as YAML lines.
+std::string networkYaml(const PpoConfig& config);
+/// Copies the fields that shape the network (visitNetworkFields) from `from` into `to`.
 void copyArchitecture(const PpoConfig& from, PpoConfig& to);
 /// True when the policy has memory: a history longer than the current observation, or an RNN.
 bool hasMemory(const PpoConfig& config);

@@ -93,12 +93,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
             ? std::move(parts[0])
             : std::make_unique<MultiVecEnv>(std::move(parts), params.env_nodes.env_nodes);
     const BatchSpec& info = env->spec();
-    if (info.obs_dim != policy->obsDim()) {
-      throw ConfigError("the env's obs_dim " + std::to_string(info.obs_dim) +
-                        " does not fit the policy's " + std::to_string(policy->obsDim()));
-    }
-    const std::string bounds_changed = policy->setActionLimits(info.action_low, info.action_high);
-    if (!bounds_changed.empty()) ROS_WARN("%s", bounds_changed.c_str());
+    for (const std::string& warning : policy->fitTo(info)) ROS_WARN("%s", warning.c_str());
     for (const std::string& n : info.action_names) {
       action_names += (action_names.empty() ? "" : ", ") + n;
     }

@@ -22,18 +22,12 @@ namespace jetbot_rl {
 namespace ppo {
 namespace {
 
+/// The env's spec as config.yaml lines, each key prefixed "env_".
 std::string describeSpec(const BatchSpec& spec) {
-  std::ostringstream s;
-  s << "# environment (from its spec)\nenv_num_envs: " << spec.num_envs
-    << "\nenv_obs_dim: " << spec.obs_dim << "\nenv_action_dim: " << spec.action_dim
-    << "\nenv_action_low: ";
-  writeValue(s, spec.action_low);
-  s << "\nenv_action_high: ";
-  writeValue(s, spec.action_high);
-  s << "\nenv_control_dt: " << spec.control_dt
-    << "\nenv_max_episode_length: " << spec.max_episode_length << "\nenv_task: " << spec.task
-    << "\n";
-  return s.str();
+  std::istringstream lines(fieldsToYaml(spec));
+  std::string s = "# environment (from its spec)\n";
+  for (std::string line; std::getline(lines, line);) s += "env_" + line + "\n";
+  return s;
 }
 
 std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {

@@ -1,6 +1,7 @@
 #include "jetbot_rl/ros/common/msg_conversion.h"
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/common/msg_fields.h"
 
 namespace jetbot_rl {
 namespace {
@@ -69,47 +70,31 @@ void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
 
 EnvSpec toMsg(const BatchSpec& spec) {
   EnvSpec msg;
-  msg.num_envs = static_cast<std::uint32_t>(spec.num_envs);
-  msg.obs_dim = static_cast<std::uint32_t>(spec.obs_dim);
-  msg.action_dim = static_cast<std::uint32_t>(spec.action_dim);
-  msg.action_low = spec.action_low;
-  msg.action_high = spec.action_high;
-  msg.control_dt = spec.control_dt;
-  msg.max_episode_length = static_cast<std::uint32_t>(spec.max_episode_length);
-  msg.task = spec.task;
-  msg.observation_names = spec.observation_names;
-  msg.action_names = spec.action_names;
-  msg.scan_beam_angles = spec.scan_beam_angles;
-  msg.scan_range = spec.scan_range;
+  // Field by field, by name: BatchSpec's field list and the message's definition.
+  visitFields(spec, [&msg](const char* name, const auto& value, const auto&, const char*) {
+    bool found = false;
+    visitMsgFields(msg, [&](const std::string& field, auto& to) {
+      if (field != name) return;
+      assignField(field, to, value);
+      found = true;
+    });
+    if (!found) throw Error(std::string("EnvSpec.msg has no field ") + name + " (BatchSpec has)");
+  });
   return msg;
 }
 
 BatchSpec fromMsg(const EnvSpec& msg) {
-  if (msg.num_envs < 1 || msg.obs_dim < 1 || msg.action_dim < 1 ||
-      msg.action_low.size() != msg.action_dim || msg.action_high.size() != msg.action_dim ||
-      msg.max_episode_length < 2 || !(msg.control_dt > 0.0) ||
-      msg.scan_range.size() != (msg.scan_beam_angles.empty() ? 0u : 2u)) {
-    throw Error("inconsistent EnvSpec: num_envs " + std::to_string(msg.num_envs) + ", obs_dim " +
-                std::to_string(msg.obs_dim) + ", action_dim " + std::to_string(msg.action_dim) +
-                " with " + std::to_string(msg.action_low.size()) + "/" +
-                std::to_string(msg.action_high.size()) + " bounds, max_episode_length " +
-                std::to_string(msg.max_episode_length) + ", " +
-                std::to_string(msg.scan_beam_angles.size()) + " scan beams with " +
-                std::to_string(msg.scan_range.size()) + " scan_range values");
-  }
   BatchSpec spec;
-  spec.num_envs = static_cast<int>(msg.num_envs);
-  spec.obs_dim = static_cast<int>(msg.obs_dim);
-  spec.action_dim = static_cast<int>(msg.action_dim);
-  spec.action_low = msg.action_low;
-  spec.action_high = msg.action_high;
-  spec.control_dt = msg.control_dt;
-  spec.max_episode_length = static_cast<int>(msg.max_episode_length);
-  spec.task = msg.task;
-  spec.observation_names = msg.observation_names;
-  spec.action_names = msg.action_names;
-  spec.scan_beam_angles = msg.scan_beam_angles;
-  spec.scan_range = msg.scan_range;
+  visitMsgFields(msg, [&spec](const std::string& field, const auto& from) {
+    visitFields(spec, [&](const char* name, auto& to, const auto&, const char*) {
+      if (field == name) assignField(field, to, from);
+    });
+  });
+  try {
+    validateConfig(spec);
+  } catch (const ConfigError& e) {
+    throw Error(std::string("inconsistent EnvSpec: ") + e.what());
+  }
   return spec;
 }
 

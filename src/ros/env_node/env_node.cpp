@@ -45,11 +45,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
     if (!drive) throw ConfigError("robot_envs > 0 needs the robot's differential drive");
     server_.enableCmdVel(*drive, robot_envs, params_.cmd_vel_timeout);
   }
-  EnvSpec spec = toMsg(env_->spec());
-  if (drive) {
-    spec.wheel_radius = drive->wheelRadius();
-    spec.wheel_separation = drive->wheelSeparation();
-  }
+  const EnvSpec spec = toMsg(env_->spec());
   spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
   spec_pub_.publish(spec);
   const RobotNames names(params_.env_prefix, params_.robot_prefix);

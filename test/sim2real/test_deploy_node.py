@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""jetbot_policy_node's robot mode fed by this test's own odometry publisher: a moving Twist
-while odometry is fresh; zero Twists once it stops coming (odom_timeout); non-finite odometry
-dropped, counted on /diagnostics, the robot kept stopped; moving again on fresh odometry; after
-SIGINT a zero Twist last and exit status 0 within 2 s."""
+"""jetbot_deploy_node fed by this test's own odometry publisher: a moving Twist while odometry is
+fresh (its 1 Hz status OK, "driving"); zero Twists once it stops coming (odom_timeout; the status
+WARN, "standing: no fresh odometry ..."); non-finite odometry dropped, counted on /diagnostics,
+the robot kept stopped; moving again on fresh odometry; after SIGINT a zero Twist last and exit
+status 0 within 2 s."""
 import math
 import signal
 import subprocess
@@ -13,13 +14,13 @@ import unittest
 
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
 
-NODE = '/robot_policy'
+NODE = '/deploy'
 ODOM_TIMEOUT = 0.3  # [s]
 NAN_ODOMS = 5
 
@@ -55,25 +56,28 @@ class OdometrySource(object):
             time.sleep(0.02)  # a sensor's rate, not a synchronisation
 
 
-class TestRobotMode(unittest.TestCase):
-    def test_robot_mode_faults(self):
-        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_robot_mode_')
+class TestDeployNode(unittest.TestCase):
+    def test_deploy_node_faults(self):
+        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_deploy_node_')
         subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
                         'iterations:=1', 'run_dir:=' + run_dir, 'output:=log'],
                        check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
-        twists, drops = EventList(), EventList()
+        twists, drops, states = EventList(), EventList(), EventList()
         rospy.Subscriber('/robot/cmd_vel', Twist, twists.append)
 
         def on_diagnostics(msg):
             for status in msg.status:
-                if status.name == NODE + ': robot mode':
-                    drops.append({kv.key: kv.value for kv in status.values})
+                values = {kv.key: kv.value for kv in status.values}
+                if status.name == NODE + ': deploy input':
+                    drops.append(values)
+                elif status.name == NODE + ': deploy':
+                    states.append((status.level, status.message, values))
         rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
         odom_pub = rospy.Publisher('/robot/odom', Odometry, queue_size=10)
         source = OdometrySource(odom_pub)
         proc = subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_policy_node', '__name:=' + NODE[1:],
-            '_checkpoint:=' + run_dir, '_robot:=true', '_odom_topic:=/robot/odom',
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=' + NODE[1:],
+            '_checkpoint:=' + run_dir, '_odom_topic:=/robot/odom',
             '_cmd_vel_topic:=/robot/cmd_vel', '_odom_timeout:=%g' % ODOM_TIMEOUT])
         try:
             wait_for(lambda: odom_pub.get_num_connections() > 0, what='the node to subscribe',
@@ -84,19 +88,26 @@ class TestRobotMode(unittest.TestCase):
             source.running.set()
             wait_for(lambda: twists and not is_zero(twists[-1]),
                      what='a moving Twist on fresh odometry')
+            count = len(states)
+            wait_for(lambda: len(states) > count, what="the node's status while it drives")
+            self.assertEqual(states[-1][:2], (DiagnosticStatus.OK, 'driving'))
 
             source.running.clear()
             stopped_at = time.monotonic()
             wait_for(lambda: len(twists) >= 10 and all(is_zero(t) for t in twists[-10:]),
                      what='10 zero Twists after the odometry stopped')
-            print('FIGURE: robot mode: zero Twists %.2f s after the odometry stopped '
+            print('FIGURE: deploy node: zero Twists %.2f s after the odometry stopped '
                   '(odom_timeout %.1f s)' % (time.monotonic() - stopped_at, ODOM_TIMEOUT))
+            wait_for(lambda: states[-1][0] == DiagnosticStatus.WARN,
+                     what='a WARN status while the odometry is stale')
+            self.assertEqual(states[-1][1], 'standing: no fresh odometry on /robot/odom')
+            self.assertGreater(float(states[-1][2]['odometry age [s]']), ODOM_TIMEOUT)
 
             count = len(twists)
             for k in range(NAN_ODOMS):
                 odom_pub.publish(odometry(float('inf')) if k % 2
                                  else odometry(0.1, x=float('nan')))
-            wait_for(lambda: drops and int(drops[-1]['dropped odometry']) == NAN_ODOMS,
+            wait_for(lambda: drops and int(drops[-1]['dropped input']) == NAN_ODOMS,
                      what='/diagnostics counting %d dropped odometry messages' % NAN_ODOMS)
             self.assertIn('non-finite', drops[-1]['last reason'])
             wait_for(lambda: len(twists) >= count + 10, what='10 more Twists')
@@ -113,12 +124,12 @@ class TestRobotMode(unittest.TestCase):
             proc.send_signal(signal.SIGINT)
             code = proc.wait(timeout=TIMEOUT)
             exit_s = time.monotonic() - signalled
-        print('FIGURE: robot mode: exit status %d %.2f s after SIGINT' % (code, exit_s))
+        print('FIGURE: deploy node: exit status %d %.2f s after SIGINT' % (code, exit_s))
         self.assertEqual(code, 0)
         self.assertLess(exit_s, 2.0)
         wait_for(lambda: is_zero(twists[-1]), what='a zero Twist last after SIGINT')
 
 
 if __name__ == '__main__':
-    rospy.init_node('test_robot_mode')
-    rostest.rosrun('jetbot_rl', 'robot_mode', TestRobotMode)
+    rospy.init_node('test_deploy_node')
+    rostest.rosrun('jetbot_rl', 'deploy_node', TestDeployNode)

@@ -1,0 +1,113 @@
+// BatchSpec's one schema: its field list and EnvSpec.msg name the same fields, the message
+// conversion goes both ways field for field (and refuses an inconsistent message naming the
+// field), a spec's YAML reads back equal, and the agreement checks name every field that differs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/common/msg_conversion.h"
+#include "jetbot_rl/ros/common/msg_fields.h"
+
+namespace jetbot_rl {
+namespace {
+
+/// A spec with a distinct value in every field.
+BatchSpec sampleSpec() {
+  BatchSpec s;
+  s.num_envs = 7;
+  s.task = "navigation";
+  s.obs_dim = 3;
+  s.action_dim = 2;
+  s.observation_names = {"beam_0", "goal_cos", "ang_vel_z"};
+  s.action_names = {"linear_x", "angular_z"};
+  s.scan_beam_angles = {0.5};
+  s.scan_range = {0.15, 3.5};
+  s.action_low = {0.0f, -10.5f};
+  s.action_high = {0.6f, 10.5f};
+  s.control_dt = 0.05;
+  s.max_episode_length = 400;
+  s.observation_low = {0.25f, -1.0f, -std::numeric_limits<float>::infinity()};
+  s.observation_high = {1.0f, 1.0f, std::numeric_limits<float>::infinity()};
+  s.wheel_radius = 0.03;
+  s.wheel_separation = 0.1;
+  return s;
+}
+
+TEST(SpecSchema, TheStructAndTheMessageNameTheSameFields) {
+  std::vector<std::string> msg_fields =
+      msgFieldNames(ros::message_traits::Definition<EnvSpec>::value());
+  std::vector<std::string> struct_fields = fieldNames(BatchSpec());
+  std::sort(msg_fields.begin(), msg_fields.end());
+  std::sort(struct_fields.begin(), struct_fields.end());
+  EXPECT_EQ(msg_fields, struct_fields);
+}
+
+TEST(SpecSchema, TheMessageConversionGoesBothWaysFieldForField) {
+  const BatchSpec spec = sampleSpec();
+  const EnvSpec msg = toMsg(spec);
+  EXPECT_EQ(msg.num_envs, 7u);
+  EXPECT_EQ(msg.wheel_separation, 0.1);
+  EXPECT_EQ(msg.observation_low[0], 0.25f);
+  EXPECT_EQ(msg.scan_range, (std::vector<double>{0.15, 3.5}));
+  EXPECT_EQ(fieldsToYaml(fromMsg(msg)), fieldsToYaml(spec));
+}
+
+TEST(SpecSchema, AnInconsistentMessageIsRefusedNamingTheField) {
+  EnvSpec msg = toMsg(sampleSpec());
+  msg.observation_high.pop_back();
+  try {
+    fromMsg(msg);
+    FAIL() << "accepted two observation bounds for three components";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("inconsistent EnvSpec: invalid observation_high = 2 "
+                                         "values: must hold 3 (obs_dim)"),
+              std::string::npos)
+        << e.what();
+  }
+  msg = toMsg(sampleSpec());
+  msg.scan_range.clear();
+  EXPECT_THROW(fromMsg(msg), Error);
+}
+
+TEST(SpecSchema, ItsYamlReadsBackEqualInfinitiesIncluded) {
+  const BatchSpec spec = sampleSpec();
+  const std::string yaml = fieldsToYaml(spec);
+  EXPECT_NE(yaml.find("observation_low: [0.25, -1, -.inf]"), std::string::npos) << yaml;
+  BatchSpec read;
+  fieldsFromYaml(yaml, read);
+  EXPECT_EQ(fieldsToYaml(read), yaml);
+  EXPECT_EQ(read.observation_high[2], std::numeric_limits<float>::infinity());
+}
+
+TEST(SpecSchema, DifferencesNameEveryFieldButNumEnvsAndCanKeepToThePolicysFields) {
+  const BatchSpec mine = sampleSpec();
+  BatchSpec theirs = sampleSpec();
+  theirs.num_envs = 100;  // never a difference
+  EXPECT_TRUE(specDifferences(mine, theirs, false, false).empty());
+  theirs.control_dt = 0.1;
+  theirs.scan_range = {0.15, 12.0};
+  const std::vector<std::string> all = specDifferences(mine, theirs, false, false);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0], "scan_range: [0.15, 12] differs from [0.15, 3.5]");
+  EXPECT_EQ(all[1], "control_dt: 0.1 differs from 0.05");
+  const std::vector<std::string> bound = specDifferences(mine, theirs, true, false);
+  ASSERT_EQ(bound.size(), 1u);
+  EXPECT_EQ(bound[0], all[0]);
+  // A field `mine` does not hold (a checkpoint written before it existed) is not compared.
+  BatchSpec old = mine;
+  old.wheel_radius = 0.0;
+  theirs = mine;
+  EXPECT_EQ(specDifferences(old, theirs, false, false).size(), 1u);
+  EXPECT_TRUE(specDifferences(old, theirs, false, true).empty());
+}
+
+TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
+  EXPECT_EQ(msgFieldNames("# a comment\nuint8 A=2  # a constant\nfloat32[] x  # [m]\n\nstring y"),
+            (std::vector<std::string>{"x", "y"}));
+  EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
+}
+
+}  // namespace
+}  // namespace jetbot_rl
