@@ -183,7 +183,7 @@ def train(args):
             interrupted = True
             break
         t0 = time.monotonic()
-        outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, failure
+        outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, collision
         for t in range(steps):
             o = torch.from_numpy(obs)
             agent.update_normalizer(o)
@@ -197,8 +197,8 @@ def train(args):
             history.push_actions(a)
             obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
             buf_rew[t] = torch.from_numpy(reward)
-            if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _final_obs
-                outcomes += np.bincount(infos['outcome'][infos['_final_obs']], minlength=3)[:3]
+            if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _outcome
+                outcomes += np.bincount(infos['outcome'][infos['_outcome']], minlength=3)[:3]
             boot = np.zeros(n, dtype=np.float32)
             timed_out = truncated & ~terminated
             cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated

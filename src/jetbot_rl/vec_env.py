@@ -6,7 +6,8 @@
         obs, rewards, terminations, truncations, infos = env.step(env.action_space.sample())
 
 The node resets an env that ends within the same step (gymnasium's same-step auto-reset):
-the returned observation is the new episode's first, the last one is in infos["final_obs"].
+the returned observation is the new episode's first, the last one is in infos["final_obs"], and
+how the episode ended in infos["outcome"] (masks "_final_obs", "_outcome").
 """
 import numbers
 import time
@@ -14,8 +15,10 @@ import time
 import numpy as np
 import rospy
 
+from jetbot_rl.msg import EnvSpec
 from jetbot_rl.node_link import EnvRejectedError, NodeLink, call_bounded
 from jetbot_rl.spaces import make_box
+from jetbot_rl.srv import ResetRequest
 
 try:  # optional: subclass gymnasium's VectorEnv and name its auto-reset mode when installed
     from gymnasium.vector import VectorEnv as _Base
@@ -28,12 +31,15 @@ except ImportError:
     _Base = object
     SAME_STEP = 'SameStep'  # the value of gymnasium.vector.AutoresetMode.SAME_STEP
 
-#: reset(seed=s) reseeds node k (in list order) with s + k * NODE_SEED_STRIDE.
-NODE_SEED_STRIDE = 2 ** 32
-#: ~spec fields every node of one JetbotVecEnv must agree on (num_envs may differ).
-SHARED_SPEC_FIELDS = ('obs_dim', 'action_dim', 'task', 'observation_names', 'action_names',
-                      'action_low', 'action_high', 'control_dt', 'max_episode_length',
-                      'scan_beam_angles', 'scan_range')
+#: reset(seed=s) reseeds node k (in list order) with s + k * NODE_SEED_STRIDE (2**32, the constant
+#: of srv/Reset.srv that the C++ client shares).
+NODE_SEED_STRIDE = ResetRequest.NODE_SEED_STRIDE
+#: ~spec fields every node of one JetbotVecEnv must agree on: every EnvSpec field but num_envs
+#: (read from the message, so that a field added to EnvSpec.msg is checked too).
+SHARED_SPEC_FIELDS = tuple(f for f in EnvSpec.__slots__ if f != 'num_envs')
+#: Tasks whose episodes can reach a goal (EnvStep.OUTCOME_SUCCESS); every episode of the others
+#: ends with OUTCOME_TIME_OUT.
+GOAL_TASKS = ('navigation',)
 _INT64_MAX = 2 ** 63 - 1
 
 
@@ -98,6 +104,7 @@ class JetbotVecEnv(_Base):
         self.action_high = np.array(first.action_high, dtype=np.float32)
         self.control_dt = float(first.control_dt)
         self.max_episode_length = int(first.max_episode_length)
+        self.has_goals = self.task in GOAL_TASKS
         self.scan_beam_angles = np.array(first.scan_beam_angles, dtype=np.float64)
         self.scan_range = np.array(first.scan_range, dtype=np.float64)
         n = self.num_envs
@@ -125,13 +132,13 @@ class JetbotVecEnv(_Base):
         """Resets every env (or those in options["reset_mask"]) and returns (obs, infos).
 
         `seed`: None keeps the envs' random streams; an int >= 0 reseeds them, node k of the list
-        with seed + k * 2**32 (one node: exactly `seed`). `options`: None or
+        with seed + k * NODE_SEED_STRIDE (one node: exactly `seed`). `options`: None or
         {"reset_mask": bool array (num_envs,)} to reset only those envs (the others keep their
         state; needs a full reset after an interrupted step). Also re-synchronises after an
         interrupted, timed-out or rejected step.
         """
         self._check_open()
-        seeds = self._node_seeds(seed)
+        seeds = self.node_seeds(seed)
         mask = self._reset_mask(options)
         if mask is not None and self._needs_reset:
             raise RuntimeError('JetbotVecEnv: no current state (after an interrupted, timed-out '
@@ -199,11 +206,13 @@ class JetbotVecEnv(_Base):
             final_mask[ids] = True
             infos['final_obs'] = final_obs
             infos['_final_obs'] = final_mask
-            # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2 failure),
-            # for the envs in _final_obs.
+            # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2 collision),
+            # for the envs in _outcome (the same envs as _final_obs; a mask of its own, as
+            # gymnasium's "_key" convention has one per key).
             outcome = np.zeros(self.num_envs, dtype=np.uint8)
             outcome[ids] = np.concatenate([b.outcomes for b in batches])
             infos['outcome'] = outcome
+            infos['_outcome'] = final_mask.copy()
         return obs, rewards, terminations, truncations, infos
 
     def close(self, **kwargs):
@@ -231,6 +240,25 @@ class JetbotVecEnv(_Base):
         return 'JetbotVecEnv(%r, num_envs=%d)' % (getattr(self, 'nodes', []),
                                                   getattr(self, 'num_envs', 0))
 
+    @property
+    def unwrapped(self):
+        """This env: what gymnasium's vector wrappers return as their `unwrapped`."""
+        return self
+
+    def node_seeds(self, seed):
+        """The seed each node's ~reset gets from reset(seed=seed), in list order: -1 (keep the
+        random streams) for None, else seed + k * NODE_SEED_STRIDE for node k. ValueError for a
+        seed that is not None or an int >= 0, or one whose last node's seed exceeds 2**63 - 1."""
+        if seed is None:
+            return [-1] * len(self._links)
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+            raise ValueError('reset: seed must be None or an int >= 0, got %r' % (seed,))
+        seeds = [int(seed) + k * NODE_SEED_STRIDE for k in range(len(self._links))]
+        if seeds[-1] > _INT64_MAX:
+            raise ValueError('reset: seed %d too large: node %s would get %d > 2**63 - 1'
+                             % (seed, self.nodes[-1], seeds[-1]))
+        return seeds
+
     # ---- the command task ----
 
     def set_command(self, env, x, y, hold=False):
@@ -251,17 +279,6 @@ class JetbotVecEnv(_Base):
     def _check_open(self):
         if self.closed:
             raise RuntimeError('JetbotVecEnv of %s is closed' % ', '.join(self.nodes))
-
-    def _node_seeds(self, seed):
-        if seed is None:
-            return [-1] * len(self._links)
-        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
-            raise ValueError('reset: seed must be None or an int >= 0, got %r' % (seed,))
-        seeds = [int(seed) + k * NODE_SEED_STRIDE for k in range(len(self._links))]
-        if seeds[-1] > _INT64_MAX:
-            raise ValueError('reset: seed %d too large: node %s would get %d > 2**63 - 1'
-                             % (seed, self.nodes[-1], seeds[-1]))
-        return seeds
 
     def _reset_mask(self, options):
         if options is None:
@@ -314,4 +331,4 @@ class JetbotVecEnv(_Base):
 
 
 __all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',
-           'SAME_STEP']
+           'GOAL_TASKS', 'SAME_STEP']

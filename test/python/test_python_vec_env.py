@@ -38,6 +38,15 @@ class TestVecEnv(unittest.TestCase):
             self.assertTrue(srv._type.startswith('jetbot_rl/'))
         with self.assertRaises(AttributeError):
             jetbot_rl.NoSuchName
+        # the shared constants come from the messages, not typed again
+        from jetbot_rl.srv import ResetRequest
+        from jetbot_rl.vec_env import SHARED_SPEC_FIELDS
+        self.assertEqual(jetbot_rl.NODE_SEED_STRIDE, ResetRequest.NODE_SEED_STRIDE)
+        self.assertEqual(jetbot_rl.NODE_SEED_STRIDE, 2 ** 32)
+        self.assertEqual(SHARED_SPEC_FIELDS,
+                         tuple(f for f in EnvSpec.__slots__ if f != 'num_envs'))
+        for field in ('task', 'action_low', 'observation_low', 'observation_high', 'scan_range'):
+            self.assertIn(field, SHARED_SPEC_FIELDS)
 
     def test_attributes_from_spec(self):
         env = self.env
@@ -53,6 +62,8 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual(env.action_low.dtype, np.float32)
         self.assertAlmostEqual(env.control_dt, 1.0 / 60.0, places=12)
         self.assertEqual(env.max_episode_length, 300)
+        self.assertFalse(env.has_goals)  # every episode ends as a time-out
+        self.assertIs(env.unwrapped, env)
         self.assertEqual((len(env.scan_beam_angles), len(env.scan_range)), (0, 0))  # no scan
         self.assertEqual(str(getattr(env.metadata['autoreset_mode'], 'value',
                                      env.metadata['autoreset_mode'])), 'SameStep')
@@ -124,6 +135,10 @@ class TestVecEnv(unittest.TestCase):
         np.testing.assert_array_equal(truncations, [True] * NUM_ENVS)
         np.testing.assert_array_equal(terminations, [False] * NUM_ENVS)
         np.testing.assert_array_equal(infos['_final_obs'], [True] * NUM_ENVS)
+        # how they ended: a time-out, in a mask of its own (gymnasium's "_key" convention)
+        np.testing.assert_array_equal(infos['outcome'], [0] * NUM_ENVS)
+        np.testing.assert_array_equal(infos['_outcome'], [True] * NUM_ENVS)
+        self.assertIsNot(infos['_outcome'], infos['_final_obs'])
         final = infos['final_obs']
         self.assertEqual((final.shape, final.dtype), ((NUM_ENVS, 3), np.float32))
         # the final observation: still driving (env 0 backwards, env 2 at half speed), and the
@@ -136,12 +151,14 @@ class TestVecEnv(unittest.TestCase):
         np.testing.assert_array_equal(infos['episode_steps'], [0] * NUM_ENVS)
         obs, rewards, terminations, truncations, infos = env.step(actions)
         self.assertNotIn('final_obs', infos)
+        self.assertNotIn('_outcome', infos)
         self.assertFalse(truncations.any())
         np.testing.assert_array_equal(infos['episode_steps'], [1] * NUM_ENVS)
 
     def test_sb3_adapter(self):
         from jetbot_rl import JetbotSB3VecEnv
         from jetbot_rl.sb3 import HAVE_SB3
+        from jetbot_rl_test.sb3_stand_ins import update_info_buffer
         venv = JetbotSB3VecEnv(self.env)
         if not HAVE_SB3:
             self.assertIs(type(venv).__mro__[1], object)
@@ -162,6 +179,8 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual((dones.shape, dones.dtype), ((NUM_ENVS,), np.bool_))
         self.assertTrue(dones.all())
         self.assertEqual(len(infos), NUM_ENVS)
+        # a task without goals: no is_success, so SB3 logs no rollout/success_rate
+        self.assertEqual(len(update_info_buffer(infos, dones)), 0)
         for i, info in enumerate(infos):
             self.assertEqual(sorted(info), ['TimeLimit.truncated', 'terminal_observation'])
             self.assertIs(info['TimeLimit.truncated'], True)
@@ -183,6 +202,8 @@ class TestVecEnv(unittest.TestCase):
             venv.get_attr('task', indices=[NUM_ENVS])
         with self.assertRaises(NotImplementedError):
             venv.get_images()
+        with self.assertRaisesRegex(TypeError, 'JetbotVecEnv or a gymnasium vector wrapper'):
+            JetbotSB3VecEnv(np.zeros(3))
 
     def test_z_context_manager_and_close(self):  # last: a second client of the same node
         from jetbot_rl import JetbotVecEnv
