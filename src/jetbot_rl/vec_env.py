@@ -52,13 +52,18 @@ class JetbotVecEnv(_Base):
     all nodes before any answer is awaited. (The keyword was `envs` before: it is refused with a
     TypeError naming `env_nodes`.)
     `timeout` [s, wall]: how long a node may take to appear or to answer.
+    `normalize_actions`: False (default): actions in the nodes' units, within [action_low,
+    action_high]; True: every action component in [-1, 1] (the action spaces are Box(-1, 1)),
+    mapped linearly onto [action_low, action_high] before it is sent; values outside [-1, 1] are
+    clipped to it.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
     """
 
     metadata = {'autoreset_mode': SAME_STEP}
     render_mode = None
 
-    def __init__(self, env_nodes='/jetbot_env', timeout=10.0, **renamed):
+    def __init__(self, env_nodes='/jetbot_env', timeout=10.0, normalize_actions=False,
+                 **renamed):
         self.closed = True  # until every node is connected
         self._links = []
         if 'envs' in renamed:
@@ -73,6 +78,9 @@ class JetbotVecEnv(_Base):
         if (isinstance(timeout, bool) or not isinstance(timeout, numbers.Real)
                 or not np.isfinite(timeout) or timeout <= 0):
             raise ValueError('JetbotVecEnv: timeout must be > 0 s, got %r' % (timeout,))
+        if not isinstance(normalize_actions, (bool, np.bool_)):
+            raise TypeError('JetbotVecEnv: normalize_actions must be True or False, got %r'
+                            % (normalize_actions,))
         if not rospy.core.is_initialized():
             rospy.init_node('jetbot_vec_env', anonymous=True, disable_signals=True)
         try:
@@ -87,6 +95,7 @@ class JetbotVecEnv(_Base):
                 link.close()
             raise
         self.timeout = float(timeout)
+        self.normalize_actions = bool(normalize_actions)
         self.closed = False
         self._needs_reset = True  # no current state: until a reset succeeds
         first = self._links[0].spec
@@ -108,11 +117,24 @@ class JetbotVecEnv(_Base):
         self.scan_beam_angles = np.array(first.scan_beam_angles, dtype=np.float64)
         self.scan_range = np.array(first.scan_range, dtype=np.float64)
         n = self.num_envs
+        if self.normalize_actions:
+            if not (np.all(np.isfinite(self.action_low)) and np.all(np.isfinite(self.action_high))):
+                self.close()
+                raise ValueError('JetbotVecEnv: normalize_actions=True needs finite action bounds; '
+                                 '%s has action_low %s, action_high %s'
+                                 % (self.nodes[0], self.action_low, self.action_high))
+            low = np.full(self.action_dim, -1.0, dtype=np.float32)
+            high = np.full(self.action_dim, 1.0, dtype=np.float32)
+        else:
+            low, high = self.action_low, self.action_high
         self.single_observation_space = make_box(-np.inf, np.inf, (self.obs_dim,))
-        self.single_action_space = make_box(self.action_low, self.action_high, (self.action_dim,))
+        self.single_action_space = make_box(low, high, (self.action_dim,))
         self.observation_space = make_box(-np.inf, np.inf, (n, self.obs_dim))
-        self.action_space = make_box(np.tile(self.action_low, (n, 1)),
-                                     np.tile(self.action_high, (n, 1)), (n, self.action_dim))
+        self.action_space = make_box(np.tile(low, (n, 1)), np.tile(high, (n, 1)),
+                                     (n, self.action_dim))
+        # float64: the ends of [-1, 1] map exactly onto the float32 bounds
+        self._action_offset = self.action_low.astype(np.float64)
+        self._action_scale = (self.action_high.astype(np.float64) - self._action_offset) / 2.0
         self._all_envs = np.ones(n, dtype=bool)
 
     @staticmethod
@@ -173,10 +195,13 @@ class JetbotVecEnv(_Base):
         return obs, self._episode_infos(batches)
 
     def step(self, actions):
-        """One control step of every env with `actions` [rad/s], shape (num_envs, action_dim);
-        returns (obs, rewards, terminations, truncations, infos), see the class doc and docs/python.md."""
+        """One control step of every env with `actions`, shape (num_envs, action_dim): in the
+        nodes' units ([rad/s]; twist: [m/s, rad/s]), or in [-1, 1] with normalize_actions; returns
+        (obs, rewards, terminations, truncations, infos), see the class doc and docs/python.md."""
         self._check_open()
         a = self._check_actions(actions)
+        if self.normalize_actions:
+            a = self._from_normalized(a)
         if self._needs_reset:
             raise RuntimeError('JetbotVecEnv: no current state of %s (after an interrupted, '
                                'timed-out or rejected step, or before the first reset): call '
@@ -317,6 +342,12 @@ class JetbotVecEnv(_Base):
                              % (env, dim, np.asarray(actions)[env, dim].item(), env, link.name,
                                 local, self.action_names[dim]))
         return np.ascontiguousarray(a)
+
+    def _from_normalized(self, a):
+        """Actions in [-1, 1] (clipped to it) -> [action_low, action_high], float32."""
+        a = np.clip(a.astype(np.float64), -1.0, 1.0)
+        out = (self._action_offset + (a + 1.0) * self._action_scale).astype(np.float32)
+        return np.clip(out, self.action_low, self.action_high)
 
     def _locate_env(self, env, what):
         if (isinstance(env, bool) or not isinstance(env, numbers.Integral)

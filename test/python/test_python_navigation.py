@@ -202,6 +202,33 @@ class TestNavigation(unittest.TestCase):
         # node B was not reseeded with the plain seed
         self.assertFalse(np.array_equal(seeded_7[NUM_ENVS:], alone[A, 7]))
 
+    def test_normalized_twist_actions(self):
+        """normalize_actions=True on the twist action space (v in [0, 0.6] m/s forwards only,
+        omega in +-10.67 rad/s): -1 is the lower bound, 1 the upper, 0 the middle, as the node
+        receives them; through JetbotSB3VecEnv too."""
+        from jetbot_rl_test.env_client import UNREPORTED_RECHECK, wait_for
+        with JetbotVecEnv(A, timeout=TIMEOUT, normalize_actions=True) as env:
+            seen = EventList()  # what env publishes
+            sub = rospy.Subscriber(A + '/wheel_targets', WheelTargets, seen.append,
+                                   tcp_nodelay=True)
+            wait_for(lambda: sub.get_num_connections() > 0, what='wheel_targets to connect',
+                     recheck=UNREPORTED_RECHECK)
+            self.assertEqual(env.action_names, ['linear_x', 'angular_z'])
+            low, high = env.action_low, env.action_high
+            self.assertEqual(low[0], 0.0)
+            np.testing.assert_allclose(high, [0.6, 10.67], atol=0.01)
+            np.testing.assert_array_equal(env.single_action_space.low, [-1.0, -1.0])
+            np.testing.assert_array_equal(env.single_action_space.high, [1.0, 1.0])
+            venv = JetbotSB3VecEnv(env)
+            venv.reset()
+            venv.step(np.array([[-1.0, 0.0], [1.0, 1.0], [0.0, -1.0], [-5.0, 5.0]]))
+            seen.wait_for(lambda: len(seen) > 0, 'WheelTargets')
+            sent = np.asarray(seen[0].velocities, dtype=np.float32).reshape(NUM_ENVS, 2)
+            np.testing.assert_array_equal(sent, [[low[0], 0.0], [high[0], high[1]],
+                                                 [np.float32(0.5) * high[0], low[1]],
+                                                 [low[0], high[1]]])
+            sub.unregister()
+
     def test_stand_in_wrapper_mirrors_gymnasium(self):
         """The stand-in (used without gymnasium) refuses what gymnasium 1.2.3's wrappers refuse:
         JetbotSB3VecEnv used to read `_node_seeds` of the env it was given."""

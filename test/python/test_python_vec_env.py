@@ -16,6 +16,26 @@ def forward(n=NUM_ENVS):
     return np.full((n, 2), DRIVE, dtype=np.float32)
 
 
+class TargetsSeen(object):
+    """The WheelTargets a client publishes to NODE/wheel_targets, on a subscription of our own
+    (connected before it returns)."""
+
+    def __init__(self):
+        from jetbot_rl.msg import WheelTargets
+        from jetbot_rl_test.env_client import UNREPORTED_RECHECK, wait_for
+        from jetbot_rl_test.py_test_util import EventList
+        self.messages = EventList()
+        self.sub = rospy.Subscriber(NODE + '/wheel_targets', WheelTargets, self.messages.append,
+                                    tcp_nodelay=True)
+        wait_for(lambda: self.sub.get_num_connections() > 0, what='wheel_targets to connect',
+                 recheck=UNREPORTED_RECHECK)
+
+    def next(self, count):
+        """The velocities of the message after the first `count`, as float32 (NUM_ENVS, 2)."""
+        self.messages.wait_for(lambda: len(self.messages) > count, 'WheelTargets %d' % count)
+        return np.asarray(self.messages[count].velocities, dtype=np.float32).reshape(-1, 2)
+
+
 class TestVecEnv(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -98,6 +118,37 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual((obs.shape, obs.dtype), ((3,), np.float32))
         env.reset()
         env.step(samples[1])
+
+    def test_normalized_actions(self):
+        """normalize_actions=True: Box(-1, 1) action spaces; [-1, 1] reaches the node mapped
+        linearly onto [action_low, action_high] (here +-20 rad/s), outside it clipped."""
+        from jetbot_rl import JetbotSB3VecEnv, JetbotVecEnv
+        env = JetbotVecEnv(NODE, timeout=30.0, normalize_actions=True)
+        try:
+            self.assertTrue(env.normalize_actions)
+            self.assertFalse(self.env.normalize_actions)
+            for space, shape in ((env.single_action_space, (2,)),
+                                 (env.action_space, (NUM_ENVS, 2))):
+                self.assertEqual((space.shape, space.dtype), (shape, np.float32))
+                np.testing.assert_array_equal(space.low, np.full(shape, -1.0))
+                np.testing.assert_array_equal(space.high, np.full(shape, 1.0))
+            np.testing.assert_array_equal(env.action_low, [-LIMIT, -LIMIT])  # the node's units
+            self.assertEqual(JetbotSB3VecEnv(env).action_space, env.single_action_space)
+            seen = TargetsSeen()
+            env.reset()
+            actions = np.array([[-1.0, 1.0], [0.0, 0.5], [2.0, -3.0]], dtype=np.float32)
+            obs, _, _, _, infos = env.step(actions)
+            np.testing.assert_array_equal(seen.next(0), [[-LIMIT, LIMIT], [0.0, 0.5 * LIMIT],
+                                                         [LIMIT, -LIMIT]])
+            np.testing.assert_array_equal(infos['episode_steps'], [1] * NUM_ENVS)
+            env.step(np.full((NUM_ENVS, 2), -0.25).tolist())  # a list of float64 is converted
+            np.testing.assert_array_equal(seen.next(1), np.full((NUM_ENVS, 2), -0.25 * LIMIT))
+            with self.assertRaisesRegex(ValueError, r'actions\[0, 1\] = nan'):
+                env.step([[0.0, np.nan]] + [[0.0, 0.0]] * (NUM_ENVS - 1))
+            seen.sub.unregister()
+        finally:
+            env.close()
+        self.env.reset()  # the class's client goes on after a reset
 
     def test_reset_step_shapes_and_dtypes(self):
         env = self.env
