@@ -109,8 +109,10 @@ class JetbotVecEnv(_Base):
         self.task = first.task
         self.observation_names = list(first.observation_names)
         self.action_names = list(first.action_names)
-        self.action_low = np.array(first.action_low, dtype=np.float32)
-        self.action_high = np.array(first.action_high, dtype=np.float32)
+        self.action_low = _bound(first.action_low, self.action_dim, -np.inf)
+        self.action_high = _bound(first.action_high, self.action_dim, np.inf)
+        self.observation_low = _bound(first.observation_low, self.obs_dim, -np.inf)
+        self.observation_high = _bound(first.observation_high, self.obs_dim, np.inf)
         self.control_dt = float(first.control_dt)
         self.max_episode_length = int(first.max_episode_length)
         self.has_goals = self.task in GOAL_TASKS
@@ -127,9 +129,12 @@ class JetbotVecEnv(_Base):
             high = np.full(self.action_dim, 1.0, dtype=np.float32)
         else:
             low, high = self.action_low, self.action_high
-        self.single_observation_space = make_box(-np.inf, np.inf, (self.obs_dim,))
+        self.single_observation_space = make_box(self.observation_low, self.observation_high,
+                                                 (self.obs_dim,))
         self.single_action_space = make_box(low, high, (self.action_dim,))
-        self.observation_space = make_box(-np.inf, np.inf, (n, self.obs_dim))
+        self.observation_space = make_box(np.tile(self.observation_low, (n, 1)),
+                                          np.tile(self.observation_high, (n, 1)),
+                                          (n, self.obs_dim))
         self.action_space = make_box(np.tile(low, (n, 1)), np.tile(high, (n, 1)),
                                      (n, self.action_dim))
         # float64: the ends of [-1, 1] map exactly onto the float32 bounds
@@ -359,6 +364,14 @@ class JetbotVecEnv(_Base):
     def _episode_infos(self, batches):
         steps = np.concatenate([b.episode_steps for b in batches]).astype(np.int64)
         return {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
+
+
+def _bound(values, size, unbounded):
+    """A float32 array of `size` bounds from a spec field: `unbounded` (+-inf) everywhere when the
+    field is empty; a negated zero (-0., e.g. a twist action's lower bound forwards only) is 0."""
+    if len(values) == 0:
+        return np.full(size, unbounded, dtype=np.float32)
+    return np.array(values, dtype=np.float32) + np.float32(0.0)
 
 
 __all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',

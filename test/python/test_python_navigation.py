@@ -14,9 +14,9 @@ import rospy
 import rostest
 
 from jetbot_rl import NODE_SEED_STRIDE, JetbotSB3VecEnv, JetbotVecEnv
-from jetbot_rl.msg import EnvStep, WheelTargets
+from jetbot_rl.msg import EnvSpec, EnvStep, WheelTargets
 from jetbot_rl.srv import Step
-from jetbot_rl_test.py_test_util import EventList
+from jetbot_rl_test.py_test_util import EventList, spec_bounds
 from jetbot_rl_test.sb3_stand_ins import (InfoRecorder, StandInRescaleAction, evaluate_successes,
                                           rescale_action, set_random_seed, update_info_buffer)
 
@@ -82,6 +82,13 @@ class NodeSteps(object):
 
     def close(self):
         self.sub.unregister()
+
+
+# The node's spec, read before the tests are defined: whether it sends observation bounds decides
+# whether test_navigation_observation_bounds runs.
+rospy.init_node('test_python_navigation', disable_signals=True)
+NAV_SPEC = rospy.wait_for_message(A + '/spec', EnvSpec, timeout=60.0)
+NO_BOUNDS = len(NAV_SPEC.observation_low) == 0
 
 
 class TestNavigation(unittest.TestCase):
@@ -229,6 +236,50 @@ class TestNavigation(unittest.TestCase):
                                                  [low[0], high[1]]])
             sub.unregister()
 
+    def test_spaces_are_the_spec(self):
+        """The observation spaces hold ~spec's observation bounds element-wise, infinities
+        included (none sent: +-inf); the twist action's lower bound forwards only is 0, not the
+        negated zero -0. it printed as."""
+        with JetbotVecEnv([A, B], timeout=TIMEOUT) as env:
+            low, high = spec_bounds(env.specs[0])
+            self.assertEqual(low.shape, (env.obs_dim,))
+            for space, rows in ((env.single_observation_space, None),
+                                (env.observation_space, 2 * NUM_ENVS)):
+                self.assertEqual(space.dtype, np.float32)
+                np.testing.assert_array_equal(space.low, low if rows is None else np.tile(low, (rows, 1)))
+                np.testing.assert_array_equal(space.high,
+                                              high if rows is None else np.tile(high, (rows, 1)))
+            np.testing.assert_array_equal(env.observation_low, low)
+            np.testing.assert_array_equal(env.observation_high, high)
+            obs, _ = env.reset(seed=1)
+            self.assertTrue(env.observation_space.contains(obs))
+            self.assertEqual(env.action_low[0], 0.0)
+            self.assertFalse(np.signbit(env.action_low[0]), 'action_low is %r' % env.action_low)
+            self.assertFalse(np.signbit(env.single_action_space.low[0]))
+            self.assertFalse(np.signbit(env.action_space.low[:, 0]).any())
+            self.assertNotIn('-0.', str(env.action_low))
+
+    @unittest.skipIf(NO_BOUNDS, 'the node sends no observation bounds (EnvSpec.observation_low '
+                     'empty): runs once the C++ side fills them')
+    def test_navigation_observation_bounds(self):
+        """Once the node fills them, config/navigation_env.yaml's bounds (24 beams in
+        [0.15, 3.5] m, no observation noise): beams in [0.15 / 3.5, 1], goal_distance in
+        [0, inf), goal_cos and goal_sin in [-1, 1], the speeds and last actions unbounded."""
+        with JetbotVecEnv(A, timeout=TIMEOUT) as env:
+            names = env.observation_names
+            expected = {}
+            for k in range(24):
+                expected['beam_%d' % k] = (0.15 / 3.5, 1.0)
+            expected.update(goal_distance=(0.0, np.inf), goal_cos=(-1.0, 1.0),
+                            goal_sin=(-1.0, 1.0), lin_vel_b_x=(-np.inf, np.inf),
+                            ang_vel_z=(-np.inf, np.inf), last_action_0=(-np.inf, np.inf),
+                            last_action_1=(-np.inf, np.inf))
+            self.assertEqual(sorted(names), sorted(expected))
+            low = np.array([expected[n][0] for n in names])
+            high = np.array([expected[n][1] for n in names])
+            np.testing.assert_allclose(env.single_observation_space.low, low, rtol=1e-6)
+            np.testing.assert_allclose(env.single_observation_space.high, high, rtol=1e-6)
+
     def test_stand_in_wrapper_mirrors_gymnasium(self):
         """The stand-in (used without gymnasium) refuses what gymnasium 1.2.3's wrappers refuse:
         JetbotSB3VecEnv used to read `_node_seeds` of the env it was given."""
@@ -244,5 +295,4 @@ class TestNavigation(unittest.TestCase):
 
 
 if __name__ == '__main__':
-    rospy.init_node('test_python_navigation', disable_signals=True)
     rostest.rosrun('jetbot_rl', 'test_python_navigation', TestNavigation)

@@ -103,7 +103,18 @@ class TestVecEnv(unittest.TestCase):
         for space in (env.single_observation_space, env.observation_space,
                       env.single_action_space, env.action_space):
             self.assertEqual(space.dtype, np.float32)
+        # the observation bounds are what ~spec says (none: +-inf); the velocity task's are
+        # unbounded either way
+        from jetbot_rl_test.py_test_util import spec_bounds
+        low, high = spec_bounds(env.specs[0])
+        np.testing.assert_array_equal(env.observation_low, low)
+        np.testing.assert_array_equal(env.observation_high, high)
+        np.testing.assert_array_equal(env.single_observation_space.low, low)
+        np.testing.assert_array_equal(env.single_observation_space.high, high)
+        np.testing.assert_array_equal(env.observation_space.low, np.tile(low, (NUM_ENVS, 1)))
+        np.testing.assert_array_equal(env.observation_space.high, np.tile(high, (NUM_ENVS, 1)))
         self.assertTrue(np.all(np.isinf(env.observation_space.low)))
+        self.assertTrue(np.all(np.isinf(env.observation_space.high)))
         np.testing.assert_array_equal(env.action_space.low, np.full((NUM_ENVS, 2), -LIMIT))
         np.testing.assert_array_equal(env.action_space.high, np.full((NUM_ENVS, 2), LIMIT))
         env.action_space.seed(3)
