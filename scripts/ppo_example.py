@@ -235,8 +235,9 @@ def train(args):
     buf_logp, buf_val, buf_rew = (torch.zeros(steps, n) for _ in range(3))
     buf_end = torch.zeros(steps, n, dtype=torch.bool)  # the episode ended after this step
     buf_boot = torch.zeros(steps, n)  # its value after the end: V(final obs) for a time-out, 0 else
-    # Staggering: env i's first episode is cut after i x 299 / n steps (a bootstrapped time-out),
-    # so that episodes end at different steps from then on.
+    # Staggering: env i's first episode is cut after i x (max_episode_length - 1) / n steps (a
+    # bootstrapped time-out; 299 with the defaults), so that episodes end at different steps from
+    # then on.
     cut_at = np.arange(n) * (env.max_episode_length - 1) // n
     target = Target(env, args.target)
     env_steps, target_at, start = 0, None, time.monotonic()
