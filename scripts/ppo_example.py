@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""PPO in one file (CleanRL's style) that teaches the Jetbot velocity task through JetbotVecEnv.
+"""PPO in one file (CleanRL's style) that teaches the Jetbot velocity task through JetbotVecEnv
+(and the command and navigation tasks, against an env node of that task).
 
 Train against a running jetbot_env node in lockstep mode (100 envs), save, then play the policy:
     roslaunch jetbot_rl jetbot_env.launch publish_clock:=false tf_envs:=0
@@ -13,6 +14,9 @@ state-independent std, samples clipped to [-1, 1] and scaled onto the action bou
 bootstrapped with V(final observation); each env's first episode cut at a staggered step.
 --obs-history K and --action-history M give the policy memory as the trainer's obs_history_length
 and action_history_length do: it sees its last K observations and last M actions.
+It reports the first iteration that reaches the task's target (--target, Target below): velocity
+a reward per step of 0.54 m/s, command docs/command_task.md's mean heading and speed, navigation
+a success rate of 0.9.
 """
 import argparse
 import signal
@@ -43,7 +47,11 @@ def parse_args():
     p.add_argument('--seed', type=int, default=0, help='torch seed and env reset seed')
     p.add_argument('--iterations', type=int, default=60)
     p.add_argument('--num-steps', type=int, default=16, help='steps per env per iteration')
-    p.add_argument('--target', type=float, default=0.54, help='reported: reward/step reached')
+    p.add_argument('--target', type=float, default=None, metavar='LEVEL',
+                   help="reported: the first iteration that reaches the task's target level "
+                        "(velocity: reward/step, default 0.54; navigation: success rate, default "
+                        "0.9; command: mean forward_dot_command in the episodes' second half, "
+                        "default 0.9, with mean lin_vel_b_x > 0.3 m/s)")
     p.add_argument('--save', default='jetbot_ppo.pt', help='where training saves the policy')
     p.add_argument('--play', metavar='POLICY', help='play a saved policy instead of training')
     p.add_argument('--play-steps', type=int, default=600, help='steps to play')
@@ -146,6 +154,67 @@ class Agent(nn.Module):
         return self.critic(obs_n).squeeze(-1)
 
 
+class Target:
+    """The task's target, checked once per iteration (--target LEVEL):
+    - velocity (and a task it does not know): the mean reward per step >= LEVEL (0.54 m/s: 90 %
+      of the wheels' top speed);
+    - a task with goals (navigation): the success rate of the episodes that ended in the
+      iteration (infos["outcome"]) >= LEVEL (0.9);
+    - command: docs/command_task.md's targets, the means over the observations the policy acted
+      on in the second half of their episode (episode step >= max_episode_length / 2, as
+      jetbot_ppo_trainer's obs_mean_* columns): forward_dot_command > LEVEL (0.9) and
+      lin_vel_b_x > 0.3 m/s."""
+
+    COMMAND_SPEED = 0.3  # m/s: half the top speed
+
+    def __init__(self, env, level):
+        names = env.observation_names
+        if env.has_goals:
+            self.kind, default = 'success', 0.9
+        elif env.task == 'command' and {'forward_dot_command', 'lin_vel_b_x'} <= set(names):
+            self.kind, default = 'command', 0.9
+            self.dot, self.speed = names.index('forward_dot_command'), names.index('lin_vel_b_x')
+            self.from_step = env.max_episode_length // 2
+        else:
+            self.kind, default = 'reward', 0.54
+        self.level = default if level is None else level
+        # (">=": no "reward/step <number>" that a progress-line parser would take for one)
+        self.name = {'success': 'success rate >= %.2f', 'reward': 'reward/step >= %.2f',
+                     'command': 'forward_dot_command > %.2f and lin_vel_b_x > %.2f'}[self.kind] % (
+            (self.level, self.COMMAND_SPEED) if self.kind == 'command' else self.level)
+
+    def describe(self):
+        if self.kind == 'success':
+            return self.name + ' (episodes ended in an iteration)'
+        if self.kind == 'command':
+            return self.name + ' m/s (means from episode step %d on)' % self.from_step
+        return self.name
+
+    def start(self):
+        self.sums, self.count = np.zeros(2), 0
+
+    def observe(self, obs, episode_steps):
+        """The observations the policy acts on and their episode steps (command task)."""
+        if self.kind == 'command':
+            rows = obs[episode_steps >= self.from_step]
+            self.sums += rows[:, [self.dot, self.speed]].sum(0)
+            self.count += len(rows)
+
+    def progress(self):
+        """The command task's means for the progress line, '' for the others."""
+        if self.kind != 'command' or not self.count:
+            return ''
+        return ' | forward_dot_command %.2f lin_vel_b_x %.2f' % tuple(self.sums / self.count)
+
+    def reached(self, reward_per_step, outcomes):
+        if self.kind == 'success':
+            return outcomes.sum() > 0 and outcomes[1] / outcomes.sum() >= self.level
+        if self.kind == 'command':
+            return (self.count > 0 and self.sums[0] / self.count > self.level
+                    and self.sums[1] / self.count > self.COMMAND_SPEED)
+        return reward_per_step >= self.level
+
+
 def to_env(agent_actions, low, high):
     """Gaussian samples -> clipped to [-1, 1] -> the env's [low, high] [rad/s]."""
     return (low + (high - low) * (agent_actions.clamp(-1.0, 1.0) + 1.0) / 2.0).numpy()
@@ -166,16 +235,19 @@ def train(args):
     buf_logp, buf_val, buf_rew = (torch.zeros(steps, n) for _ in range(3))
     buf_end = torch.zeros(steps, n, dtype=torch.bool)  # the episode ended after this step
     buf_boot = torch.zeros(steps, n)  # its value after the end: V(final obs) for a time-out, 0 else
-    # Staggering: env i's first episode is cut after i x 299 / n steps (a bootstrapped time-out),
-    # so that episodes end at different steps from then on.
+    # Staggering: env i's first episode is cut after i x (max_episode_length - 1) / n steps (a
+    # bootstrapped time-out; 299 with the defaults), so that episodes end at different steps from
+    # then on.
     cut_at = np.arange(n) * (env.max_episode_length - 1) // n
+    target = Target(env, args.target)
     env_steps, target_at, start = 0, None, time.monotonic()
-    obs, _ = env.reset(seed=args.seed)
+    obs, infos = env.reset(seed=args.seed)
+    episode_steps = infos['episode_steps']  # of obs, the observations the policy acts on
     # Ctrl-C and SIGTERM end training after the current iteration; its policy is saved.
     stop = []
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.append(True))
-    reward_per_step, interrupted = float('nan'), False
+    reward_per_step, interrupted, iterations_done = float('nan'), False, 0
     for iteration in range(1, args.iterations + 1):
         if stop:
             print('stopped by a signal after iteration %d: saving its policy' % (iteration - 1),
@@ -184,7 +256,9 @@ def train(args):
             break
         t0 = time.monotonic()
         outcomes = np.zeros(3, dtype=np.int64)  # ended episodes: time-out, success, collision
+        target.start()
         for t in range(steps):
+            target.observe(obs, episode_steps)
             o = torch.from_numpy(obs)
             agent.update_normalizer(o)
             o_n = history.push(o, agent.normalize)
@@ -196,9 +270,10 @@ def train(args):
             buf_obs[t], buf_act[t] = o_n, a
             history.push_actions(a)
             obs, reward, terminated, truncated, infos = env.step(to_env(a, low, high))
+            episode_steps = infos['episode_steps']
             buf_rew[t] = torch.from_numpy(reward)
-            if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _final_obs
-                outcomes += np.bincount(infos['outcome'][infos['_final_obs']], minlength=3)[:3]
+            if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _outcome
+                outcomes += np.bincount(infos['outcome'][infos['_outcome']], minlength=3)[:3]
             boot = np.zeros(n, dtype=np.float32)
             timed_out = truncated & ~terminated
             cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated
@@ -213,7 +288,8 @@ def train(args):
                     now = torch.from_numpy(obs[cut])
                     boot[cut] = agent.value(history.peek(rows, now, agent.normalize))
             if cut.any():
-                obs, _ = env.reset(options={'reset_mask': cut})
+                obs, infos = env.reset(options={'reset_mask': cut})
+                episode_steps = infos['episode_steps']
             history.end(terminated | truncated | cut)
             buf_end[t] = torch.from_numpy(terminated | truncated | cut)
             buf_boot[t] = torch.from_numpy(boot)
@@ -265,14 +341,15 @@ def train(args):
 
         reward_per_step = buf_rew.mean().item()
         elapsed = time.monotonic() - start
-        if target_at is None and reward_per_step >= args.target:
+        if target_at is None and target.reached(reward_per_step, outcomes):
             target_at = (iteration, env_steps, elapsed)
-        rates = ''
-        if outcomes[1:].sum():  # a task with goals
-            rates = ' | success %.2f collision %.2f' % tuple(outcomes[1:] / outcomes.sum())
+        rates = target.progress()
+        if env.has_goals and outcomes.sum():  # some episode ended in the iteration
+            rates += ' | success %.2f collision %.2f' % tuple(outcomes[1:] / outcomes.sum())
         print('iteration %d/%d | env steps %d | reward/step %.4f%s | %.0f env steps/s | elapsed '
               '%.1f s' % (iteration, args.iterations, env_steps, reward_per_step, rates,
                           steps * n / (time.monotonic() - t0), elapsed), flush=True)
+        iterations_done = iteration
     elapsed = time.monotonic() - start
     torch.save({'model': agent.state_dict(), 'obs_dim': obs_dim, 'action_dim': act_dim,
                 'obs_history': args.obs_history, 'action_history': args.action_history},
@@ -283,10 +360,13 @@ def train(args):
     print('final_mean_reward_per_step=%.4f' % reward_per_step)
     print('env_steps=%d elapsed_s=%.1f mean_env_steps_per_s=%.0f'
           % (env_steps, elapsed, env_steps / elapsed))
+    print('target=%s' % target.describe())
     if target_at:
+        print('%s reached at iteration %d (%d env steps, %.1f s)' % ((target.name,) + target_at))
         print('target_reached_at_iteration=%d target_reached_at_env_steps=%d '
               'target_reached_at_elapsed_s=%.1f' % target_at)
     else:
+        print('%s not reached in %d iterations' % (target.name, iterations_done))
         print('target_reached_at_iteration=never')
 
 

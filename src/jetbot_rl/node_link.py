@@ -61,7 +61,8 @@ class Batch(object):
                 or self.terminated.shape != (num_envs,) or self.truncated.shape != (num_envs,)
                 or self.episode_steps.shape != (num_envs,)
                 or self.final_obs.shape[0] != self.reset_env_ids.shape[0]
-                or self.outcomes.shape[0] != self.reset_env_ids.shape[0] or np.any(self.outcomes > 2)):
+                or self.outcomes.shape[0] != self.reset_env_ids.shape[0]
+                or np.any(self.outcomes > EnvStep.OUTCOME_COLLISION)):
             raise RuntimeError('%s: EnvStep %d does not match its spec (%d envs, obs_dim %d)'
                                % (node, msg.step, num_envs, obs_dim))
 
@@ -179,11 +180,21 @@ class NodeLink(object):
         spec = specs[0]
         if (spec.num_envs < 1 or spec.obs_dim < 1 or spec.action_dim < 1
                 or len(spec.action_low) != spec.action_dim
-                or len(spec.action_high) != spec.action_dim):
+                or len(spec.action_high) != spec.action_dim
+                or len(spec.observation_low) not in (0, spec.obs_dim)
+                or len(spec.observation_high) != len(spec.observation_low)):
             raise ValueError('%s: inconsistent spec (num_envs %d, obs_dim %d, action_dim %d, '
-                             '%d action_low, %d action_high)'
+                             '%d action_low, %d action_high, %d observation_low, %d '
+                             'observation_high)'
                              % (self.name, spec.num_envs, spec.obs_dim, spec.action_dim,
-                                len(spec.action_low), len(spec.action_high)))
+                                len(spec.action_low), len(spec.action_high),
+                                len(spec.observation_low), len(spec.observation_high)))
+        for field in ('action', 'observation'):
+            low = np.array(getattr(spec, field + '_low'), dtype=np.float64)
+            high = np.array(getattr(spec, field + '_high'), dtype=np.float64)
+            if not np.all(low <= high):  # also NaN
+                raise ValueError('%s: inconsistent spec: %s_low %s is not <= %s_high %s'
+                                 % (self.name, field, low.tolist(), field, high.tolist()))
         return spec
 
     def _wait(self, condition, timeout, what, hint=''):

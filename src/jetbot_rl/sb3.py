@@ -6,10 +6,14 @@
 It subclasses stable_baselines3.common.vec_env.VecEnv when SB3 is importable and is a plain
 class with the same methods otherwise. SB3's conventions: reset() -> obs; step() -> (obs,
 rewards, dones, infos) with infos a list of one dict per env holding "TimeLimit.truncated" (every
-env) and "terminal_observation" (envs that ended in this step; obs already holds the next
-episode's first observation).
+env), "terminal_observation" (envs that ended in this step; obs already holds the next episode's
+first observation) and, for a task with goals, "is_success" (envs that ended in this step), which
+SB3's rollout/success_rate, EvalCallback and evaluate_policy's callbacks read.
 """
 import numpy as np
+
+from jetbot_rl.msg import EnvStep
+from jetbot_rl.vec_env import JetbotVecEnv
 
 try:  # optional
     from stable_baselines3.common.vec_env import VecEnv as _Base
@@ -20,14 +24,23 @@ HAVE_SB3 = _Base is not object
 
 
 class JetbotSB3VecEnv(_Base):
-    """SB3 VecEnv over `vec_env` (a JetbotVecEnv). Spaces are the per-env ones, as SB3 expects.
+    """SB3 VecEnv over `vec_env`: a JetbotVecEnv, or a gymnasium vector wrapper of one (e.g.
+    gymnasium.wrappers.vector.RescaleAction); only its public API is used (reset(seed=...),
+    step(), the spaces, `unwrapped`). Spaces are the per-env ones, as SB3 expects.
 
-    The envs of a batch share one JetbotVecEnv: get_attr/set_attr/env_method act on it once and
-    report the result for each index; env_is_wrapped is False for every env.
+    The envs of a batch share one JetbotVecEnv: get_attr/set_attr/env_method act on `vec_env`
+    once (get_attr and env_method fall back to the JetbotVecEnv under the wrappers for a name
+    the outermost wrapper lacks) and report the result for each index; env_is_wrapped is False
+    for every env.
     """
 
     def __init__(self, vec_env):
+        jetbot = getattr(vec_env, 'unwrapped', None)
+        if not isinstance(jetbot, JetbotVecEnv):
+            raise TypeError('JetbotSB3VecEnv: vec_env must be a JetbotVecEnv or a gymnasium '
+                            'vector wrapper of one, got %r' % (vec_env,))
         self.venv = vec_env
+        self._jetbot = jetbot
         self._actions = None
         self._seed = None
         if HAVE_SB3:
@@ -63,6 +76,10 @@ class JetbotSB3VecEnv(_Base):
             final_obs = infos['final_obs']
             for i in np.flatnonzero(infos['_final_obs']):
                 out[i]['terminal_observation'] = final_obs[i]
+        if self._jetbot.has_goals and 'outcome' in infos:
+            success = (infos['outcome'] == EnvStep.OUTCOME_SUCCESS).tolist()
+            for i in np.flatnonzero(infos['_outcome']):
+                out[i]['is_success'] = success[i]
         return obs, rewards, dones, out
 
     def step(self, actions):
@@ -70,26 +87,26 @@ class JetbotSB3VecEnv(_Base):
         return self.step_wait()
 
     def seed(self, seed=None):
-        """Seeds the next reset(); returns, per env, the seed its node's ~reset gets."""
+        """Seeds the next reset(); returns, per env, the seed its node's ~reset gets (node k of
+        the JetbotVecEnv: seed + k * NODE_SEED_STRIDE)."""
         if seed is None:
             seed = int(np.random.randint(0, 2 ** 31 - 1))
-        self.venv._node_seeds(seed)  # ValueError now rather than at reset()
+        node_seeds = self._jetbot.node_seeds(seed)  # ValueError now rather than at reset()
         self._seed = seed
-        return [seed + k * 2 ** 32 for k, n in enumerate(self.venv.node_num_envs)
-                for _ in range(n)]
+        return [s for s, n in zip(node_seeds, self._jetbot.node_num_envs) for _ in range(n)]
 
     def close(self):
         self.venv.close()
 
     def get_attr(self, attr_name, indices=None):
-        return [getattr(self.venv, attr_name)] * len(self._indices(indices))
+        return [self._lookup(attr_name)] * len(self._indices(indices))
 
     def set_attr(self, attr_name, value, indices=None):
         self._indices(indices)
         setattr(self.venv, attr_name, value)
 
     def env_method(self, method_name, *method_args, indices=None, **method_kwargs):
-        result = getattr(self.venv, method_name)(*method_args, **method_kwargs)
+        result = self._lookup(method_name)(*method_args, **method_kwargs)
         return [result] * len(self._indices(indices))
 
     def env_is_wrapped(self, wrapper_class, indices=None):
@@ -97,6 +114,16 @@ class JetbotSB3VecEnv(_Base):
 
     def get_images(self):
         raise NotImplementedError('jetbot_env renders nothing: watch it in RViz')
+
+    def _lookup(self, name):
+        """`name` of the outermost wrapper, else of the JetbotVecEnv (gymnasium 1.x's vector
+        wrappers forward only their declared attributes)."""
+        try:
+            return getattr(self.venv, name)
+        except AttributeError:
+            if self.venv is self._jetbot:
+                raise
+            return getattr(self._jetbot, name)
 
     def _indices(self, indices):
         if indices is None:

@@ -6,7 +6,8 @@
         obs, rewards, terminations, truncations, infos = env.step(env.action_space.sample())
 
 The node resets an env that ends within the same step (gymnasium's same-step auto-reset):
-the returned observation is the new episode's first, the last one is in infos["final_obs"].
+the returned observation is the new episode's first, the last one is in infos["final_obs"], and
+how the episode ended in infos["outcome"] (masks "_final_obs", "_outcome").
 """
 import numbers
 import time
@@ -14,8 +15,10 @@ import time
 import numpy as np
 import rospy
 
+from jetbot_rl.msg import EnvSpec
 from jetbot_rl.node_link import EnvRejectedError, NodeLink, call_bounded
 from jetbot_rl.spaces import make_box
+from jetbot_rl.srv import ResetRequest
 
 try:  # optional: subclass gymnasium's VectorEnv and name its auto-reset mode when installed
     from gymnasium.vector import VectorEnv as _Base
@@ -28,12 +31,15 @@ except ImportError:
     _Base = object
     SAME_STEP = 'SameStep'  # the value of gymnasium.vector.AutoresetMode.SAME_STEP
 
-#: reset(seed=s) reseeds node k (in list order) with s + k * NODE_SEED_STRIDE.
-NODE_SEED_STRIDE = 2 ** 32
-#: ~spec fields every node of one JetbotVecEnv must agree on (num_envs may differ).
-SHARED_SPEC_FIELDS = ('obs_dim', 'action_dim', 'task', 'observation_names', 'action_names',
-                      'action_low', 'action_high', 'control_dt', 'max_episode_length',
-                      'scan_beam_angles', 'scan_range')
+#: reset(seed=s) reseeds node k (in list order) with s + k * NODE_SEED_STRIDE (2**32, the constant
+#: of srv/Reset.srv that the C++ client shares).
+NODE_SEED_STRIDE = ResetRequest.NODE_SEED_STRIDE
+#: ~spec fields every node of one JetbotVecEnv must agree on: every EnvSpec field but num_envs
+#: (read from the message, so that a field added to EnvSpec.msg is checked too).
+SHARED_SPEC_FIELDS = tuple(f for f in EnvSpec.__slots__ if f != 'num_envs')
+#: Tasks whose episodes can reach a goal (EnvStep.OUTCOME_SUCCESS); every episode of the others
+#: ends with OUTCOME_TIME_OUT.
+GOAL_TASKS = ('navigation',)
 _INT64_MAX = 2 ** 63 - 1
 
 
@@ -46,13 +52,18 @@ class JetbotVecEnv(_Base):
     all nodes before any answer is awaited. (The keyword was `envs` before: it is refused with a
     TypeError naming `env_nodes`.)
     `timeout` [s, wall]: how long a node may take to appear or to answer.
+    `normalize_actions`: False (default): actions in the nodes' units, within [action_low,
+    action_high]; True: every action component in [-1, 1] (the action spaces are Box(-1, 1)),
+    mapped linearly onto [action_low, action_high] before it is sent; values outside [-1, 1] are
+    clipped to it.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
     """
 
     metadata = {'autoreset_mode': SAME_STEP}
     render_mode = None
 
-    def __init__(self, env_nodes='/jetbot_env', timeout=10.0, **renamed):
+    def __init__(self, env_nodes='/jetbot_env', timeout=10.0, normalize_actions=False,
+                 **renamed):
         self.closed = True  # until every node is connected
         self._links = []
         if 'envs' in renamed:
@@ -67,6 +78,9 @@ class JetbotVecEnv(_Base):
         if (isinstance(timeout, bool) or not isinstance(timeout, numbers.Real)
                 or not np.isfinite(timeout) or timeout <= 0):
             raise ValueError('JetbotVecEnv: timeout must be > 0 s, got %r' % (timeout,))
+        if not isinstance(normalize_actions, (bool, np.bool_)):
+            raise TypeError('JetbotVecEnv: normalize_actions must be True or False, got %r'
+                            % (normalize_actions,))
         if not rospy.core.is_initialized():
             rospy.init_node('jetbot_vec_env', anonymous=True, disable_signals=True)
         try:
@@ -81,6 +95,7 @@ class JetbotVecEnv(_Base):
                 link.close()
             raise
         self.timeout = float(timeout)
+        self.normalize_actions = bool(normalize_actions)
         self.closed = False
         self._needs_reset = True  # no current state: until a reset succeeds
         first = self._links[0].spec
@@ -94,18 +109,37 @@ class JetbotVecEnv(_Base):
         self.task = first.task
         self.observation_names = list(first.observation_names)
         self.action_names = list(first.action_names)
-        self.action_low = np.array(first.action_low, dtype=np.float32)
-        self.action_high = np.array(first.action_high, dtype=np.float32)
+        self.action_low = _bound(first.action_low, self.action_dim, -np.inf)
+        self.action_high = _bound(first.action_high, self.action_dim, np.inf)
+        self.observation_low = _bound(first.observation_low, self.obs_dim, -np.inf)
+        self.observation_high = _bound(first.observation_high, self.obs_dim, np.inf)
         self.control_dt = float(first.control_dt)
         self.max_episode_length = int(first.max_episode_length)
+        self.has_goals = self.task in GOAL_TASKS
         self.scan_beam_angles = np.array(first.scan_beam_angles, dtype=np.float64)
         self.scan_range = np.array(first.scan_range, dtype=np.float64)
         n = self.num_envs
-        self.single_observation_space = make_box(-np.inf, np.inf, (self.obs_dim,))
-        self.single_action_space = make_box(self.action_low, self.action_high, (self.action_dim,))
-        self.observation_space = make_box(-np.inf, np.inf, (n, self.obs_dim))
-        self.action_space = make_box(np.tile(self.action_low, (n, 1)),
-                                     np.tile(self.action_high, (n, 1)), (n, self.action_dim))
+        if self.normalize_actions:
+            if not (np.all(np.isfinite(self.action_low)) and np.all(np.isfinite(self.action_high))):
+                self.close()
+                raise ValueError('JetbotVecEnv: normalize_actions=True needs finite action bounds; '
+                                 '%s has action_low %s, action_high %s'
+                                 % (self.nodes[0], self.action_low, self.action_high))
+            low = np.full(self.action_dim, -1.0, dtype=np.float32)
+            high = np.full(self.action_dim, 1.0, dtype=np.float32)
+        else:
+            low, high = self.action_low, self.action_high
+        self.single_observation_space = make_box(self.observation_low, self.observation_high,
+                                                 (self.obs_dim,))
+        self.single_action_space = make_box(low, high, (self.action_dim,))
+        self.observation_space = make_box(np.tile(self.observation_low, (n, 1)),
+                                          np.tile(self.observation_high, (n, 1)),
+                                          (n, self.obs_dim))
+        self.action_space = make_box(np.tile(low, (n, 1)), np.tile(high, (n, 1)),
+                                     (n, self.action_dim))
+        # float64: the ends of [-1, 1] map exactly onto the float32 bounds
+        self._action_offset = self.action_low.astype(np.float64)
+        self._action_scale = (self.action_high.astype(np.float64) - self._action_offset) / 2.0
         self._all_envs = np.ones(n, dtype=bool)
 
     @staticmethod
@@ -125,13 +159,13 @@ class JetbotVecEnv(_Base):
         """Resets every env (or those in options["reset_mask"]) and returns (obs, infos).
 
         `seed`: None keeps the envs' random streams; an int >= 0 reseeds them, node k of the list
-        with seed + k * 2**32 (one node: exactly `seed`). `options`: None or
+        with seed + k * NODE_SEED_STRIDE (one node: exactly `seed`). `options`: None or
         {"reset_mask": bool array (num_envs,)} to reset only those envs (the others keep their
         state; needs a full reset after an interrupted step). Also re-synchronises after an
         interrupted, timed-out or rejected step.
         """
         self._check_open()
-        seeds = self._node_seeds(seed)
+        seeds = self.node_seeds(seed)
         mask = self._reset_mask(options)
         if mask is not None and self._needs_reset:
             raise RuntimeError('JetbotVecEnv: no current state (after an interrupted, timed-out '
@@ -166,10 +200,13 @@ class JetbotVecEnv(_Base):
         return obs, self._episode_infos(batches)
 
     def step(self, actions):
-        """One control step of every env with `actions` [rad/s], shape (num_envs, action_dim);
-        returns (obs, rewards, terminations, truncations, infos), see the class doc and docs/python.md."""
+        """One control step of every env with `actions`, shape (num_envs, action_dim): in the
+        nodes' units ([rad/s]; twist: [m/s, rad/s]), or in [-1, 1] with normalize_actions; returns
+        (obs, rewards, terminations, truncations, infos), see the class doc and docs/python.md."""
         self._check_open()
         a = self._check_actions(actions)
+        if self.normalize_actions:
+            a = self._from_normalized(a)
         if self._needs_reset:
             raise RuntimeError('JetbotVecEnv: no current state of %s (after an interrupted, '
                                'timed-out or rejected step, or before the first reset): call '
@@ -200,10 +237,12 @@ class JetbotVecEnv(_Base):
             infos['final_obs'] = final_obs
             infos['_final_obs'] = final_mask
             # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2 collision),
-            # for the envs in _final_obs.
+            # for the envs in _outcome (the same envs as _final_obs; a mask of its own, as
+            # gymnasium's "_key" convention has one per key).
             outcome = np.zeros(self.num_envs, dtype=np.uint8)
             outcome[ids] = np.concatenate([b.outcomes for b in batches])
             infos['outcome'] = outcome
+            infos['_outcome'] = final_mask.copy()
         return obs, rewards, terminations, truncations, infos
 
     def close(self, **kwargs):
@@ -231,6 +270,25 @@ class JetbotVecEnv(_Base):
         return 'JetbotVecEnv(%r, num_envs=%d)' % (getattr(self, 'nodes', []),
                                                   getattr(self, 'num_envs', 0))
 
+    @property
+    def unwrapped(self):
+        """This env: what gymnasium's vector wrappers return as their `unwrapped`."""
+        return self
+
+    def node_seeds(self, seed):
+        """The seed each node's ~reset gets from reset(seed=seed), in list order: -1 (keep the
+        random streams) for None, else seed + k * NODE_SEED_STRIDE for node k. ValueError for a
+        seed that is not None or an int >= 0, or one whose last node's seed exceeds 2**63 - 1."""
+        if seed is None:
+            return [-1] * len(self._links)
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+            raise ValueError('reset: seed must be None or an int >= 0, got %r' % (seed,))
+        seeds = [int(seed) + k * NODE_SEED_STRIDE for k in range(len(self._links))]
+        if seeds[-1] > _INT64_MAX:
+            raise ValueError('reset: seed %d too large: node %s would get %d > 2**63 - 1'
+                             % (seed, self.nodes[-1], seeds[-1]))
+        return seeds
+
     # ---- the command task ----
 
     def set_command(self, env, x, y, hold=False):
@@ -251,17 +309,6 @@ class JetbotVecEnv(_Base):
     def _check_open(self):
         if self.closed:
             raise RuntimeError('JetbotVecEnv of %s is closed' % ', '.join(self.nodes))
-
-    def _node_seeds(self, seed):
-        if seed is None:
-            return [-1] * len(self._links)
-        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
-            raise ValueError('reset: seed must be None or an int >= 0, got %r' % (seed,))
-        seeds = [int(seed) + k * NODE_SEED_STRIDE for k in range(len(self._links))]
-        if seeds[-1] > _INT64_MAX:
-            raise ValueError('reset: seed %d too large: node %s would get %d > 2**63 - 1'
-                             % (seed, self.nodes[-1], seeds[-1]))
-        return seeds
 
     def _reset_mask(self, options):
         if options is None:
@@ -301,6 +348,12 @@ class JetbotVecEnv(_Base):
                                 local, self.action_names[dim]))
         return np.ascontiguousarray(a)
 
+    def _from_normalized(self, a):
+        """Actions in [-1, 1] (clipped to it) -> [action_low, action_high], float32."""
+        a = np.clip(a.astype(np.float64), -1.0, 1.0)
+        out = (self._action_offset + (a + 1.0) * self._action_scale).astype(np.float32)
+        return np.clip(out, self.action_low, self.action_high)
+
     def _locate_env(self, env, what):
         if (isinstance(env, bool) or not isinstance(env, numbers.Integral)
                 or not 0 <= env < self.num_envs):
@@ -313,5 +366,13 @@ class JetbotVecEnv(_Base):
         return {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
 
 
+def _bound(values, size, unbounded):
+    """A float32 array of `size` bounds from a spec field: `unbounded` (+-inf) everywhere when the
+    field is empty; a negated zero (-0., e.g. a twist action's lower bound forwards only) is 0."""
+    if len(values) == 0:
+        return np.full(size, unbounded, dtype=np.float32)
+    return np.array(values, dtype=np.float32) + np.float32(0.0)
+
+
 __all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',
-           'SAME_STEP']
+           'GOAL_TASKS', 'SAME_STEP']

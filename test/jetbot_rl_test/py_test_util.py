@@ -1,8 +1,10 @@
-"""Helpers of the Python client's rostests: node processes, diagnostics, waiting on events."""
+"""Helpers of the Python client's rostests: node processes, diagnostics, waiting on events, a
+spec's observation bounds."""
 import os
 import signal
 import threading
 
+import numpy as np
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 
@@ -70,3 +72,13 @@ class EventList(list):
         with self._cond:
             if not self._cond.wait_for(condition, timeout):
                 raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
+
+
+def spec_bounds(spec):
+    """(observation_low, observation_high) of an EnvSpec as float32 arrays of obs_dim entries: what
+    the spec says, -inf/inf everywhere when it sends none (empty lists)."""
+    if len(spec.observation_low) == 0:
+        return (np.full(spec.obs_dim, -np.inf, dtype=np.float32),
+                np.full(spec.obs_dim, np.inf, dtype=np.float32))
+    return (np.array(spec.observation_low, dtype=np.float32),
+            np.array(spec.observation_high, dtype=np.float32))

@@ -2,6 +2,7 @@
 """JetbotVecEnv's errors against a real node (2 envs, velocity task): every bad input raises
 ValueError naming the env and value and sends nothing; a step the node rejects raises
 EnvRejectedError with the node's reason; Ctrl-C during a step leaves the env usable."""
+import re
 import signal
 import time
 import unittest
@@ -103,6 +104,10 @@ class TestBadInput(unittest.TestCase):
         for timeout in (0, -1.0, float('inf'), 'x'):
             with self.assertRaisesRegex(ValueError, 'timeout'):
                 JetbotVecEnv(NODE, timeout=timeout)
+        for flag in ('yes', 1, None, 1.0):
+            with self.assertRaisesRegex(TypeError, "^JetbotVecEnv: normalize_actions must be True "
+                                                   "or False, got %s$" % re.escape(repr(flag))):
+                JetbotVecEnv(NODE, normalize_actions=flag)
         with self.assertRaisesRegex(ValueError, 'node /jetbot_env is listed twice'):
             JetbotVecEnv([NODE, 'jetbot_env'])  # relative names resolve in our namespace, /
         start = time.monotonic()

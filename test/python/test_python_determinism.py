@@ -8,6 +8,8 @@ import rospy
 import rostest
 
 from jetbot_rl import JetbotVecEnv
+from jetbot_rl.msg import EnvSpec
+from jetbot_rl_test.py_test_util import spec_bounds
 
 NUM_ENVS = 4
 STEPS = 310  # across the time-out at step 299
@@ -28,6 +30,12 @@ def rollout(env, seed, actions):
         if 'final_obs' in infos:
             record += [infos['final_obs'], infos['_final_obs']]
     return record
+
+
+# The node's spec, read before the tests are defined: whether it sends observation bounds decides
+# whether test_command_observation_bounds runs.
+rospy.init_node('test_python_determinism', disable_signals=True)
+NO_BOUNDS = len(rospy.wait_for_message('/jetbot_env/spec', EnvSpec, 60.0).observation_low) == 0
 
 
 class TestDeterminism(unittest.TestCase):
@@ -68,6 +76,20 @@ class TestDeterminism(unittest.TestCase):
         c, infos = env.reset(options={'reset_mask': np.zeros(NUM_ENVS, dtype=bool)})
         np.testing.assert_array_equal(c, b)
 
+    def test_observation_space_is_the_spec(self):
+        low, high = spec_bounds(self.env.specs[0])
+        np.testing.assert_array_equal(self.env.single_observation_space.low, low)
+        np.testing.assert_array_equal(self.env.single_observation_space.high, high)
+        np.testing.assert_array_equal(self.env.observation_space.low, np.tile(low, (NUM_ENVS, 1)))
+
+    @unittest.skipIf(NO_BOUNDS, 'the node sends no observation bounds (EnvSpec.observation_low '
+                     'empty): runs once the C++ side fills them')
+    def test_command_observation_bounds(self):
+        """Once the node fills them: forward_dot_command and forward_cross_command_z (a cosine
+        and a sine) in [-1, 1], lin_vel_b_x unbounded."""
+        np.testing.assert_array_equal(self.env.single_observation_space.low, [-1.0, -1.0, -np.inf])
+        np.testing.assert_array_equal(self.env.single_observation_space.high, [1.0, 1.0, np.inf])
+
     def test_set_command(self):
         env = self.env
         env.reset(seed=0)
@@ -81,5 +103,4 @@ class TestDeterminism(unittest.TestCase):
 
 
 if __name__ == '__main__':
-    rospy.init_node('test_python_determinism', disable_signals=True)
     rostest.rosrun('jetbot_rl', 'test_python_determinism', TestDeterminism)

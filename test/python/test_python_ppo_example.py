@@ -3,7 +3,8 @@
 clearly beating the random policy of its first iteration, then plays the saved policy, also with
 an observation and action history (60 iterations); Ctrl-C and SIGTERM mid-training save the
 policy and exit 0. Its renamed options (and those of bench/python_bench.py, the other program
-on JetbotVecEnv) are refused naming the new ones."""
+on JetbotVecEnv) are refused naming the new ones. Against a navigation node it reports the
+navigation task's target, a success rate, instead of the velocity task's reward per step."""
 import os
 import re
 import signal
@@ -47,6 +48,10 @@ class TestPpoExample(unittest.TestCase):
             self.assertGreater(min(rewards[-3:]), 0.45, 'no clear improvement: %s' % rewards)
             self.assertGreater(float(value(out, 'final_mean_reward_per_step')), 0.45)
             self.assertTrue(os.path.isfile(policy))
+            # the velocity task's target: 0.54 m/s per step
+            self.assertIn('target=reward/step >= 0.54\n', out)
+            self.assertRegex(out, r'\nreward/step >= 0\.54 (reached at iteration \d+ \(\d+ env '
+                                  r'steps, [0-9.]+ s\)|not reached in 20 iterations)\n')
 
             out = run('--play', policy, '--play-steps', '300')
             self.assertGreater(float(value(out, 'play_mean_reward_per_step')), 0.45)
@@ -75,6 +80,27 @@ class TestPpoExample(unittest.TestCase):
                                  timeout=60)
             self.assertEqual(out.returncode, 2, out.stdout)
             self.assertIn('invalid %s = -1' % option, out.stdout)
+
+    def test_navigation_reports_the_success_rate(self):
+        """Against the navigation node: the target is a success rate (0.9 by default), reported
+        as reached at an iteration or not reached, never the velocity task's reward per step;
+        --target 0 is reached at the first iteration in which some episode ended."""
+        with tempfile.TemporaryDirectory() as tmp:
+            policy = os.path.join(tmp, 'policy.pt')
+            out = run('--env-nodes', '/nav/jetbot_env', '--iterations', '2', '--num-steps', '32',
+                      '--save', policy)
+            self.assertIn('target=success rate >= 0.90 (episodes ended in an iteration)\n', out)
+            self.assertRegex(out, r'\nsuccess rate >= 0\.90 (reached at iteration [12] |not '
+                                  r'reached in 2 iterations\n)')
+            self.assertNotIn('reward/step >=', out)  # not the velocity task's target
+            value(out, 'target_reached_at_iteration')
+            out = run('--env-nodes', '/nav/jetbot_env', '--iterations', '4', '--num-steps', '100',
+                      '--target', '0', '--save', policy)
+            ended = [i + 1 for i, line in enumerate(re.findall(r'^iteration \d+/4 .*$', out, re.M))
+                     if ' | success ' in line]
+            self.assertTrue(ended, 'no episode ended in 4 iterations:\n' + out)
+            self.assertIn('\nsuccess rate >= 0.00 reached at iteration %d (' % ended[0], out)
+            self.assertEqual(value(out, 'target_reached_at_iteration'), str(ended[0]))
 
     def test_renamed_options_are_refused(self):
         """An old option name ends the program with exit code 2 before it looks for a node, and

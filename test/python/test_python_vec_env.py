@@ -16,6 +16,26 @@ def forward(n=NUM_ENVS):
     return np.full((n, 2), DRIVE, dtype=np.float32)
 
 
+class TargetsSeen(object):
+    """The WheelTargets a client publishes to NODE/wheel_targets, on a subscription of our own
+    (connected before it returns)."""
+
+    def __init__(self):
+        from jetbot_rl.msg import WheelTargets
+        from jetbot_rl_test.env_client import UNREPORTED_RECHECK, wait_for
+        from jetbot_rl_test.py_test_util import EventList
+        self.messages = EventList()
+        self.sub = rospy.Subscriber(NODE + '/wheel_targets', WheelTargets, self.messages.append,
+                                    tcp_nodelay=True)
+        wait_for(lambda: self.sub.get_num_connections() > 0, what='wheel_targets to connect',
+                 recheck=UNREPORTED_RECHECK)
+
+    def next(self, count):
+        """The velocities of the message after the first `count`, as float32 (NUM_ENVS, 2)."""
+        self.messages.wait_for(lambda: len(self.messages) > count, 'WheelTargets %d' % count)
+        return np.asarray(self.messages[count].velocities, dtype=np.float32).reshape(-1, 2)
+
+
 class TestVecEnv(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -38,6 +58,15 @@ class TestVecEnv(unittest.TestCase):
             self.assertTrue(srv._type.startswith('jetbot_rl/'))
         with self.assertRaises(AttributeError):
             jetbot_rl.NoSuchName
+        # the shared constants come from the messages, not typed again
+        from jetbot_rl.srv import ResetRequest
+        from jetbot_rl.vec_env import SHARED_SPEC_FIELDS
+        self.assertEqual(jetbot_rl.NODE_SEED_STRIDE, ResetRequest.NODE_SEED_STRIDE)
+        self.assertEqual(jetbot_rl.NODE_SEED_STRIDE, 2 ** 32)
+        self.assertEqual(SHARED_SPEC_FIELDS,
+                         tuple(f for f in EnvSpec.__slots__ if f != 'num_envs'))
+        for field in ('task', 'action_low', 'observation_low', 'observation_high', 'scan_range'):
+            self.assertIn(field, SHARED_SPEC_FIELDS)
 
     def test_attributes_from_spec(self):
         env = self.env
@@ -53,6 +82,8 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual(env.action_low.dtype, np.float32)
         self.assertAlmostEqual(env.control_dt, 1.0 / 60.0, places=12)
         self.assertEqual(env.max_episode_length, 300)
+        self.assertFalse(env.has_goals)  # every episode ends as a time-out
+        self.assertIs(env.unwrapped, env)
         self.assertEqual((len(env.scan_beam_angles), len(env.scan_range)), (0, 0))  # no scan
         self.assertEqual(str(getattr(env.metadata['autoreset_mode'], 'value',
                                      env.metadata['autoreset_mode'])), 'SameStep')
@@ -72,7 +103,18 @@ class TestVecEnv(unittest.TestCase):
         for space in (env.single_observation_space, env.observation_space,
                       env.single_action_space, env.action_space):
             self.assertEqual(space.dtype, np.float32)
+        # the observation bounds are what ~spec says (none: +-inf); the velocity task's are
+        # unbounded either way
+        from jetbot_rl_test.py_test_util import spec_bounds
+        low, high = spec_bounds(env.specs[0])
+        np.testing.assert_array_equal(env.observation_low, low)
+        np.testing.assert_array_equal(env.observation_high, high)
+        np.testing.assert_array_equal(env.single_observation_space.low, low)
+        np.testing.assert_array_equal(env.single_observation_space.high, high)
+        np.testing.assert_array_equal(env.observation_space.low, np.tile(low, (NUM_ENVS, 1)))
+        np.testing.assert_array_equal(env.observation_space.high, np.tile(high, (NUM_ENVS, 1)))
         self.assertTrue(np.all(np.isinf(env.observation_space.low)))
+        self.assertTrue(np.all(np.isinf(env.observation_space.high)))
         np.testing.assert_array_equal(env.action_space.low, np.full((NUM_ENVS, 2), -LIMIT))
         np.testing.assert_array_equal(env.action_space.high, np.full((NUM_ENVS, 2), LIMIT))
         env.action_space.seed(3)
@@ -87,6 +129,37 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual((obs.shape, obs.dtype), ((3,), np.float32))
         env.reset()
         env.step(samples[1])
+
+    def test_normalized_actions(self):
+        """normalize_actions=True: Box(-1, 1) action spaces; [-1, 1] reaches the node mapped
+        linearly onto [action_low, action_high] (here +-20 rad/s), outside it clipped."""
+        from jetbot_rl import JetbotSB3VecEnv, JetbotVecEnv
+        env = JetbotVecEnv(NODE, timeout=30.0, normalize_actions=True)
+        try:
+            self.assertTrue(env.normalize_actions)
+            self.assertFalse(self.env.normalize_actions)
+            for space, shape in ((env.single_action_space, (2,)),
+                                 (env.action_space, (NUM_ENVS, 2))):
+                self.assertEqual((space.shape, space.dtype), (shape, np.float32))
+                np.testing.assert_array_equal(space.low, np.full(shape, -1.0))
+                np.testing.assert_array_equal(space.high, np.full(shape, 1.0))
+            np.testing.assert_array_equal(env.action_low, [-LIMIT, -LIMIT])  # the node's units
+            self.assertEqual(JetbotSB3VecEnv(env).action_space, env.single_action_space)
+            seen = TargetsSeen()
+            env.reset()
+            actions = np.array([[-1.0, 1.0], [0.0, 0.5], [2.0, -3.0]], dtype=np.float32)
+            obs, _, _, _, infos = env.step(actions)
+            np.testing.assert_array_equal(seen.next(0), [[-LIMIT, LIMIT], [0.0, 0.5 * LIMIT],
+                                                         [LIMIT, -LIMIT]])
+            np.testing.assert_array_equal(infos['episode_steps'], [1] * NUM_ENVS)
+            env.step(np.full((NUM_ENVS, 2), -0.25).tolist())  # a list of float64 is converted
+            np.testing.assert_array_equal(seen.next(1), np.full((NUM_ENVS, 2), -0.25 * LIMIT))
+            with self.assertRaisesRegex(ValueError, r'actions\[0, 1\] = nan'):
+                env.step([[0.0, np.nan]] + [[0.0, 0.0]] * (NUM_ENVS - 1))
+            seen.sub.unregister()
+        finally:
+            env.close()
+        self.env.reset()  # the class's client goes on after a reset
 
     def test_reset_step_shapes_and_dtypes(self):
         env = self.env
@@ -124,6 +197,10 @@ class TestVecEnv(unittest.TestCase):
         np.testing.assert_array_equal(truncations, [True] * NUM_ENVS)
         np.testing.assert_array_equal(terminations, [False] * NUM_ENVS)
         np.testing.assert_array_equal(infos['_final_obs'], [True] * NUM_ENVS)
+        # how they ended: a time-out, in a mask of its own (gymnasium's "_key" convention)
+        np.testing.assert_array_equal(infos['outcome'], [0] * NUM_ENVS)
+        np.testing.assert_array_equal(infos['_outcome'], [True] * NUM_ENVS)
+        self.assertIsNot(infos['_outcome'], infos['_final_obs'])
         final = infos['final_obs']
         self.assertEqual((final.shape, final.dtype), ((NUM_ENVS, 3), np.float32))
         # the final observation: still driving (env 0 backwards, env 2 at half speed), and the
@@ -136,12 +213,14 @@ class TestVecEnv(unittest.TestCase):
         np.testing.assert_array_equal(infos['episode_steps'], [0] * NUM_ENVS)
         obs, rewards, terminations, truncations, infos = env.step(actions)
         self.assertNotIn('final_obs', infos)
+        self.assertNotIn('_outcome', infos)
         self.assertFalse(truncations.any())
         np.testing.assert_array_equal(infos['episode_steps'], [1] * NUM_ENVS)
 
     def test_sb3_adapter(self):
         from jetbot_rl import JetbotSB3VecEnv
         from jetbot_rl.sb3 import HAVE_SB3
+        from jetbot_rl_test.sb3_stand_ins import update_info_buffer
         venv = JetbotSB3VecEnv(self.env)
         if not HAVE_SB3:
             self.assertIs(type(venv).__mro__[1], object)
@@ -162,6 +241,8 @@ class TestVecEnv(unittest.TestCase):
         self.assertEqual((dones.shape, dones.dtype), ((NUM_ENVS,), np.bool_))
         self.assertTrue(dones.all())
         self.assertEqual(len(infos), NUM_ENVS)
+        # a task without goals: no is_success, so SB3 logs no rollout/success_rate
+        self.assertEqual(len(update_info_buffer(infos, dones)), 0)
         for i, info in enumerate(infos):
             self.assertEqual(sorted(info), ['TimeLimit.truncated', 'terminal_observation'])
             self.assertIs(info['TimeLimit.truncated'], True)
@@ -183,6 +264,8 @@ class TestVecEnv(unittest.TestCase):
             venv.get_attr('task', indices=[NUM_ENVS])
         with self.assertRaises(NotImplementedError):
             venv.get_images()
+        with self.assertRaisesRegex(TypeError, 'JetbotVecEnv or a gymnasium vector wrapper'):
+            JetbotSB3VecEnv(np.zeros(3))
 
     def test_z_context_manager_and_close(self):  # last: a second client of the same node
         from jetbot_rl import JetbotVecEnv

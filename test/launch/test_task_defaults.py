@@ -1,0 +1,156 @@
+#!/usr/bin/python3
+"""Each task's defaults live in one place: launch/jetbot_env.launch picks the robot (urdf) and the
+task's env file (task_config) from `task` when they are left empty, and every launch file that
+starts an env passes them through. Compared on the parameters roslaunch would set
+(`roslaunch --dump-params`, no master): `jetbot_env.launch task:=navigation` is the env that
+`train.launch task:=navigation` trains (env node, several nodes, in-process), that play.launch,
+env_host.launch and view.launch start; a urdf or task_config given wins."""
+import os
+import subprocess
+import unittest
+
+import rospkg
+import rostest
+import yaml
+
+PKG = rospkg.RosPack().get_path('jetbot_rl')
+NAV_URDF = os.path.join(PKG, 'urdf', 'jetbot_lidar.urdf')
+NAV_ENV = os.path.join(PKG, 'config', 'navigation_env.yaml')
+JETBOT_URDF = os.path.join(PKG, 'urdf', 'jetbot.urdf')
+BASE_ENV = os.path.join(PKG, 'config', 'jetbot_env.yaml')
+# Parameters a launch file sets for its purpose (how the env runs, not which env it is):
+# train.launch a training run's (2 stepping threads, nobody watching), play.launch and view.launch
+# a watched one's, env_nodes.launch each node's prefix.
+RUN_PARAMS = {'num_envs', 'num_threads', 'mode', 'seed', 'publish_clock', 'tf_envs', 'robot_envs',
+              'real_time_factor', 'robot_prefix'}
+
+
+def dump(launch_file, *args):
+    """The parameters `roslaunch jetbot_rl launch_file args` would set: {name: value}."""
+    out = subprocess.run(['roslaunch', '--dump-params', 'jetbot_rl', launch_file] + list(args),
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
+                         timeout=60)
+    assert out.returncode == 0, 'roslaunch --dump-params %s %s failed:\n%s' % (
+        launch_file, ' '.join(args), out.stderr)
+    return yaml.safe_load(out.stdout)
+
+
+def under(params, ns):
+    """The parameters in namespace `ns` (e.g. /jetbot_env), by their name in it."""
+    prefix = ns.rstrip('/') + '/'
+    return {k[len(prefix):]: v for k, v in params.items() if k.startswith(prefix)}
+
+
+def text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def file_params(path):
+    """The parameters a YAML file sets, named as the node reads them (world/arena_size, ...)."""
+    def flat(tree, prefix=''):
+        out = {}
+        for key, value in tree.items():
+            if isinstance(value, dict):
+                out.update(flat(value, prefix + key + '/'))
+            else:
+                out[prefix + key] = value
+        return out
+    with open(path) as f:
+        return flat(yaml.safe_load(f))
+
+
+class TestTaskDefaults(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.nav = dump('jetbot_env.launch', 'task:=navigation')
+        cls.nav_env = under(cls.nav, '/jetbot_env')
+
+    def assertSameEnv(self, env, what, also_differ=()):
+        """`env` (a node's parameters) is the navigation env of jetbot_env.launch, but for the
+        run parameters (and `also_differ`)."""
+        allowed = RUN_PARAMS | set(also_differ)
+        keys = set(env) | set(self.nav_env)
+        differ = sorted(k for k in keys if env.get(k, '<unset>') != self.nav_env.get(k, '<unset>'))
+        self.assertEqual([k for k in differ if k not in allowed], [],
+                         '%s sets another env than jetbot_env.launch task:=navigation: %s'
+                         % (what, ', '.join('%s = %r, not %r' % (k, env.get(k, '<unset>'),
+                                                                 self.nav_env.get(k, '<unset>'))
+                                            for k in differ if k not in allowed)))
+
+    def test_navigation_defaults_of_jetbot_env_launch(self):
+        """task:=navigation alone: the lidar Jetbot and config/navigation_env.yaml, as given
+        explicitly."""
+        self.assertEqual(self.nav['/robot_description'], text(NAV_URDF))
+        self.assertEqual(self.nav_env['task'], 'navigation')
+        for key, value in file_params(NAV_ENV).items():
+            self.assertEqual(self.nav_env[key], value, key)
+        self.assertEqual(self.nav, dump('jetbot_env.launch', 'task:=navigation',
+                                        'urdf:=' + NAV_URDF, 'task_config:=' + NAV_ENV))
+
+    def test_train_launch_trains_that_env(self):
+        train = dump('train.launch', 'task:=navigation')
+        self.assertEqual(train['/robot_description'], text(NAV_URDF))
+        self.assertSameEnv(under(train, '/jetbot_env'), 'train.launch task:=navigation')
+        # the env in the trainer's process gets the same parameters in its ~env_config
+        in_process = dump('train.launch', 'task:=navigation', 'in_process:=true')
+        self.assertEqual(in_process['/robot_description'], text(NAV_URDF))
+        self.assertEqual(under(in_process, '/jetbot_env'), {})
+        self.assertSameEnv(under(in_process, '/jetbot_ppo_trainer/env_config'),
+                           'train.launch task:=navigation in_process:=true')
+        # several env nodes, and env nodes on another host
+        for launch_file, args in (('train.launch', ['num_env_nodes:=2']),
+                                  ('env_host.launch', ['num_env_nodes:=2'])):
+            params = dump(launch_file, 'task:=navigation', *args)
+            self.assertEqual(params['/robot_description'], text(NAV_URDF))
+            for k in range(2):
+                self.assertSameEnv(under(params, '/jetbot_env_%d' % k),
+                                   '%s task:=navigation %s' % (launch_file, ' '.join(args)))
+
+    def test_play_and_view_launch_start_that_env(self):
+        for launch_file, args in (('play.launch', ['checkpoint:=x']), ('view.launch', [])):
+            params = dump(launch_file, 'task:=navigation', *args)
+            self.assertEqual(params['/robot_description'], text(NAV_URDF), launch_file)
+            self.assertSameEnv(under(params, '/jetbot_env'), launch_file + ' task:=navigation')
+
+    def assertNoTaskFile(self, env, what, but=()):
+        """`env` holds none of navigation_env.yaml's settings (but those of `but`): its keys that
+        config/jetbot_env.yaml sets have that file's values, the others are unset."""
+        base = file_params(BASE_ENV)
+        for key in set(file_params(NAV_ENV)) - set(but):
+            if key in base:
+                self.assertEqual(env[key], base[key], '%s: %s' % (what, key))
+            else:
+                self.assertNotIn(key, env, '%s loads %s of navigation_env.yaml' % (what, key))
+
+    def test_other_tasks_keep_the_jetbot_without_a_task_file(self):
+        for launch_file, args in (('jetbot_env.launch', []), ('jetbot_env.launch', ['task:=command']),
+                                  ('train.launch', []), ('train.launch', ['task:=command']),
+                                  ('play.launch', ['checkpoint:=x']), ('view.launch', [])):
+            params = dump(launch_file, *args)
+            what = '%s %s' % (launch_file, ' '.join(args))
+            self.assertEqual(params['/robot_description'], text(JETBOT_URDF), what)
+            self.assertNoTaskFile(under(params, '/jetbot_env'), what)
+
+    def test_given_urdf_and_task_config_win(self):
+        tribot = os.path.join(PKG, 'urdf', 'examples', 'tribot.urdf')
+        other = os.path.join(PKG, 'test', 'sim2real', 'navigation_robot.yaml')
+        expected = file_params(other)
+        self.assertNotEqual({k: self.nav_env.get(k) for k in expected}, expected,
+                            'the test needs a task file that differs from navigation_env.yaml')
+        for launch_file, args in (('jetbot_env.launch', []), ('train.launch', []),
+                                  ('train.launch', ['in_process:=true']),
+                                  ('play.launch', ['checkpoint:=x'])):
+            params = dump(launch_file, 'task:=navigation', 'urdf:=' + tribot,
+                          'task_config:=' + other, *args)
+            what = '%s %s' % (launch_file, ' '.join(args))
+            self.assertEqual(params['/robot_description'], text(tribot), what)
+            ns = '/jetbot_ppo_trainer/env_config' if args == ['in_process:=true'] else '/jetbot_env'
+            env = under(params, ns)
+            for key, value in expected.items():
+                self.assertEqual(env[key], value, '%s: %s' % (what, key))
+            self.assertNoTaskFile(env, what, but=expected)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('jetbot_rl', 'test_task_defaults', TestTaskDefaults)
