@@ -26,7 +26,7 @@ for n in "${sizes[@]}"; do
   for t in 1 2; do
     core=$(rosrun jetbot_rl jetbot_rl_bench --num-envs "$n" --steps "$steps" --threads "$t" | field env_steps_per_s)
     roslaunch jetbot_rl jetbot_env.launch num_envs:="$n" num_threads:="$t" publish_clock:=false \
-      tf_envs:=0 robot_envs:=0 output:=log > "$bench_dir/env.log" 2>&1 &
+      tf_envs:=0 robot_view_envs:=0 output:=log > "$bench_dir/env.log" 2>&1 &
     launch_pid=$!
     out=$(rosrun jetbot_rl jetbot_rl_ros_bench --num-envs "$n" --steps "$steps")
     py_out=$(rosrun jetbot_rl python_bench.py --num-envs "$n" --steps "$steps")

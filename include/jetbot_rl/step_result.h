@@ -47,6 +47,8 @@ struct BatchSpec {
   /// Per observation component, the range it stays in (±inf where none is known).
   std::vector<float> observation_low, observation_high;
   std::vector<std::string> action_names;  ///< One per action component (the dof names).
+  /// The task has goals: its episodes end in success or collision as well as time-outs.
+  bool has_goals = false;
   /// The robot's cmd_vel kinematics (DiffDrive); 0 when it is no differential drive [m].
   double wheel_radius = 0.0, wheel_separation = 0.0;
   /// The scan beams the observation holds (navigation): their angles [rad, in the scanner's frame],
@@ -86,6 +88,9 @@ IfConfig<C, BatchSpec> visitFields(C& c, V&& v) {
     "Per observation component, the lowest value it takes (-inf where none is known).");
   v("observation_high", c.observation_high, AnyValue{},
     "Per observation component, the highest value it takes (inf where none is known).");
+  v("has_goals", c.has_goals, AnyValue{},
+    "The task has goals: its episodes end in success (OUTCOME_SUCCESS) or collision as well as "
+    "time-outs.");
   v("wheel_radius", c.wheel_radius, AnyValue{"m"},
     "The cmd_vel kinematics' wheel radius; 0: the robot is no differential drive.");
   v("wheel_separation", c.wheel_separation, AnyValue{"m"},

@@ -35,7 +35,8 @@ ActionLayout makeActionLayout(const RobotModel& robot, const EnvConfig& config,
         "must not exceed the fastest straight v the wheels allow (" + std::to_string(v) + " m/s)");
   }
   const double reverse = config.twist_reverse_speed < 0.0 ? v : config.twist_reverse_speed;
-  a.low = {static_cast<float>(-reverse), static_cast<float>(-w)};
+  // 0 - reverse: no reverse speed is 0, not -0 (which prints as "-0." in the spec).
+  a.low = {static_cast<float>(0.0 - reverse), static_cast<float>(-w)};
   a.high = {static_cast<float>(v), static_cast<float>(w)};
   a.names = {"linear_x", "angular_z"};
   return a;

@@ -295,6 +295,7 @@ BatchSpec BatchedEnv::spec() const {
     std::fill(spec.observation_high.begin(), spec.observation_high.end(), kInfinity);
   }
   spec.action_names = actions_layout_->names;
+  spec.has_goals = task_->observer().hasGoal();
   try {
     const DiffDrive drive = DiffDrive::fromEnv(*this);
     spec.wheel_radius = drive.wheelRadius();

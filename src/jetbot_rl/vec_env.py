@@ -37,9 +37,6 @@ NODE_SEED_STRIDE = ResetRequest.NODE_SEED_STRIDE
 #: ~spec fields every node of one JetbotVecEnv must agree on: every EnvSpec field but num_envs
 #: (read from the message, so that a field added to EnvSpec.msg is checked too).
 SHARED_SPEC_FIELDS = tuple(f for f in EnvSpec.__slots__ if f != 'num_envs')
-#: Tasks whose episodes can reach a goal (EnvStep.OUTCOME_SUCCESS); every episode of the others
-#: ends with OUTCOME_TIME_OUT.
-GOAL_TASKS = ('navigation',)
 _INT64_MAX = 2 ** 63 - 1
 
 
@@ -104,20 +101,16 @@ class JetbotVecEnv(_Base):
         self.node_num_envs = [link.num_envs for link in self._links]
         self.num_envs = sum(self.node_num_envs)
         self._offsets = np.cumsum([0] + self.node_num_envs)
-        self.obs_dim = int(first.obs_dim)
-        self.action_dim = int(first.action_dim)
-        self.task = first.task
-        self.observation_names = list(first.observation_names)
-        self.action_names = list(first.action_names)
+        # Every shared ~spec field as an attribute of its Python type (numbers as numpy arrays),
+        # read from the message: a field added to EnvSpec.msg is here too.
+        for field, slot_type in zip(EnvSpec.__slots__, EnvSpec._slot_types):
+            if field in SHARED_SPEC_FIELDS:
+                setattr(self, field, _spec_value(getattr(first, field), slot_type))
+        # The bounds: float32 arrays of their sizes, unbounded where the spec gives none.
         self.action_low = _bound(first.action_low, self.action_dim, -np.inf)
         self.action_high = _bound(first.action_high, self.action_dim, np.inf)
         self.observation_low = _bound(first.observation_low, self.obs_dim, -np.inf)
         self.observation_high = _bound(first.observation_high, self.obs_dim, np.inf)
-        self.control_dt = float(first.control_dt)
-        self.max_episode_length = int(first.max_episode_length)
-        self.has_goals = self.task in GOAL_TASKS
-        self.scan_beam_angles = np.array(first.scan_beam_angles, dtype=np.float64)
-        self.scan_range = np.array(first.scan_range, dtype=np.float64)
         n = self.num_envs
         if self.normalize_actions:
             if not (np.all(np.isfinite(self.action_low)) and np.all(np.isfinite(self.action_high))):
@@ -366,6 +359,22 @@ class JetbotVecEnv(_Base):
         return {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
 
 
+def _spec_value(value, slot_type):
+    """A ~spec field's value as Python holds it: lists of numbers as numpy arrays of their width,
+    lists of names as lists, integers as int, floats as float, bool as bool."""
+    if slot_type.endswith('[]'):
+        if slot_type.startswith('string'):
+            return list(value)
+        return np.array(value, dtype=np.float32 if slot_type.startswith('float32') else np.float64)
+    if slot_type == 'bool':
+        return bool(value)
+    if slot_type.startswith(('int', 'uint')):
+        return int(value)
+    if slot_type.startswith('float'):
+        return float(value)
+    return value
+
+
 def _bound(values, size, unbounded):
     """A float32 array of `size` bounds from a spec field: `unbounded` (+-inf) everywhere when the
     field is empty; a negated zero (-0., e.g. a twist action's lower bound forwards only) is 0."""
@@ -375,4 +384,4 @@ def _bound(values, size, unbounded):
 
 
 __all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',
-           'GOAL_TASKS', 'SAME_STEP']
+           'SAME_STEP']

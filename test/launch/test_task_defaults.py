@@ -21,7 +21,7 @@ BASE_ENV = os.path.join(PKG, 'config', 'jetbot_env.yaml')
 # Parameters a launch file sets for its purpose (how the env runs, not which env it is):
 # train.launch a training run's (2 stepping threads, nobody watching), play.launch and view.launch
 # a watched one's, env_nodes.launch each node's prefix.
-RUN_PARAMS = {'num_envs', 'num_threads', 'mode', 'seed', 'publish_clock', 'tf_envs', 'robot_envs',
+RUN_PARAMS = {'num_envs', 'num_threads', 'mode', 'seed', 'publish_clock', 'tf_envs', 'robot_view_envs',
               'real_time_factor', 'robot_prefix'}
 
 

@@ -33,7 +33,7 @@ MAX_RSS_GROWTH_KB = 50 * 1024
 MAX_ANSWER_S = 0.5
 
 
-CMD_VEL = 'env_0/cmd_vel'  # env 0's robot view (robot_envs 1), relative to the node's namespace
+CMD_VEL = 'env_0/cmd_vel'  # env 0's robot view (robot_view_envs 1), relative to the node's namespace
 
 
 def say(text):

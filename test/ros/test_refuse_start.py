@@ -142,20 +142,23 @@ class TestRefuseStart(unittest.TestCase):
     def test_cmd_vel_timeout_negative(self):
         self.refuses(['_cmd_vel_timeout:=-0.5'], 'cmd_vel_timeout = -0.5')
 
-    def test_robot_envs_negative(self):
-        self.refuses(['_robot_envs:=-1'], 'robot_envs = -1')
+    def test_robot_envs_was_renamed(self):
+        self.refuses(['_robot_envs:=1'], 'robot_envs = (set): was renamed robot_view_envs')
 
-    def test_env_prefix_dropped_with_two_robot_envs(self):
-        self.refuses(['_num_envs:=4', '_robot_envs:=2', '_env_prefix:=false'],
-                     'env_prefix = false', 'robot_envs 1, got 2')
+    def test_robot_view_envs_negative(self):
+        self.refuses(['_robot_view_envs:=-1'], 'robot_view_envs = -1')
+
+    def test_env_prefix_dropped_with_two_robot_view_envs(self):
+        self.refuses(['_num_envs:=4', '_robot_view_envs:=2', '_env_prefix:=false'],
+                     'env_prefix = false', 'robot_view_envs 1, got 2')
 
     # --- the robot view needs a differential drive ---
-    def test_robot_envs_without_a_differential_drive(self):
-        self.refuses(['_robot_envs:=1'], 'robot_envs = 1', 'differential drive', 'dof_names',
+    def test_robot_view_envs_without_a_differential_drive(self):
+        self.refuses(['_robot_view_envs:=1'], 'robot_view_envs = 1', 'differential drive', 'dof_names',
                      dof_names=['left_wheel_joint'])
 
-    def test_no_differential_drive_without_robot_envs_starts(self):
-        self.starts(['_robot_envs:=0'], dof_names=['left_wheel_joint'])
+    def test_no_differential_drive_without_robot_view_envs_starts(self):
+        self.starts(['_robot_view_envs:=0'], dof_names=['left_wheel_joint'])
 
     # --- URDFs as robot makers publish them ---
     def test_wheels_without_limit_need_the_parameter(self):

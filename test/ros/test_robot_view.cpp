@@ -197,7 +197,7 @@ TEST(EnvServerCmdVel, WithoutRobotEnvsCmdVelIsRejected) {
   auto env = makeJetbots(1);
   EnvServer server(*env, EnvMode::kRealtime, 0.5);
   EXPECT_FALSE(server.onCmdVel(0, twist(0.1, 0.0), Clock::now()));
-  EXPECT_NE(server.counters().last_cmd_vel_rejection.find("robot_envs 0"), std::string::npos);
+  EXPECT_NE(server.counters().last_cmd_vel_rejection.find("robot_view_envs 0"), std::string::npos);
 }
 
 // ---- parameters ----
@@ -205,9 +205,9 @@ TEST(EnvServerCmdVel, WithoutRobotEnvsCmdVelIsRejected) {
 TEST(RobotViewParams, DroppingThePrefixNeedsExactlyOneRobotEnv) {
   NodeParams p;
   p.setup.env.num_envs = 4;
-  p.robot_envs = 2;
+  p.robot_view_envs = 2;
   validateConfig(p);
-  EXPECT_EQ(robotEnvs(p), 2);
+  EXPECT_EQ(robotViewEnvs(p), 2);
   EXPECT_EQ(tfEnvs(p), 4);  // tf_envs 4
   p.env_prefix = false;
   try {
@@ -216,14 +216,15 @@ TEST(RobotViewParams, DroppingThePrefixNeedsExactlyOneRobotEnv) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("invalid env_prefix = false"), std::string::npos)
         << e.what();
-    EXPECT_NE(std::string(e.what()).find("robot_envs 1, got 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("robot_view_envs 1, got 2"), std::string::npos)
+        << e.what();
   }
-  p.robot_envs = 0;
+  p.robot_view_envs = 0;
   EXPECT_THROW(validateConfig(p), ConfigError);
-  p.robot_envs = 5;  // clamped to num_envs 1
+  p.robot_view_envs = 5;  // clamped to num_envs 1
   p.setup.env.num_envs = 1;
   validateConfig(p);
-  EXPECT_EQ(robotEnvs(p), 1);
+  EXPECT_EQ(robotViewEnvs(p), 1);
   p.tf_envs = 0;
   EXPECT_EQ(tfEnvs(p), 1);  // robot envs always get tf
   p.odom_rate = 0.0;

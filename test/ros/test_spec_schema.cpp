@@ -22,6 +22,7 @@ BatchSpec sampleSpec() {
   s.action_dim = 2;
   s.observation_names = {"beam_0", "goal_cos", "ang_vel_z"};
   s.action_names = {"linear_x", "angular_z"};
+  s.has_goals = true;
   s.scan_beam_angles = {0.5};
   s.scan_range = {0.15, 3.5};
   s.action_low = {0.0f, -10.5f};
@@ -48,6 +49,7 @@ TEST(SpecSchema, TheMessageConversionGoesBothWaysFieldForField) {
   const BatchSpec spec = sampleSpec();
   const EnvSpec msg = toMsg(spec);
   EXPECT_EQ(msg.num_envs, 7u);
+  EXPECT_TRUE(msg.has_goals);
   EXPECT_EQ(msg.wheel_separation, 0.1);
   EXPECT_EQ(msg.observation_low[0], 0.25f);
   EXPECT_EQ(msg.scan_range, (std::vector<double>{0.15, 3.5}));

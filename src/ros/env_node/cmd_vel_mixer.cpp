@@ -16,7 +16,7 @@ CmdVelMixer::CmdVelMixer(DiffDrive drive, int envs, double timeout, bool twist_a
 void CmdVelMixer::set(int env, const geometry_msgs::Twist& msg, SteadyTime received) {
   if (env < 0 || env >= envs()) {
     throw InputError("cmd_vel for env " + std::to_string(env) + ": only envs 0.." +
-                     std::to_string(envs() - 1) + " take cmd_vel (robot_envs)");
+                     std::to_string(envs() - 1) + " take cmd_vel (robot_view_envs)");
   }
   const std::pair<const char*, double> components[] = {
       {"linear.x", msg.linear.x},   {"linear.y", msg.linear.y},   {"linear.z", msg.linear.z},

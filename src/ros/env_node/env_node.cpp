@@ -40,10 +40,10 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       pnh_(pnh),
       diagnostics_(nh_, pnh_.getNamespace().substr(1) + ": environment", enumName(params.mode),
                    env_->numEnvs()) {
-  const int robot_envs = robotEnvs(params_);
-  if (robot_envs > 0) {
-    if (!drive) throw ConfigError("robot_envs > 0 needs the robot's differential drive");
-    server_.enableCmdVel(*drive, robot_envs, params_.cmd_vel_timeout);
+  const int robot_view_envs = robotViewEnvs(params_);
+  if (robot_view_envs > 0) {
+    if (!drive) throw ConfigError("robot_view_envs > 0 needs the robot's differential drive");
+    server_.enableCmdVel(*drive, robot_view_envs, params_.cmd_vel_timeout);
   }
   const EnvSpec spec = toMsg(env_->spec());
   spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
@@ -54,8 +54,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
                                                       names, params_.publish_link_tf));
   outputs_.push_back(
-      std::make_unique<RobotStateOutput>(nh_, *env_, robot_envs, params_.odom_rate, names));
-  outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_envs, names));
+      std::make_unique<RobotStateOutput>(nh_, *env_, robot_view_envs, params_.odom_rate, names));
+  outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names));
   if (env_->world() && env_->world()->map()) {
     map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
   }
@@ -92,7 +92,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       refused("set_command"));
   ros::NodeHandle inline_nh(nh_);  // the robot view's topics: in the node's namespace
   inline_nh.setCallbackQueue(&inline_queue_);
-  for (int e = 0; e < robot_envs; ++e) {
+  for (int e = 0; e < robot_view_envs; ++e) {
     const std::string topic = names.topic(e, "cmd_vel");
     cmd_vel_subs_.push_back(subscribeBounded<geometry_msgs::Twist>(
         inline_nh, topic, kQueueSize,
@@ -236,12 +236,14 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     drive = DiffDrive::fromEnv(*env);
     ROS_INFO("differential drive: %s", drive->describe().c_str());
   } catch (const Error& e) {
-    if (robotEnvs(params) > 0) {
-      ROS_FATAL("%s: robot_envs = %d needs a differential drive of %s: %s (or set robot_envs 0)",
-                pnh.getNamespace().c_str(), params.robot_envs, description_param.c_str(), e.what());
+    if (robotViewEnvs(params) > 0) {
+      ROS_FATAL(
+          "%s: robot_view_envs = %d needs a differential drive of %s: %s (or set robot_view_envs "
+          "0)",
+          pnh.getNamespace().c_str(), params.robot_view_envs, description_param.c_str(), e.what());
       return nullptr;
     }
-    ROS_INFO("no differential drive (robot_envs 0: not needed): %s", e.what());
+    ROS_INFO("no differential drive (robot_view_envs 0: not needed): %s", e.what());
   }
   return std::make_unique<EnvNode>(nh, pnh, params, std::move(env), drive);
 }

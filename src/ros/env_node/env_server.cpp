@@ -164,7 +164,7 @@ bool EnvServer::onCmdVel(int env, const geometry_msgs::Twist& msg, SteadyTime re
     return false;
   }
   if (!cmd_vel_) {
-    rejectCmdVel(topic + " rejected: no robot envs (robot_envs 0)");
+    rejectCmdVel(topic + " rejected: no robot envs (robot_view_envs 0)");
     return false;
   }
   try {

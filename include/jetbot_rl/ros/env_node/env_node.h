@@ -25,7 +25,7 @@ namespace jetbot_rl {
 
 /**
  * The jetbot_env node: an EnvServer (the lockstep/realtime logic) on topics and services, and
- * the robot view of the first robot_envs envs (cmd_vel, odom, joint_states, tf).
+ * the robot view of the first robot_view_envs envs (cmd_vel, odom, joint_states, tf).
  *
  * Topic and service callbacks run at once in roscpp's network thread (InlineCallbackQueue: a
  * lockstep round trip wakes no spinner), timers on the spinner. A call changes the state under
@@ -36,7 +36,7 @@ namespace jetbot_rl {
 class EnvNode {
  public:
   /// Serves `env` (built by the caller from the same params) under `pnh`; `drive`: the robot's
-  /// cmd_vel kinematics, needed when params.robot_envs > 0 (else ConfigError).
+  /// cmd_vel kinematics, needed when params.robot_view_envs > 0 (else ConfigError).
   EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params,
           std::unique_ptr<BatchedEnv> env, std::optional<DiffDrive> drive = std::nullopt);
 

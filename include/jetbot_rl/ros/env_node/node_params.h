@@ -22,9 +22,9 @@ struct NodeParams {
   int tf_envs = 4;                ///< Envs that get tf frames (clamped to num_envs).
   double tf_rate = 30.0;          ///< Largest tf (and marker) rate [Hz of simulation time].
   bool markers = true;            ///< Publish ~markers for the envs with tf.
-  /// Envs 0..robot_envs-1 get the robot view: cmd_vel in, odom and joint_states out, and tf
+  /// Envs 0..robot_view_envs-1 get the robot view: cmd_vel in, odom and joint_states out, and tf
   /// (clamped to num_envs).
-  int robot_envs = 1;
+  int robot_view_envs = 1;
   /// false: env 0's robot view topics and tf frames have no "env_0/" prefix (one robot env only).
   bool env_prefix = true;
   double cmd_vel_timeout = 0.5;  ///< Realtime mode: an older cmd_vel no longer drives [s, wall].
@@ -36,11 +36,13 @@ struct NodeParams {
   std::string robot_prefix;
 };
 
-/// Envs with the robot view: robot_envs clamped to num_envs.
-inline int robotEnvs(const NodeParams& p) { return std::min(p.robot_envs, p.setup.env.num_envs); }
+/// Envs with the robot view: robot_view_envs clamped to num_envs.
+inline int robotViewEnvs(const NodeParams& p) {
+  return std::min(p.robot_view_envs, p.setup.env.num_envs);
+}
 /// Envs with tf frames: the tf_envs and the robot envs, clamped to num_envs.
 inline int tfEnvs(const NodeParams& p) {
-  return std::min(std::max(p.tf_envs, p.robot_envs), p.setup.env.num_envs);
+  return std::min(std::max(p.tf_envs, p.robot_view_envs), p.setup.env.num_envs);
 }
 
 template <typename C, typename V>
@@ -61,12 +63,12 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
     "Largest tf and marker publishing rate.");
   v("markers", c.markers, AnyValue{},
     "Publish ~markers (body box, forward and command arrows) for the tf_envs envs.");
-  v("robot_envs", c.robot_envs, atLeast(0, "", "0: no robot view"),
-    "Envs 0..robot_envs-1 with the robot view: env_<i>/cmd_vel in, odom, joint_states and tf "
+  v("robot_view_envs", c.robot_view_envs, atLeast(0, "", "0: no robot view"),
+    "Envs 0..robot_view_envs-1 with the robot view: env_<i>/cmd_vel in, odom, joint_states and tf "
     "out (clamped to num_envs).");
   v("env_prefix", c.env_prefix, AnyValue{},
     "false: env 0's robot view without the env_0/ prefix (cmd_vel, odom, frame odom, ...); "
-    "robot_envs 1 only.");
+    "robot_view_envs 1 only.");
   v("cmd_vel_timeout", c.cmd_vel_timeout, positive("s, wall"),
     "Realtime mode: a cmd_vel older than this no longer drives its env.");
   v("odom_rate", c.odom_rate, positive("Hz of simulation time"),
@@ -79,7 +81,7 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
     "graph keep their robots apart (env_nodes.launch sets it to each node's name).");
 }
 
-/// The rules between fields (EnvConfig's, and env_prefix against robot_envs).
+/// The rules between fields (EnvConfig's, and env_prefix against robot_view_envs).
 void checkFieldRules(const NodeParams& params);
 
 }  // namespace jetbot_rl
