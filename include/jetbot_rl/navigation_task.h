@@ -41,7 +41,7 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
     "progress variant: reward per metre the robot got closer to the goal in a step.");
   v("nav/goal_reward", c.goal_reward, atLeast(0.0), "Reward on reaching the goal.");
   v("nav/collision_penalty", c.collision_penalty, atLeast(0.0),
-    "Penalty on a collision with the world (terminated, failure).");
+    "Penalty on a collision with the world (terminated, outcome collision).");
   v("nav/step_cost", c.step_cost, atLeast(0.0), "Cost of every control step.");
   v("nav/proximity_distance", c.proximity_distance, atLeast(0.0, "m"),
     "A scan range below this costs (the robot keeps off obstacles before it touches them).");

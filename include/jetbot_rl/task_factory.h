@@ -65,6 +65,10 @@ void checkFieldRules(const TaskConfig& config);
 /// Builds the configured task (ConfigError for a reward variant it does not take).
 std::unique_ptr<Task> makeTask(const TaskConfig& config);
 
+/// True when task `task` observes a laser scan (its observer needs ObserverSpec's beams);
+/// ConfigError naming `task` for an unknown one.
+bool observesScan(const std::string& task);
+
 /// The observer of task `spec.task` for a robot elsewhere (the same code the simulated task
 /// observes with); ConfigError naming `task` for an unknown one, or a navigation observer
 /// without its beams or range.

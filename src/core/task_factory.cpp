@@ -51,6 +51,10 @@ std::unique_ptr<Task> makeTask(const TaskConfig& config) {
   return std::make_unique<VelocityTask>();
 }
 
+bool observesScan(const std::string& task) {
+  return parseEnum<TaskKind>("task", task) == TaskKind::kNavigation;
+}
+
 std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec) {
   switch (parseEnum<TaskKind>("task", spec.task)) {
     case TaskKind::kCommand:

@@ -10,6 +10,7 @@
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/task_factory.h"
+#include "navigation_fixture.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -101,7 +102,9 @@ TEST_P(TaskObservers, TheObserverOfTheSpecObservesWhatTheSimulatedTaskObserved) 
             << spec.observation_names[k] << " of env " << e << " at step " << step;
       }
       // An env that goes on has not reached its goal.
-      if (!reset) EXPECT_FALSE(observer->reached(m)) << "env " << e << " at step " << step;
+      if (!reset) {
+        EXPECT_FALSE(observer->reached(m)) << "env " << e << " at step " << step;
+      }
       ++compared;
     }
   }
@@ -119,27 +122,13 @@ INSTANTIATE_TEST_SUITE_P(EveryTask, TaskObservers,
 TEST(NavigationObserver, ItsGoalTestIsTheTasksSuccess) {
   NavigationConfig c;
   c.goal_radius = 0.3;
-  NavigationTask task(c);
-  ScannerSpec scanner;
-  scanner.samples = 24;
-  scanner.range_min = 0.15;
-  scanner.range_max = 3.5;
-  TaskContext context;
-  context.scanner = &scanner;
-  context.action_dim = 2;
-  task.attach(context);
-  task.resize(1);
-  Rng rng(1);
-  task.resetEnv(0, rng);
   const Eigen::Vector2d goal(1.0, -0.5);
-  task.setGoal(0, goal);
-  std::vector<float> scan(24, 1.0f);
-  task.sense(0, {scan.data(), false, nullptr});
+  test::NavigationFixture f(goal, c);
   ObserverSpec o;
   o.task = "navigation";
-  o.scan_beams = 24;
-  o.range_min = 0.15;
-  o.range_max = 3.5;
+  o.scan_beams = 4;
+  o.range_min = 0.1;
+  o.range_max = 4.0;
   o.goal_radius = 0.3;
   const std::unique_ptr<TaskObserver> observer = makeObserver(o);
   std::mt19937 gen(5);
@@ -151,7 +140,7 @@ TEST(NavigationObserver, ItsGoalTestIsTheTasksSuccess) {
     MeasuredState m;
     m.root = s;
     m.goal = goal;
-    const bool success = task.terminated(0, s) && task.outcome(0) == Outcome::kSuccess;
+    const bool success = f.task.terminated(0, s) && f.task.outcome(0) == Outcome::kSuccess;
     ASSERT_EQ(observer->reached(m), success) << "at " << s.position.transpose();
     inside += success;
   }

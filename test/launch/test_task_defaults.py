@@ -151,6 +151,14 @@ class TestTaskDefaults(unittest.TestCase):
                 self.assertEqual(env[key], value, '%s: %s' % (what, key))
             self.assertNoTaskFile(env, what, but=expected)
 
+    def test_a_former_argument_reaches_the_node_which_refuses_it(self):
+        # roslaunch ignores an argument no launch file declares: robot_envs (now robot_view_envs)
+        # is declared and passed on, so that the node ends start-up naming the new name
+        # (test_refuse_start.py checks the refusal).
+        env = under(dump('jetbot_env.launch', 'robot_envs:=2'), '/jetbot_env')
+        self.assertEqual(env['robot_envs'], '2')
+        self.assertNotIn('robot_envs', under(dump('jetbot_env.launch'), '/jetbot_env'))
+
 
 if __name__ == '__main__':
     rostest.rosrun('jetbot_rl', 'test_task_defaults', TestTaskDefaults)

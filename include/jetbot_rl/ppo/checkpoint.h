@@ -20,7 +20,7 @@ struct CheckpointMeta {
   int action_dim = 0;           ///< Model output size.
   PpoConfig config;             ///< Hyper-parameters the model was trained with.
   /// The env it was trained on (num_envs 0): task, names, action bounds [env units] and control
-  /// step [s], which the robot mode runs it with. Empty in checkpoints of format 1.
+  /// step [s], which the deploy node runs it with. Empty in checkpoints of format 1.
   BatchSpec spec;
 };
 

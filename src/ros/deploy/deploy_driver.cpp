@@ -15,18 +15,17 @@
 namespace jetbot_rl {
 namespace {
 
+/// "" for odometry the observer can use, else why it is dropped.
 std::string checkOdometry(const nav_msgs::Odometry& m) {
   const auto& p = m.pose.pose.position;
   const auto& q = m.pose.pose.orientation;
   const auto& v = m.twist.twist.linear;
   const auto& w = m.twist.twist.angular;
+  bool usable = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-12;
   for (double x : {p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
-    if (!std::isfinite(x)) return "with a non-finite value or a zero quaternion";
+    usable = usable && std::isfinite(x);
   }
-  if (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w <= 1e-12) {
-    return "with a non-finite value or a zero quaternion";
-  }
-  return "";
+  return usable ? "" : "with a non-finite value or a zero quaternion";
 }
 
 }  // namespace
@@ -164,15 +163,15 @@ void DeployDriver::stand(const std::string& why, bool fresh_start) {
 
 void DeployDriver::onTick(const ros::WallTimerEvent&) {
   geometry_msgs::Twist twist;  // zero: stand
-  const FreshInput<nav_msgs::Odometry>* stale_odom = odom_.fresh() ? nullptr : &odom_;
+  const bool stale_odom = !odom_.fresh();
   const bool stale_scan = scan_ && !scan_->fresh();
-  if (goals_ && !goals_->goal()) {
-    stand("no goal", false);
-  } else if (stale_odom || stale_scan) {
+  if (stale_odom || stale_scan) {
     const std::string what =
         stale_odom ? "odometry on " + odom_.topic() : "scan on " + scan_->topic();
-    ROS_WARN_THROTTLE(2.0, "no fresh %s: stopping the robot", what.c_str());
+    ROS_WARN_THROTTLE(2.0, "no fresh %s: the robot stands", what.c_str());
     stand("no fresh " + what, true);  // its memory starts over with the next drive
+  } else if (goals_ && !goals_->goal()) {
+    stand("no goal", false);
   } else {
     MeasuredState state;
     state.root = rootStateOf(*odom_.latest());

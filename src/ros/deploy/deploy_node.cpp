@@ -64,7 +64,7 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
   std::optional<DiffDrive> kinematics;
   try {
     run = policyRunOf(*policy, params->checkpoint);
-    if (policy->meta().spec.task == "navigation") {
+    if (observesScan(policy->meta().spec.task)) {
       beams = scanBeamsOf(policy->meta().spec, *params, params->checkpoint);
     }
     const std::string& trained_task = policy->meta().spec.task;
