@@ -105,6 +105,34 @@ class TestParamDocs(unittest.TestCase):
         for table_id in ids:
             self.assertIn('<!-- BEGIN GENERATED PARAMS: %s -->' % table_id, docs, table_id)
 
+    def test_every_message_and_service_field_is_documented(self):
+        """docs/ros_interface.md has a section per message and service (its heading names it in
+        backticks) that names every field and constant of its definition."""
+        with open(os.path.join(PKG, 'docs', 'ros_interface.md')) as f:
+            page = f.read()
+        sections = re.split(r'^### ', page, flags=re.M)
+        checked = 0
+        for path in sorted(glob.glob(os.path.join(PKG, 'msg', '*.msg')) +
+                           glob.glob(os.path.join(PKG, 'srv', '*.srv'))):
+            name = os.path.splitext(os.path.basename(path))[0]
+            heading = re.compile(r'^[^\n]*`(jetbot_rl/)?%s`' % name)
+            section = [t for t in sections if heading.match(t)]
+            self.assertEqual(len(section), 1, '%s: no (or several) sections in ros_interface.md'
+                             % name)
+            for line in open(path):
+                words = line.split('#')[0].replace('=', ' ').split()
+                if len(words) < 2 or line.strip() == '---':
+                    continue
+                field = words[1]
+                # A message's table names a field in backticks (`header.stamp` names header); a
+                # service's section shows its definition in a code block.
+                pattern = (r'`%s[`.]' % field if path.endswith('.msg')
+                           else r'(^|\s)%s(\s|=|$)' % field)
+                self.assertTrue(re.search(pattern, section[0], re.M),
+                                '%s.%s is not documented' % (name, field))
+                checked += 1
+        self.assertGreater(checked, 40)
+
     def test_defaults_files_hold_the_cpp_defaults(self):
         checked = 0
         for path, node in DEFAULTS_FILES.items():
