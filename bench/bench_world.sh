@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The world and the laser scanner's cost (docs/performance.md): jetbot_rl_bench env steps/s per
-# thread for an empty world, random obstacles (a 4 x 4 m arena, 3 boxes, 2 cylinders) and the
-# office map, each with no scanner, 24 beams every step and 360 beams every 6th step, as a markdown
-# table with each row's ratio to the empty world without a scanner; then the memory per env.
+# thread for an empty world, random obstacles (a 4 x 4 m arena, 3 boxes, 2 cylinders), the office
+# map and clutter (a 10 x 10 m arena, 200 obstacles), each with no scanner, 24 beams every step,
+# 360 beams every 6th step and 360 beams every step, as a markdown table with each row's ratio to
+# the empty world without a scanner; then the memory per env.
 # Needs no ROS at run time (jetbot_rl_bench from the workspace, or $JETBOT_RL_BENCH):
 #   rosrun jetbot_rl bench_world.sh [N] [STEPS] [THREADS ...]     # defaults 256, 300, 1
 set -euo pipefail
@@ -30,19 +31,22 @@ echo "| threads | world | scanner | env steps/s | per thread | / empty, no scann
 echo "|---|---|---|---|---|---|"
 for t in "${threads[@]}"; do
   base=""
-  for world in none obstacles map; do
-    for scan in none 24 360; do
+  for world in none obstacles map clutter; do
+    for scan in none 24 360 360_every_step; do
       rate=$(run "$t" "$world" "$scan" | field env_steps_per_s)
       [ -n "$base" ] || base=$rate
       label=$scan
-      case "$scan" in none) label="none" ;; 24) label="24 beams every step" ;; 360) label="360 beams every 6th step" ;; esac
+      case "$scan" in
+        none) label="none" ;; 24) label="24 beams every step" ;;
+        360) label="360 beams every 6th step" ;; 360_every_step) label="360 beams every step" ;;
+      esac
       printf '| %d | %s | %s | %.0f | %.0f | %.2f |\n' "$t" "$world" "$label" "$rate" \
         "$(awk "BEGIN { print $rate / $t }")" "$(awk "BEGIN { print $rate / $base }")"
     done
   done
 done
 echo
-for world in none obstacles map; do
+for world in none obstacles map clutter; do
   small=$(steps=20 run 2 "$world" 24 1000 | field rss_kib)
   large=$(steps=20 run 2 "$world" 24 10000 | field rss_kib)
   echo "memory, world $world, 24 beams: $(awk "BEGIN { printf \"%.1f\", ($large - $small) / 9000 }") KiB per env (resident set growth from 1,000 to 10,000 envs)"

@@ -31,6 +31,8 @@ add_library(jetbot_rl_core
   src/core/physics_model.cpp
   src/core/randomization.cpp
   src/core/robot_model.cpp
+  src/core/scan_cast.cpp
+  src/core/scan_reading.cpp
   src/core/scan_sensor.cpp
   src/core/task.cpp
   src/core/task_factory.cpp

@@ -30,6 +30,8 @@ catkin_add_gtest(test_core
   test/core/test_motor_model.cpp
   test/core/test_occupancy_map.cpp
   test/core/test_laser_scanner.cpp
+  test/core/test_scan_cast.cpp
+  test/core/test_scan_reading.cpp
   test/core/test_world.cpp
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp

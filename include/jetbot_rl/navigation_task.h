@@ -28,8 +28,9 @@ struct NavigationConfig {
 template <typename C, typename V>
 IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
   v("nav/beams", c.beams, inRange(1, 100000),
-    "Beams of the observation, taken evenly from the scan (beam i: sample i x samples / beams) "
-    "and divided by range_max (+inf as 1, -inf as range_min / range_max).");
+    "Beams of the observation, read from the whole scan: beam i is the smallest reading of "
+    "samples [i x samples / beams, (i + 1) x samples / beams), so that nothing between two beams "
+    "is lost; divided by range_max (+inf as 1, -inf as range_min / range_max).");
   v("nav/goal_distance", c.goal_distance, intervalOf(positiveUpTo(1000.0, "m")),
     "Range of the goal's distance from the start, drawn at every reset (its direction uniform).");
   v("nav/goal_clearance", c.goal_clearance, atLeast(0.0, "m"),
@@ -110,6 +111,7 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   Outcome outcome(int env) const override { return static_cast<Outcome>(outcome_.at(env)); }
   std::vector<std::string> arrowNames() const override { return {"goal"}; }
   std::vector<double> scanBeamAngles() const override;
+  double scanBeamWidth() const override { return beam_width_; }
   Eigen::Vector2d arrowDirection(int env, int arrow) const override;
 
   /// Env `env`'s goal in the env frame [m].
@@ -127,7 +129,9 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   Variant variant_;
   TaskContext context_;
   NavigationObserver observer_;         // its scanner's range once attached
-  std::vector<int> beam_index_;         // per observation beam: its sample
+  std::vector<double> beam_angles_;     // per observation beam: its sector's start [rad]
+  double beam_width_ = 0.0;             // each sector's width [rad]
+  double scan_increment_ = 0.0;         // the scanner's sample spacing [rad]
   std::vector<Eigen::Vector2d> goals_;  // per env
   std::vector<unsigned char> drawn_;    // per env: the goal was drawn in the world at this reset
   std::vector<EnvSenses> senses_;       // per env

@@ -55,6 +55,9 @@ struct BatchSpec {
   /// and the scanner's [range_min, range_max] [m] they are clamped into and divided by. Empty
   /// when the task observes no scan.
   std::vector<double> scan_beam_angles, scan_range;
+  /// Each beam's sector [rad]: the smallest reading in [angle, angle + width); 0: the nearest
+  /// sample (and in checkpoints written before sectors).
+  double scan_beam_width = 0.0;
 };
 
 /// The fields of BatchSpec a trained policy is bound to: an env it acts on must have the same
@@ -71,6 +74,9 @@ IfConfig<C, BatchSpec> visitPolicyBoundFields(C& c, V&& v) {
     "The scan beams the observation holds, in the scanner's frame (empty: no scan observed).");
   v("scan_range", c.scan_range, AnyValue{"m"},
     "The scanner's [range_min, range_max] the beams are clamped into and divided by the max of.");
+  v("scan_beam_width", c.scan_beam_width, AnyValue{"rad"},
+    "Each beam's sector: the beam is the smallest reading in [angle, angle + width); 0: the "
+    "sample nearest to its angle.");
 }
 
 /// Every field of BatchSpec (EnvSpec.msg names the same).

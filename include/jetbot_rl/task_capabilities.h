@@ -31,6 +31,9 @@ class ScanObserving {
   /// Angles [rad, in the scanner's frame] of the scan beams the observation holds, in order: the
   /// geometry a robot elsewhere resamples its own scan to.
   virtual std::vector<double> scanBeamAngles() const = 0;
+  /// Each beam's sector [rad]: beam i is the smallest reading in [angle_i, angle_i + width)
+  /// (readBeams(), scan_reading.h); 0: the sample nearest to each beam.
+  virtual double scanBeamWidth() const = 0;
 };
 
 /// A task that places something in an env's world at each reset (a goal kept free of obstacles).

@@ -305,6 +305,7 @@ BatchSpec BatchedEnv::spec() const {
   }
   if (const auto* scan_task = capability<ScanObserving>(*task_)) {
     spec.scan_beam_angles = scan_task->scanBeamAngles();
+    spec.scan_beam_width = scan_task->scanBeamWidth();
     spec.scan_range = {scan_->spec().range_min, scan_->spec().range_max};
   }
   return spec;

@@ -35,6 +35,17 @@ constexpr double kMaxAngularVelocity = 1000.0;  // [rad/s]
 
 btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 
+// Up to this many collision objects (robot links, ground, the world's statics and obstacles) an
+// env tests every pair (btSimpleBroadphase: the fastest for a few, and the broadphase of the
+// worlds of earlier versions, whose trajectories it keeps bit for bit); beyond, a dynamic AABB
+// tree (btDbvtBroadphase), whose cost grows with the log of the count (docs/performance.md).
+constexpr int kSimpleBroadphaseObjects = 32;
+
+btBroadphaseInterface* makeBroadphase(int objects) {
+  if (objects <= kSimpleBroadphaseObjects) return new btSimpleBroadphase(objects);
+  return new btDbvtBroadphase();
+}
+
 }  // namespace
 
 EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
@@ -42,9 +53,9 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(new btSimpleBroadphase(
-          static_cast<int>(model.bodies().size()) + 1 +
-          (shapes ? static_cast<int>(shapes->statics().size()) + num_obstacles : 0))),
+      broadphase_(makeBroadphase(static_cast<int>(model.bodies().size()) + 1 +
+                                 (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
+                                 num_obstacles)),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           model.collisionConfiguration())),
       ground_(new btCollisionObject()),
@@ -57,8 +68,14 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
   world_->getSolverInfo().m_solverMode |= SOLVER_USE_ARTICULATED_WARMSTARTING;
   world_->getSolverInfo().m_articulatedWarmstartingFactor = 1.0;
 
+  // Only the robot moves: the AABBs of the ground, the world's statics and the obstacles are
+  // recomputed when they are placed (setObstacles), not at every physics step, which costs more
+  // than the rest of a step with a few hundred obstacles. Asleep, they still collide with the
+  // robot (a pair collides when either side is awake).
+  world_->setForceUpdateAllAabbs(false);
   ground_->setCollisionShape(const_cast<btCollisionShape*>(model.groundShape()));
   ground_->setFriction(kGroundFriction);
+  ground_->setActivationState(ISLAND_SLEEPING);
   world_->addCollisionObject(ground_.get(), kGroundGroup, kRobotGroup);
   const auto addStatic = [this](btCollisionShape* shape, const btTransform& pose) {
     auto object = std::make_unique<btCollisionObject>();
@@ -67,7 +84,10 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT);
     object->setFriction(kGroundFriction);
     object->setUserIndex(kWorldUserIndex);
+    object->setActivationState(ISLAND_SLEEPING);
     world_->addCollisionObject(object.get(), kWorldGroup, kRobotGroup);
+    // Its AABB with the contact threshold around it, as every update gives (adding gives none).
+    world_->updateSingleAabb(object.get());
     return object;
   };
   if (shapes) {

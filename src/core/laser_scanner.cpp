@@ -1,8 +1,5 @@
 #include "jetbot_rl/laser_scanner.h"
 
-#include <LinearMath/btAabbUtil2.h>
-#include <LinearMath/btVector3.h>
-
 #include <cmath>
 #include <sstream>
 
@@ -12,111 +9,6 @@ namespace jetbot_rl {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-/// Distance along the unit ray (o, d) to the box `b` (its frame: yaw about z at its centre,
-/// from the ground up to its height), if it is below `best`. Bullet's exact ray-AABB test in
-/// the box's frame.
-double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double best) {
-  const double c = std::cos(b.yaw), s = std::sin(b.yaw);
-  const Eigen::Vector2d rel = o.head<2>() - b.center;
-  const btVector3 from(static_cast<btScalar>(c * rel.x() + s * rel.y()),
-                       static_cast<btScalar>(-s * rel.x() + c * rel.y()),
-                       static_cast<btScalar>(o.z()));
-  const double dx = c * d.x() + s * d.y(), dy = -s * d.x() + c * d.y();
-  const auto inverse = [](double v) {
-    return static_cast<btScalar>(v == 0.0 ? BT_LARGE_FLOAT : 1.0 / v);
-  };
-  const btVector3 inv(inverse(dx), inverse(dy), inverse(d.z()));
-  const unsigned int sign[3] = {inv.x() < 0, inv.y() < 0, inv.z() < 0};
-  const btVector3 bounds[2] = {
-      btVector3(static_cast<btScalar>(-b.half_extents.x()),
-                static_cast<btScalar>(-b.half_extents.y()), 0),
-      btVector3(static_cast<btScalar>(b.half_extents.x()),
-                static_cast<btScalar>(b.half_extents.y()), static_cast<btScalar>(b.height))};
-  btScalar t = 0;
-  if (!btRayAabb2(from, inv, sign, bounds, t, 0, static_cast<btScalar>(best))) return best;
-  return std::max(0.0, static_cast<double>(t));
-}
-
-/// The same for a vertical cylinder: its side, or its top for a beam from above.
-double rayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& cyl,
-                   double best) {
-  const Eigen::Vector2d rel = o.head<2>() - cyl.center;
-  const Eigen::Vector2d d2 = d.head<2>();
-  const double r2 = cyl.radius * cyl.radius;
-  const auto within = [&](double t) {
-    const double z = o.z() + t * d.z();
-    return z >= 0.0 && z <= cyl.height;
-  };
-  const double a = d2.squaredNorm(), b = rel.dot(d2), c = rel.squaredNorm() - r2;
-  if (c <= 0.0 && within(0.0)) return 0.0;  // the beam starts inside
-  if (a > 0.0) {
-    const double disc = b * b - a * c;
-    if (disc >= 0.0) {
-      const double t = (-b - std::sqrt(disc)) / a;
-      if (t >= 0.0 && t < best && within(t)) return t;
-    }
-  }
-  if (d.z() < 0.0 && o.z() > cyl.height) {  // through the top
-    const double t = (cyl.height - o.z()) / d.z();
-    if (t < best && (rel + t * d2).squaredNorm() <= r2) return t;
-  }
-  return best;
-}
-
-/// The same for the map's obstacle cells (prisms up to `height`): a grid traversal in the map
-/// frame (Amanatides and Woo), the distance where the beam enters the first obstacle cell.
-double rayMap(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const WorldModel& world,
-              double height, double best) {
-  const OccupancyMap& map = *world.map();
-  const Eigen::Isometry2d to_map = world.mapPose().inverse();
-  const double res = map.resolution;
-  const Eigen::Vector2d p = to_map * Eigen::Vector2d(o.head<2>()) / res;  // [cells]
-  const Eigen::Vector2d v = to_map.linear() * Eigen::Vector2d(d.head<2>()) / res;
-  const int w = map.width, h = map.height;
-  // Enter the grid: t where the beam reaches [0, w] x [0, h].
-  double t = 0.0, t_exit = best;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double size = axis == 0 ? w : h;
-    if (v[axis] == 0.0) {
-      if (p[axis] < 0.0 || p[axis] >= size) return best;
-      continue;
-    }
-    double t0 = (0.0 - p[axis]) / v[axis], t1 = (size - p[axis]) / v[axis];
-    if (t0 > t1) std::swap(t0, t1);
-    t = std::max(t, t0);
-    t_exit = std::min(t_exit, t1);
-  }
-  if (t > t_exit) return best;
-  const Eigen::Vector2d start = p + t * v;
-  int x = std::min(w - 1, std::max(0, static_cast<int>(std::floor(start.x()))));
-  int y = std::min(h - 1, std::max(0, static_cast<int>(std::floor(start.y()))));
-  const int step_x = v.x() > 0 ? 1 : -1, step_y = v.y() > 0 ? 1 : -1;
-  const double inf = std::numeric_limits<double>::infinity();
-  const double delta_x = v.x() != 0.0 ? std::abs(1.0 / v.x()) : inf;
-  const double delta_y = v.y() != 0.0 ? std::abs(1.0 / v.y()) : inf;
-  double next_x = v.x() != 0.0 ? ((x + (step_x > 0 ? 1 : 0)) - p.x()) / v.x() : inf;
-  double next_y = v.y() != 0.0 ? ((y + (step_y > 0 ? 1 : 0)) - p.y()) / v.y() : inf;
-  const std::vector<std::uint8_t>& cells = world.obstacleCells();
-  while (t < best) {
-    if (cells[static_cast<std::size_t>(y) * w + x]) {
-      const double z = o.z() + t * d.z();
-      if (z >= 0.0 && z <= height) return t;
-    }
-    if (next_x < next_y) {
-      t = next_x;
-      next_x += delta_x;
-      x += step_x;
-      if (x < 0 || x >= w) return best;
-    } else {
-      t = next_y;
-      next_y += delta_y;
-      y += step_y;
-      if (y < 0 || y >= h) return best;
-    }
-  }
-  return best;
-}
 
 template <typename T>
 std::string text(T v) {
@@ -222,66 +114,6 @@ std::string describeScanner(const ScannerSpec& s) {
       << text(s.noise_mean) << " std " << text(s.noise_std) << " m (" << s.noise_from << "), every "
       << s.update_every << " control steps (" << s.update_from << ")";
   return out.str();
-}
-
-void castScan(const ScannerSpec& spec, const WorldModel* world,
-              const std::vector<Obstacle>& obstacles, const Eigen::Isometry3d& sensor, Rng& noise,
-              float* ranges) {
-  const Eigen::Vector3d o = sensor.translation();
-  const Eigen::Matrix3d basis = sensor.linear();
-  const double reach = spec.range_max;
-  // What a beam may hit: the walls and placed obstacles within reach (never the ground, never the
-  // robot), and the map.
-  thread_local std::vector<const Obstacle*> near;
-  near.clear();
-  const auto consider = [&](const Obstacle& ob) {
-    if (ob.placed && (ob.center - o.head<2>()).norm() - ob.boundingRadius() <= reach) {
-      near.push_back(&ob);
-    }
-  };
-  if (world) {
-    for (const Obstacle& w : world->walls()) consider(w);
-  }
-  for (const Obstacle& ob : obstacles) consider(ob);
-  const bool map = world && world->map();
-  const double height = world ? world->config().obstacle_height : 0.0;
-  const double increment = spec.angleIncrement();
-  for (int k = 0; k < spec.samples; ++k) {
-    const double angle = spec.min_angle + k * increment;
-    const Eigen::Vector3d d = basis * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
-    double best = reach;
-    bool hit = false;
-    for (const Obstacle* ob : near) {
-      // Cheap rejection: the beam's line misses the bounding circle, or it lies behind.
-      const Eigen::Vector2d rel = ob->center - o.head<2>();
-      const double along = rel.dot(d.head<2>()), r = ob->boundingRadius();
-      const double across2 = rel.squaredNorm() - along * along / d.head<2>().squaredNorm();
-      if (along < -r || across2 > r * r) continue;
-      const double t = ob->shape == Obstacle::Shape::kBox ? rayBox(o, d, *ob, best)
-                                                          : rayCylinder(o, d, *ob, best);
-      if (t < best) {
-        best = t;
-        hit = true;
-      }
-    }
-    if (map) {
-      const double t = rayMap(o, d, *world, height, best);
-      if (t < best) {
-        best = t;
-        hit = true;
-      }
-    }
-    float value = kNoReturn;
-    if (hit) {
-      const double r = spec.noise_std > 0.0 || spec.noise_mean != 0.0
-                           ? best + spec.noise_mean + spec.noise_std * noise.gaussian()
-                           : best;
-      value = r > spec.range_max   ? kNoReturn
-              : r < spec.range_min ? kTooClose
-                                   : static_cast<float>(r);
-    }
-    ranges[k] = value;
-  }
 }
 
 }  // namespace jetbot_rl

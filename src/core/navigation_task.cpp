@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/laser_scanner.h"
+#include "jetbot_rl/scan_reading.h"
 #include "jetbot_rl/world_model.h"
 
 namespace jetbot_rl {
@@ -95,24 +97,25 @@ void NavigationTask::attach(const TaskContext& context) {
         "nav/beams", config_.beams,
         "must be <= the scanner's samples (" + std::to_string(context.scanner->samples) + ")");
   }
-  beam_index_.clear();
+  // Beam i: the smallest reading of its share of the samples, [floor(i S / K), floor((i + 1) S /
+  // K)) as angles, so that the beams read the whole scan (with S = K, sample i itself).
+  const ScannerSpec& scanner = *context.scanner;
+  // One sample has no spacing: any positive increment reads it.
+  scan_increment_ = scanner.samples > 1 ? scanner.angleIncrement() : 1.0;
+  beam_angles_.clear();
   for (int i = 0; i < config_.beams; ++i) {
-    beam_index_.push_back(
-        static_cast<int>(static_cast<long long>(i) * context.scanner->samples / config_.beams));
+    const long long k = static_cast<long long>(i) * scanner.samples / config_.beams;
+    beam_angles_.push_back(scanner.min_angle + static_cast<double>(k) * scanner.angleIncrement());
   }
+  beam_width_ = scanner.samples > 1
+                    ? scan_increment_ * static_cast<double>(scanner.samples) / config_.beams
+                    : 0.0;
   observer_ =
       NavigationObserver(config_.beams, context.scanner->range_min, context.scanner->range_max,
                          context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius);
 }
 
-std::vector<double> NavigationTask::scanBeamAngles() const {
-  std::vector<double> angles;
-  if (!context_.scanner) return angles;  // not attached yet
-  for (int k : beam_index_) {
-    angles.push_back(context_.scanner->min_angle + k * context_.scanner->angleIncrement());
-  }
-  return angles;
-}
+std::vector<double> NavigationTask::scanBeamAngles() const { return beam_angles_; }
 
 void NavigationTask::resize(int num_envs) {
   goals_.assign(num_envs, Eigen::Vector2d(config_.goal_distance[0], 0.0));
@@ -173,10 +176,16 @@ double NavigationTask::distance(int env, const RootState& state) const {
 
 void NavigationTask::observe(int env, const RootState& state, float* obs) const {
   thread_local std::vector<float> beams;
-  beams.resize(beam_index_.size());
+  beams.resize(beam_angles_.size());
   const float* scan = senses_[env].scan;
-  for (std::size_t i = 0; i < beam_index_.size(); ++i)
-    beams[i] = scan ? scan[beam_index_[i]] : 0.0f;
+  if (scan) {
+    const ScanView view{scan, context_.scanner->samples, context_.scanner->min_angle,
+                        scan_increment_};
+    std::string error;
+    if (!readBeams(view, beam_angles_, beam_width_, beams.data(), error)) {
+      std::fill(beams.begin(), beams.end(), std::numeric_limits<float>::quiet_NaN());
+    }
+  }
   MeasuredState measured;
   measured.root = state;
   measured.scan = scan ? beams.data() : nullptr;

@@ -11,7 +11,8 @@
 namespace jetbot_rl {
 namespace test {
 
-/// A task with 4 beams over an 8-sample scanner of range [0.1, 4], for env 0, goal `goal`.
+/// A task with 4 beams over an 8-sample scanner of range [0.1, 4] (beam i: samples 2i and
+/// 2i + 1), for env 0, goal `goal`.
 struct NavigationFixture {
   ScannerSpec scanner;
   NavigationTask task;
@@ -23,6 +24,8 @@ struct NavigationFixture {
                              NavigationTask::Variant variant = NavigationTask::Variant::kProgress)
       : task((config.beams = 4, config), variant) {
     scanner.samples = 8;
+    scanner.min_angle = -3.14159265358979323846;  // a full turn, 45 degrees apart
+    scanner.max_angle = 3.14159265358979323846 * 3 / 4;
     scanner.range_min = 0.1;
     scanner.range_max = 4.0;
     TaskContext context;

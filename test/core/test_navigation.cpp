@@ -34,11 +34,17 @@ TEST(NavigationTask, ObservesBeamsGoalSpeedYawRateAndTheLastAction) {
   EXPECT_EQ(names[4], "goal_distance");
   EXPECT_EQ(names[10], "last_action_1");
   const std::vector<float> o = f.observe(at(0, 0, 0, 0.3, -0.5));
-  // Beams 0, 2, 4, 6 of the scan, divided by range_max (+inf: range_max, -inf: range_min).
+  // Beam i: the smallest of samples 2i and 2i + 1, clamped into the range and divided by
+  // range_max (+inf: range_max, -inf: range_min).
   EXPECT_FLOAT_EQ(o[0], 0.25f);
   EXPECT_FLOAT_EQ(o[1], 1.0f);
   EXPECT_FLOAT_EQ(o[2], 0.025f);
   EXPECT_FLOAT_EQ(o[3], 0.5f);
+  f.scan[7] = 1.0f;  // nearer than beam 3's first sample: the sector reads it
+  f.sense(false);
+  EXPECT_FLOAT_EQ(f.observe(at(0, 0, 0, 0.3, -0.5))[3], 0.25f);
+  f.scan[7] = 9.0f;
+  f.sense(false);
   EXPECT_NEAR(o[4], 2.0, 1e-6);  // straight ahead: distance 2, angle 0
   EXPECT_NEAR(o[5], 1.0, 1e-6);
   EXPECT_NEAR(o[6], 0.0, 1e-6);

@@ -9,6 +9,7 @@
 #include "jetbot_rl/command_task.h"
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/scan_reading.h"
 #include "jetbot_rl/task_factory.h"
 #include "navigation_fixture.h"
 #include "test_util.h"
@@ -46,15 +47,14 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& spec) {
   return makeObserver(o);
 }
 
-/// Env `e`'s scan at the spec's beam angles: the sample nearest each angle, as a robot's scan
-/// is resampled.
+/// Env `e`'s scan read at the spec's beams (angles and sectors), as a robot's scan is read.
 std::vector<float> scanAtBeams(const BatchedEnv& env, int e, const BatchSpec& spec) {
   const ScannerSpec& s = *env.scanner();
-  std::vector<float> ranges;
-  for (double angle : spec.scan_beam_angles) {
-    const long k = std::lround((angle - s.min_angle) / s.angleIncrement());
-    ranges.push_back(env.view(e).scan()[k]);
-  }
+  const ScanView view{env.view(e).scan(), s.samples, s.min_angle, s.angleIncrement()};
+  std::vector<float> ranges(spec.scan_beam_angles.size());
+  std::string error;
+  EXPECT_TRUE(readBeams(view, spec.scan_beam_angles, spec.scan_beam_width, ranges.data(), error))
+      << error;
   return ranges;
 }
 

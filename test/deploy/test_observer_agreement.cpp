@@ -51,6 +51,7 @@ TEST_P(ObserverAgreement, TheRobotViewsMessagesObservedAsTheDeployNodeDoGiveTheT
   const BatchSpec spec = batch->spec();
   ScanBeams beams;
   beams.angles = spec.scan_beam_angles;
+  beams.width = spec.scan_beam_width;  // 3 samples a beam: each the smallest of its sector
   if (!spec.scan_range.empty()) {
     beams.range_min = spec.scan_range[0];
     beams.range_max = spec.scan_range[1];
@@ -78,7 +79,7 @@ TEST_P(ObserverAgreement, TheRobotViewsMessagesObservedAsTheDeployNodeDoGiveTheT
     if (observer->scanBeams() > 0) {
       updateScan(*batch, 0, odom.header.stamp, scan);
       std::string error;
-      ASSERT_TRUE(resampleScan(scan, beams.angles, ranges, error)) << error;
+      ASSERT_TRUE(resampleScan(scan, beams, ranges, error)) << error;
       m.scan = ranges.data();
     }
     if (const auto* nav = dynamic_cast<const NavigationTask*>(&batch->task()))

@@ -4,6 +4,7 @@
 // parameters that disagree with it refused naming them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -27,12 +28,19 @@ sensor_msgs::LaserScan scan(int n, double angle_min, double increment) {
   return s;
 }
 
+/// Beams at `angles` read from the nearest sample (a checkpoint without sectors).
+ScanBeams nearest(const std::vector<double>& angles) {
+  ScanBeams beams;
+  beams.angles = angles;
+  return beams;
+}
+
 /// The scan's readings at `angles` as the navigation observer of a scanner of [range_min,
 /// range_max] holds them.
 std::vector<float> observedBeams(const sensor_msgs::LaserScan& s, const std::vector<double>& angles,
                                  double range_min, double range_max, std::string& error) {
   std::vector<float> ranges;
-  if (!resampleScan(s, angles, ranges, error)) return {};
+  if (!resampleScan(s, nearest(angles), ranges, error)) return {};
   const NavigationObserver observer(static_cast<int>(angles.size()), range_min, range_max, 2, 0.2);
   std::vector<float> beams;
   for (float r : ranges) beams.push_back(observer.beamValue(r));
@@ -47,7 +55,8 @@ TEST(ResampleScan, NearestSampleOfAFullTurnWrapsAndInfinitiesReadTheRangeEnds) {
   std::string error;
   // -pi/4 wraps to sample 7; 0.1 rad is nearest sample 0; pi/2 is 2; pi is 4; -pi/2 wraps to 6.
   std::vector<float> ranges;
-  ASSERT_TRUE(resampleScan(s, {-kPi / 4, 0.1, kPi / 2, kPi, -kPi / 2}, ranges, error)) << error;
+  ASSERT_TRUE(resampleScan(s, nearest({-kPi / 4, 0.1, kPi / 2, kPi, -kPi / 2}), ranges, error))
+      << error;
   ASSERT_EQ(ranges.size(), 5u);
   EXPECT_EQ(ranges[0], 1.7f);
   EXPECT_EQ(ranges[1], 1.0f);
@@ -70,9 +79,28 @@ TEST(ResampleScan, ABeamOutsideAPartialScanIsRefusedNamingTheAngles) {
   const sensor_msgs::LaserScan s = scan(5, -1.0, 0.5);  // [-1, 1] rad
   std::string error;
   std::vector<float> ranges;
-  EXPECT_FALSE(resampleScan(s, {0.0, 2.0}, ranges, error));
+  EXPECT_FALSE(resampleScan(s, nearest({0.0, 2.0}), ranges, error));
   EXPECT_NE(error.find("the policy needs a beam at 2.0"), std::string::npos) << error;
   EXPECT_NE(error.find("the scan covers [-1.0"), std::string::npos) << error;
+}
+
+TEST(ResampleScan, SectorsTakeTheSmallestReadingAndAClockwiseScanReadsTheSame) {
+  sensor_msgs::LaserScan s = scan(8, 0.0, kPi / 4);  // readings 1.0, 1.1, ..., 1.7
+  s.ranges[3] = 0.5f;
+  ScanBeams beams = nearest({0.0, kPi / 2, kPi, 3 * kPi / 2});
+  beams.width = kPi / 2;  // two samples a beam
+  std::vector<float> ranges;
+  std::string error;
+  ASSERT_TRUE(resampleScan(s, beams, ranges, error)) << error;
+  EXPECT_EQ(ranges, (std::vector<float>{s.ranges[0], 0.5f, s.ranges[4], s.ranges[6]}));
+  // The same scan from a driver that lists it clockwise (negative increment).
+  sensor_msgs::LaserScan clockwise = s;
+  std::reverse(clockwise.ranges.begin(), clockwise.ranges.end());
+  clockwise.angle_min = static_cast<float>(7 * kPi / 4);
+  clockwise.angle_increment = static_cast<float>(-kPi / 4);
+  std::vector<float> from_clockwise;
+  ASSERT_TRUE(resampleScan(clockwise, beams, from_clockwise, error)) << error;
+  EXPECT_EQ(from_clockwise, ranges);
 }
 
 /// The spec of an env whose navigation task observed 3 beams.
@@ -81,6 +109,7 @@ BatchSpec trainedWithBeams() {
   spec.task = "navigation";
   spec.scan_beam_angles = {-1.0, 0.0, 1.0};
   spec.scan_range = {0.15, 3.5};
+  spec.scan_beam_width = 0.5;
   return spec;
 }
 
@@ -88,6 +117,7 @@ TEST(ScanBeamsOf, TheCheckpointsBeamsAndParametersThatAgreeWithThem) {
   DeployParams p;
   ScanBeams beams = scanBeamsOf(trainedWithBeams(), p, "nav.pt");
   EXPECT_EQ(beams.angles, (std::vector<double>{-1.0, 0.0, 1.0}));
+  EXPECT_EQ(beams.width, 0.5);
   EXPECT_EQ(beams.range_min, 0.15);
   EXPECT_EQ(beams.range_max, 3.5);
   p.scan_angles = {-1.0, 1.0};

@@ -106,7 +106,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
         nh, p.scan_topic, "scan", p.scan_timeout,
         [this](const sensor_msgs::LaserScan& scan) {
           std::string error;
-          return resampleScan(scan, beams_.angles, ranges_, error) ? "" : "refused: " + error;
+          return resampleScan(scan, beams_, ranges_, error) ? "" : "refused: " + error;
         },
         drops_);
     inputs += ", " + scan_->topic();
@@ -177,7 +177,7 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
     state.root = rootStateOf(*odom_.latest());
     if (scan_) {
       std::string error;
-      resampleScan(*scan_->latest(), beams_.angles, ranges_, error);  // it took it: it covers them
+      resampleScan(*scan_->latest(), beams_, ranges_, error);  // it took it: it covers them
       state.scan = ranges_.data();
     }
     if (goals_) state.goal = *goals_->goal();

@@ -2,12 +2,9 @@
 
 #include <cmath>
 
+#include "jetbot_rl/scan_reading.h"
+
 namespace jetbot_rl {
-namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
-
-}  // namespace
 
 ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
                       const std::string& checkpoint) {
@@ -36,6 +33,7 @@ ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
   beams.angles = trained.scan_beam_angles;
   beams.range_min = trained.scan_range[0];
   beams.range_max = trained.scan_range[1];
+  beams.width = trained.scan_beam_width;
   // Given as well: they must say what the checkpoint says (anything else would misread the scan).
   const std::string leave = " (leave it unset: the checkpoint gives it)";
   if (p.scan_beams != 0 && p.scan_beams != static_cast<int>(beams.angles.size())) {
@@ -57,34 +55,20 @@ ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
   return beams;
 }
 
-bool resampleScan(const sensor_msgs::LaserScan& scan, const std::vector<double>& beam_angles,
+bool resampleScan(const sensor_msgs::LaserScan& scan, const ScanBeams& beams,
                   std::vector<float>& ranges, std::string& error) {
-  const int n = static_cast<int>(scan.ranges.size());
-  const double inc = scan.angle_increment;
-  if (n == 0 || !std::isfinite(inc) || inc == 0.0 || !std::isfinite(scan.angle_min)) {
-    error = "the scan has no ranges or no angle increment";
-    return false;
+  ScanView view{scan.ranges.data(), static_cast<int>(scan.ranges.size()), scan.angle_min,
+                scan.angle_increment};
+  thread_local std::vector<float> reversed;
+  if (scan.angle_increment < 0.0f) {  // clockwise: the same samples in ascending angles
+    reversed.assign(scan.ranges.rbegin(), scan.ranges.rend());
+    view.ranges = reversed.data();
+    view.angle_min = scan.angle_min + static_cast<double>(scan.angle_increment) *
+                                          static_cast<double>(scan.ranges.size() - 1);
+    view.increment = -static_cast<double>(scan.angle_increment);
   }
-  const double span = inc * n;  // the angle the samples cover
-  const bool full_turn = std::abs(span) >= kTwoPi - std::abs(inc) * 1.5;
-  ranges.clear();
-  for (double angle : beam_angles) {
-    double k = (angle - scan.angle_min) / inc;
-    if (full_turn) {
-      k = std::fmod(k, static_cast<double>(n));
-      if (k < 0) k += n;
-    }
-    int i = static_cast<int>(std::lround(k));
-    if (full_turn) i %= n;
-    if (i < 0 || i >= n) {
-      error = "the scan covers [" + std::to_string(scan.angle_min) + ", " +
-              std::to_string(scan.angle_min + inc * (n - 1)) +
-              "] rad; the policy needs a beam at " + std::to_string(angle) + " rad";
-      return false;
-    }
-    ranges.push_back(scan.ranges[i]);
-  }
-  return true;
+  ranges.resize(beams.angles.size());
+  return readBeams(view, beams.angles, beams.width, ranges.data(), error);
 }
 
 }  // namespace jetbot_rl

@@ -15,6 +15,7 @@ struct ScanBeams {
   std::vector<double> angles;  ///< In the scanner's frame, in observation order [rad].
   double range_min = 0.0;      ///< The trained scanner's range: readings are clamped into it...
   double range_max = 0.0;      ///< ... and divided by range_max [m] (the observer does).
+  double width = 0.0;          ///< Each beam's sector [rad] (readBeams()); 0: the nearest sample.
 };
 
 /// The beams of the policy trained on `trained` (its checkpoint's env spec); scan_beams,
@@ -24,11 +25,11 @@ struct ScanBeams {
 ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
                       const std::string& checkpoint);
 
-/// The readings of `scan` at `beam_angles` (the nearest sample to each; a scan over a full turn
-/// wraps) into `ranges`, as the scan holds them (REP 117 values, NaN included: the observer turns
-/// them into what the policy saw). False with `error` naming the angles when a beam lies outside
-/// what the scan covers.
-bool resampleScan(const sensor_msgs::LaserScan& scan, const std::vector<double>& beam_angles,
+/// The readings of `scan` at the policy's `beams` into `ranges`, as the simulated task reads its
+/// own scan (readBeams(), scan_reading.h: each beam the smallest reading of its sector, REP 117
+/// values as the scan holds them; a scan with a negative increment read in its angles' order).
+/// False with `error` naming the angles when a beam lies outside what the scan covers.
+bool resampleScan(const sensor_msgs::LaserScan& scan, const ScanBeams& beams,
                   std::vector<float>& ranges, std::string& error);
 
 }  // namespace jetbot_rl

@@ -1,0 +1,26 @@
+#pragma once
+
+// The exact ray tests of the laser scanner (scan_cast.cpp): the distance along a unit ray to an
+// obstacle or the map's cells, if it is below `best` (else `best`).
+
+#include <Eigen/Geometry>
+
+#include "jetbot_rl/world_model.h"
+
+namespace jetbot_rl {
+
+/// To box `b` (its frame: yaw about z at its centre, from the ground up to its height): Bullet's
+/// exact ray-AABB test in the box's frame.
+double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double best);
+/// The same with the box's cos(yaw) `c` and sin(yaw) `s` given.
+double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double c,
+              double s, double best);
+/// To a vertical cylinder: its side, or its top for a beam from above.
+double rayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& cyl,
+                   double best);
+/// To the map's obstacle cells (prisms up to `height`): a grid traversal in the map frame
+/// (Amanatides and Woo), the distance where the beam enters the first obstacle cell.
+double rayMap(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const WorldModel& world,
+              double height, double best);
+
+}  // namespace jetbot_rl
