@@ -35,16 +35,12 @@ constexpr double kMaxAngularVelocity = 1000.0;  // [rad/s]
 
 btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 
-// Up to this many collision objects (robot links, ground, the world's statics and obstacles) an
-// env tests every pair (btSimpleBroadphase: the fastest for a few, and the broadphase of the
-// worlds of earlier versions, whose trajectories it keeps bit for bit); beyond, a dynamic AABB
-// tree (btDbvtBroadphase), whose cost grows with the log of the count (docs/performance.md).
-constexpr int kSimpleBroadphaseObjects = 32;
-
-btBroadphaseInterface* makeBroadphase(int objects) {
-  if (objects <= kSimpleBroadphaseObjects) return new btSimpleBroadphase(objects);
-  return new btDbvtBroadphase();
-}
+// Beyond this many obstacle slots an env's obstacles are the children of one static compound
+// shape (its own AABB tree finds the few near the robot) instead of one collision object each:
+// Bullet's per-object work at every physics step (AABBs, the pair search, islands) would grow
+// with them. Up to it, the obstacles of earlier versions' worlds keep their objects, and their
+// trajectories bit for bit.
+constexpr int kObstacleObjects = 32;
 
 }  // namespace
 
@@ -53,9 +49,9 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(makeBroadphase(static_cast<int>(model.bodies().size()) + 1 +
-                                 (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
-                                 num_obstacles)),
+      broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1 +
+                                         (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
+                                         (num_obstacles > kObstacleObjects ? 1 : num_obstacles))),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           model.collisionConfiguration())),
       ground_(new btCollisionObject()),
@@ -94,8 +90,13 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     for (const PlacedShape& s : shapes->statics()) {
       statics_.push_back(addStatic(const_cast<btCollisionShape*>(s.shape), s.pose));
     }
+    if (num_obstacles > kObstacleObjects) {  // one compound, filled by setObstacles()
+      obstacle_compound_ = std::make_unique<btCompoundShape>(true, num_obstacles);
+      parkObstacles(*obstacle_compound_);
+      obstacles_.push_back(addStatic(obstacle_compound_.get(), btTransform::getIdentity()));
+    }
     // Obstacle slots: a placeholder shape until the first layout.
-    for (int i = 0; i < num_obstacles; ++i) {
+    for (int i = 0; i < (obstacle_compound_ ? 0 : num_obstacles); ++i) {
       Obstacle parked;
       parked.half_extents = {0.1, 0.1};
       parked.height = 0.1;
@@ -174,7 +175,38 @@ void EnvPhysics::moveRobot(const Eigen::Vector2d& offset) {
   syncColliders();
 }
 
+void EnvPhysics::parkObstacles(btCompoundShape& compound) {
+  // An empty compound has no AABB: a placeholder far below the ground stands in.
+  Obstacle parked;
+  parked.half_extents = {0.1, 0.1};
+  parked.height = 0.1;
+  btTransform pose;
+  obstacle_shapes_.push_back(makeObstacleShape(parked, pose));
+  pose.getOrigin().setZ(kParked);
+  compound.addChildShape(pose, obstacle_shapes_.back().get());
+}
+
 void EnvPhysics::setObstacles(const std::vector<Obstacle>& obstacles) {
+  if (obstacle_compound_) {
+    // A new compound of the placed obstacles; the old one goes once nothing points at it.
+    std::vector<std::unique_ptr<btCollisionShape>> shapes;
+    auto compound = std::make_unique<btCompoundShape>(true, static_cast<int>(obstacles.size()));
+    for (const Obstacle& o : obstacles) {
+      if (!o.placed) continue;
+      btTransform pose;
+      shapes.push_back(makeObstacleShape(o, pose));
+      compound->addChildShape(pose, shapes.back().get());
+    }
+    btCollisionObject& object = *obstacles_.front();
+    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
+        object.getBroadphaseHandle(), dispatcher_.get());
+    std::swap(obstacle_shapes_, shapes);
+    if (compound->getNumChildShapes() == 0) parkObstacles(*compound);
+    object.setCollisionShape(compound.get());
+    world_->updateSingleAabb(&object);
+    obstacle_compound_ = std::move(compound);
+    return;
+  }
   for (std::size_t i = 0; i < obstacles_.size(); ++i) {
     btCollisionObject& object = *obstacles_[i];
     btTransform pose;

@@ -104,6 +104,8 @@ class EnvPhysics {
   /// World transform of body `body`'s principal COM frame.
   btTransform comPose(int body) const;
   void syncColliders();
+  /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
+  void parkObstacles(btCompoundShape& compound);
   /// True when a contact of the last collision detection joins the robot and the world.
   bool touchesWorld() const;
 
@@ -127,6 +129,8 @@ class EnvPhysics {
   // The world's static geometry (shapes shared) and this env's obstacles (shapes its own).
   std::vector<std::unique_ptr<btCollisionObject>> statics_, obstacles_;
   std::vector<std::unique_ptr<btCollisionShape>> obstacle_shapes_;
+  // With many obstacle slots: one compound of the placed obstacles (obstacles_ holds its object).
+  std::unique_ptr<btCompoundShape> obstacle_compound_;
   bool collided_ = false;
 };
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "jetbot_rl/laser_scanner.h"
 #include "scan_rays.h"
@@ -101,29 +102,30 @@ class BeamWindow {
 
 }  // namespace
 
-double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double best) {
-  return rayBox(o, d, b, std::cos(b.yaw), std::sin(b.yaw), best);
+BoxFrame::BoxFrame(const Eigen::Vector3d& o, const Obstacle& b, double cos_yaw, double sin_yaw)
+    : c(cos_yaw), s(sin_yaw) {
+  const Eigen::Vector2d rel = o.head<2>() - b.center;
+  from = btVector3(static_cast<btScalar>(c * rel.x() + s * rel.y()),
+                   static_cast<btScalar>(-s * rel.x() + c * rel.y()), static_cast<btScalar>(o.z()));
+  bounds[0] = btVector3(static_cast<btScalar>(-b.half_extents.x()),
+                        static_cast<btScalar>(-b.half_extents.y()), 0);
+  bounds[1] = btVector3(static_cast<btScalar>(b.half_extents.x()),
+                        static_cast<btScalar>(b.half_extents.y()), static_cast<btScalar>(b.height));
 }
 
-double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double c,
-              double s, double best) {
-  const Eigen::Vector2d rel = o.head<2>() - b.center;
-  const btVector3 from(static_cast<btScalar>(c * rel.x() + s * rel.y()),
-                       static_cast<btScalar>(-s * rel.x() + c * rel.y()),
-                       static_cast<btScalar>(o.z()));
-  const double dx = c * d.x() + s * d.y(), dy = -s * d.x() + c * d.y();
+double rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Obstacle& b, double best) {
+  return rayBox(BoxFrame(o, b, std::cos(b.yaw), std::sin(b.yaw)), d, best);
+}
+
+double rayBox(const BoxFrame& box, const Eigen::Vector3d& d, double best) {
+  const double dx = box.c * d.x() + box.s * d.y(), dy = -box.s * d.x() + box.c * d.y();
   const auto inverse = [](double v) {
     return static_cast<btScalar>(v == 0.0 ? BT_LARGE_FLOAT : 1.0 / v);
   };
   const btVector3 inv(inverse(dx), inverse(dy), inverse(d.z()));
   const unsigned int sign[3] = {inv.x() < 0, inv.y() < 0, inv.z() < 0};
-  const btVector3 bounds[2] = {
-      btVector3(static_cast<btScalar>(-b.half_extents.x()),
-                static_cast<btScalar>(-b.half_extents.y()), 0),
-      btVector3(static_cast<btScalar>(b.half_extents.x()),
-                static_cast<btScalar>(b.half_extents.y()), static_cast<btScalar>(b.height))};
   btScalar t = 0;
-  if (!btRayAabb2(from, inv, sign, bounds, t, 0, static_cast<btScalar>(best))) return best;
+  if (!btRayAabb2(box.from, inv, sign, box.bounds, t, 0, static_cast<btScalar>(best))) return best;
   return std::max(0.0, static_cast<double>(t));
 }
 
@@ -231,10 +233,12 @@ void castScan(const ScannerSpec& spec, const WorldModel* world,
     const double rho = rel.norm(), r = ob.boundingRadius();
     if (!ob.placed || rho - r > reach) return;
     const bool box = ob.shape == Obstacle::Shape::kBox;
-    double c = 0.0, s = 0.0;  // cos and sin of a box's yaw, once a beam comes near it
-    bool turned = false;
+    double c = 0.0, s = 0.0;        // cos and sin of a box's yaw, once a beam comes near it
+    std::optional<BoxFrame> frame;  // the sensor in the box's frame, likewise
     const auto turn = [&] {
-      if (!turned) c = std::cos(ob.yaw), s = std::sin(ob.yaw), turned = true;
+      if (frame) return;
+      c = std::cos(ob.yaw), s = std::sin(ob.yaw);
+      frame.emplace(o, ob, c, s);
     };
     // No hit of this shape is nearer than `near` (its footprint's distance in the ground plane).
     double near = rho - r;
@@ -246,8 +250,7 @@ void castScan(const ScannerSpec& spec, const WorldModel* world,
       const double across2 = rel.squaredNorm() - along * along / dk.head<2>().squaredNorm();
       if (along < -r || across2 > r * r) return;
       if (box) turn();
-      const double t =
-          box ? rayBox(o, dk, ob, c, s, nearest[k]) : rayCylinder(o, dk, ob, nearest[k]);
+      const double t = box ? rayBox(*frame, dk, nearest[k]) : rayCylinder(o, dk, ob, nearest[k]);
       if (t < nearest[k]) {
         nearest[k] = t;
         hits[k] = 1;

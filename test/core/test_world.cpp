@@ -119,6 +119,41 @@ TEST(World, ARobotDrivingIntoAWallCollidesAndItsScanSeesTheWall) {
   EXPECT_LT(env.view(0).scan()[0], 0.2f);
 }
 
+TEST(World, AmongHundredsOfObstaclesARobotCollidesWithThemAndNeverPassesThrough) {
+  // 120 posts and crates in a 4 x 4 m arena: one compound of obstacles in each env's Bullet
+  // world (beyond 32 slots). Robots driving straight on meet them: a contact is reported only
+  // with an obstacle or a wall at hand, and no robot's root ends up inside one.
+  EnvConfig c = worldConfig(8, 2);
+  c.world.num_boxes = 60;
+  c.world.box_size = {0.05, 0.2};
+  c.world.num_cylinders = 60;
+  c.world.cylinder_radius = {0.03, 0.1};
+  c.world.obstacle_gap = 0.15;
+  c.world.start_clearance = 0.3;
+  c.episode_length_s = 100.0;
+  BatchedEnv env(test::jetbot(), c);
+  const WorldModel& world = *env.world();
+  const double footprint = test::jetbot()->footprintRadius();
+  int collisions = 0;
+  for (int step = 0; step < 240; ++step) {
+    env.step(std::vector<float>(16, 15.0f));
+    for (int e = 0; e < 8; ++e) {
+      const Eigen::Vector2d at = env.view(e).rootState().position.head<2>();
+      double nearest = world.staticClearance(at);
+      for (const Obstacle& o : env.view(e).layout().obstacles) {
+        if (!o.placed) continue;
+        ASSERT_GT(o.distance(at), 0.0) << "env " << e << " inside an obstacle at step " << step;
+        nearest = std::min(nearest, o.distance(at));
+      }
+      if (env.view(e).collided()) {
+        ++collisions;
+        EXPECT_LT(nearest, footprint + 0.05) << "env " << e << " at step " << step;
+      }
+    }
+  }
+  EXPECT_GT(collisions, 8);
+}
+
 TEST(World, AWorldWithNoFreeStartIsRefusedNamingTheField) {
   EnvConfig c;
   c.world.arena_size = {0.5, 0.5};
