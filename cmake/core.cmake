@@ -39,6 +39,7 @@ add_library(jetbot_rl_core
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp
   src/core/world_model.cpp
+  src/core/world_generation.cpp
   src/core/world_shapes.cpp
 )
 target_include_directories(jetbot_rl_core PUBLIC include)

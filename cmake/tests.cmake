@@ -35,6 +35,7 @@ catkin_add_gtest(test_core
   test/core/test_world.cpp
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp
+  test/core/test_world_generation.cpp
 )
 target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/curriculum.h"
 #include "jetbot_rl/dof_limits.h"
 #include "jetbot_rl/env_config.h"
 #include "jetbot_rl/env_view.h"
@@ -98,8 +99,13 @@ class BatchedEnv {
 
   /// The world every env shares (map, walls, region); nullptr when none is configured.
   const WorldModel* world() const { return world_.get(); }
-  /// Obstacles left out since construction because they did not fit (world/placement_tries).
+  /// Obstacles left out since construction because they did not fit (world/placement_tries,
+  /// world/max_generated_obstacles).
   std::uint64_t obstaclesGivenUp() const { return given_up_; }
+  /// Resets since construction whose generated layout could not be made (EnvLayout::unmade).
+  std::uint64_t layoutsUnmade() const { return unmade_; }
+  /// The difficulty env `env`'s next generated layout is drawn at (world/curriculum).
+  double difficulty(int env) const;
   /// The scanner in use, or nullptr.
   const ScannerSpec* scanner() const;
 
@@ -143,6 +149,8 @@ class BatchedEnv {
   std::vector<EnvLayout> layouts_;          // per env
   std::vector<std::uint8_t> collided_;      // per env: in the last step
   std::atomic<std::uint64_t> given_up_{0};  // obstacles left out
+  std::atomic<std::uint64_t> unmade_{0};    // generated layouts not made
+  Curriculum curriculum_;                   // per env difficulty of generated layouts
   std::unique_ptr<ScanSensor> scan_;
   std::vector<EnvSensor*> sensors_;  // every sensor, in stepping order
 };

@@ -101,7 +101,7 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   const TaskObserver& observer() const override { return observer_; }
   void attach(const TaskContext& context) override;
   void resize(int num_envs) override;
-  void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
+  bool drawInWorld(int env, Rng& rng, const WorldModel& world, const WorldDraft& draft,
                    std::vector<Eigen::Vector2d>& keep_free) override;
   void resetEnv(int env, Rng& rng) override;
   void sense(int env, const EnvSenses& senses) override;
@@ -123,7 +123,8 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
 
  private:
   double distance(int env, const RootState& state) const;
-  void drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start, const WorldModel* world);
+  bool drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start, const WorldModel* world,
+                      const WorldDraft* draft);
 
   NavigationConfig config_;
   Variant variant_;

@@ -32,4 +32,7 @@ class Rng {
   std::uint64_t state_;
 };
 
+/// Uniform double in [lo, hi) from `rng` (one draw).
+inline double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.uniform(); }
+
 }  // namespace jetbot_rl

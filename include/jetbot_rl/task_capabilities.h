@@ -12,6 +12,7 @@
 namespace jetbot_rl {
 
 class WorldModel;
+struct WorldDraft;
 
 /// A task with a command a user can set per env (served by the env node's ~set_command).
 class Commandable {
@@ -40,10 +41,11 @@ class ScanObserving {
 class WorldDrawing {
  public:
   virtual ~WorldDrawing() = default;
-  /// At a reset of an env with a world, after its start was drawn and before its obstacles:
-  /// draws what the task keeps free of obstacles from `rng` and appends its points to
-  /// `keep_free`.
-  virtual void drawInWorld(int env, Rng& rng, const WorldModel& world, const Eigen::Vector2d& start,
+  /// At a reset of an env with a world, after its start was drawn (and a generated layout's
+  /// obstacles placed): draws what the task keeps free of obstacles from `rng` and appends its
+  /// points to `keep_free`. False when no draw kept its clearance or, with `draft.reach`, had a
+  /// path from the start (a generated layout is then drawn again).
+  virtual bool drawInWorld(int env, Rng& rng, const WorldModel& world, const WorldDraft& draft,
                            std::vector<Eigen::Vector2d>& keep_free) = 0;
 };
 

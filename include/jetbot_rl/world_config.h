@@ -29,10 +29,24 @@ struct WorldConfig {
   bool allow_overlap = false;    ///< Obstacles may overlap each other (obstacle_gap ignored).
   bool random_start = false;     ///< Draw the start in free space at every reset; else the origin.
   int placement_tries = 200;     ///< Draws per start or obstacle before it is given up.
+  // ---- generated layouts (world_generation.h) ----
+  std::vector<std::string> families;   ///< Families of generated layouts; []: none.
+  std::vector<double> family_weights;  ///< How often each family is drawn; []: equally.
+  double difficulty = 0.5;             ///< Of generated layouts, in [0, 1] (the start's).
+  int max_generated_obstacles = 400;   ///< Obstacle slots of a generated layout per env.
+  bool curriculum = false;             ///< Each env raises its difficulty with its successes.
+  int curriculum_episodes = 20;        ///< Episodes an env's success rate is counted over.
+  double curriculum_success = 0.8;     ///< The success rate that raises the difficulty.
+  double curriculum_step = 0.1;        ///< By this much.
 
   /// True when the env has any world: a map, walls or obstacles.
   bool enabled() const {
-    return !map.empty() || !arena_size.empty() || num_boxes > 0 || num_cylinders > 0;
+    return !map.empty() || !arena_size.empty() || num_boxes > 0 || num_cylinders > 0 ||
+           !families.empty();
+  }
+  /// The obstacle slots of an env: the random ones and a generated layout's.
+  int obstacleSlots() const {
+    return num_boxes + num_cylinders + (families.empty() ? 0 : max_generated_obstacles);
   }
 };
 
@@ -70,10 +84,33 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
   v("world/placement_tries", c.placement_tries, inRange(1, 100000),
     "Draws for a start or an obstacle before it is given up (an obstacle given up is left out "
     "of that episode and counted).");
+  v("world/families", c.families, NameList{"", true},
+    "Generated layouts, drawn per env at every reset inside the arena: clutter (posts and "
+    "crates), rooms (a floor plan with doors) or maze; several: each reset draws one by "
+    "family_weights. []: none (the random boxes and cylinders above).");
+  v("world/family_weights", c.family_weights, EachValue<double>{atLeast(0.0)},
+    "How often each family is drawn (one per family, not all 0); []: equally.");
+  v("world/difficulty", c.difficulty, inRange(0.0, 1.0),
+    "Of generated layouts: their density, their narrowest passage (from four robot widths at 0 "
+    "to 1.5 at 1) and their rooms' and maze cells' size; with the curriculum, where every env "
+    "starts.");
+  v("world/max_generated_obstacles", c.max_generated_obstacles, inRange(1, 100000),
+    "Obstacle slots of a generated layout per env (walls included); more are left out and "
+    "counted.");
+  v("world/curriculum", c.curriculum, AnyValue{},
+    "Needs families. Each env raises its own difficulty by curriculum_step (up to 1) after each "
+    "run of curriculum_episodes of its episodes in which at least curriculum_success reached "
+    "the goal.");
+  v("world/curriculum_episodes", c.curriculum_episodes, inRange(1, 100000),
+    "The episodes of a run an env's success rate is counted over.");
+  v("world/curriculum_success", c.curriculum_success, inRange(0.0, 1.0),
+    "The success rate that raises an env's difficulty.");
+  v("world/curriculum_step", c.curriculum_step, inRange(0.0, 1.0), "By this much.");
 }
 
 /// The rules between WorldConfig's fields: arena_size has 2 values, region 4 (min < max),
-/// obstacles need somewhere to go.
+/// obstacles need somewhere to go; generated layouts need an arena, known families, one weight
+/// per family, and no random boxes or cylinders besides; the curriculum needs families.
 void checkFieldRules(const WorldConfig& config);
 
 }  // namespace jetbot_rl

@@ -12,6 +12,7 @@
 namespace jetbot_rl {
 
 class WorldDrawing;
+class ReachableGrid;
 
 /// A box or a vertical cylinder standing on the ground, in an env's frame.
 struct Obstacle {
@@ -33,8 +34,23 @@ struct Obstacle {
 /// One env's layout, drawn at a reset: where the robot starts and its obstacles.
 struct EnvLayout {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< Root link origin at the start [m].
-  std::vector<Obstacle> obstacles;                  ///< num_boxes boxes, then the cylinders.
-  int given_up = 0;                                 ///< Obstacles left out at this reset.
+  /// num_boxes boxes, then the cylinders; or a generated layout's obstacles and walls.
+  std::vector<Obstacle> obstacles;
+  int given_up = 0;         ///< Obstacles left out at this reset.
+  int family = -1;          ///< Generated: the index of its family in world/families; else -1.
+  double difficulty = 0.0;  ///< Generated: the difficulty it was made at, in [0, 1].
+  /// Generated: no layout with a start and a reachable goal was made in kLayoutAttempts; the
+  /// episode runs in the bare arena instead (counted, see BatchedEnv::layoutsUnmade()).
+  bool unmade = false;
+};
+
+/// What a task draws its points into at a reset: the start, the obstacles already placed (a
+/// generated layout's; none before random obstacles) and, for a generated layout, the cells the
+/// robot can reach from the start.
+struct WorldDraft {
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();   ///< [m]
+  const std::vector<Obstacle>* obstacles = nullptr;  ///< null: none yet.
+  const ReachableGrid* reach = nullptr;              ///< null: no path check.
 };
 
 /**
@@ -67,6 +83,8 @@ class WorldModel {
   /// Distance from `p` (env frame) to the nearest wall or map obstacle cell, a lower bound
   /// within one cell's diagonal; 0 on a map cell that is not free or outside the map [m].
   double staticClearance(const Eigen::Vector2d& p) const;
+  /// Distance from `p` to the walls, the map and every placed obstacle of `obstacles` [m].
+  double clearance(const Eigen::Vector2d& p, const std::vector<Obstacle>* obstacles) const;
   /// True when `p` keeps `clearance` from the walls and the map and from every placed obstacle.
   bool isClear(const Eigen::Vector2d& p, double clearance,
                const std::vector<Obstacle>& obstacles) const;
@@ -83,8 +101,14 @@ class WorldModel {
   void drawObstacles(Rng& rng, const std::vector<Eigen::Vector2d>& keep_free,
                      EnvLayout& layout) const;
   /// Draws env `env`'s layout of a new episode from its stream `rng`: the start, then what
-  /// `task` keeps free of obstacles (a goal; nothing without a task), then the obstacles.
-  void drawLayout(Rng& rng, int env, WorldDrawing* task, EnvLayout& layout) const;
+  /// `task` keeps free of obstacles (a goal; nothing without a task), then the obstacles. With
+  /// world/families, a generated layout at `difficulty` (drawGeneratedLayout()).
+  void drawLayout(Rng& rng, int env, double difficulty, WorldDrawing* task,
+                  EnvLayout& layout) const;
+  /// The robot's footprint radius [m].
+  double robotRadius() const { return robot_radius_; }
+  /// The clearance a start keeps: world/start_clearance, at least the robot's footprint [m].
+  double startClearance() const { return start_clearance_; }
 
  private:
   void mergeObstacleCells();
@@ -99,6 +123,7 @@ class WorldModel {
   std::vector<std::uint8_t> obstacle_cells_;
   std::vector<float> distance_;   // per map cell: to the nearest obstacle cell's centre [cells]
   double start_clearance_ = 0.0;  // start_clearance, at least the robot's footprint [m]
+  double robot_radius_ = 0.0;
   Eigen::Vector2d fallback_start_ = Eigen::Vector2d::Zero();  // a free start, found at start-up
 };
 

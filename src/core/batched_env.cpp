@@ -59,7 +59,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   task_->attach(context);
   obs_dim_ = static_cast<int>(task_->observationNames().size());
   randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
-  const int num_obstacles = config_.world.num_boxes + config_.world.num_cylinders;
+  const int num_obstacles = config_.world.obstacleSlots();
 
   const int workers = std::min(config_.resolvedThreads(), n);
   pool_ = std::make_unique<ThreadPool>(workers);
@@ -98,6 +98,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   result_.final_observations.reserve(static_cast<std::size_t>(n) * obs_dim_);
   for (int e = 0; e < n; ++e) rngs_.emplace_back(config_.seed, e);
   layouts_.resize(n);
+  curriculum_ = Curriculum(config_.world, n);
   collided_.assign(n, 0);
   reset();
 }
@@ -170,6 +171,7 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   ended_[e] = terminated || truncated;
   if (ended_[e]) {
     outcome_[e] = static_cast<std::uint8_t>(terminated ? task_->outcome(e) : Outcome::kTimeOut);
+    curriculum_.episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
     if (diverged) {
@@ -193,10 +195,11 @@ void BatchedEnv::resetEnv(int env) {
   if (world_) {
     // The layout from the env's own stream: its start, the task's goal, the obstacles.
     EnvLayout& layout = layouts_[env];
-    world_->drawLayout(rngs_[env], env, drawer_, layout);
+    world_->drawLayout(rngs_[env], env, curriculum_.difficulty(env), drawer_, layout);
     physics.moveRobot(layout.start);
     physics.setObstacles(layout.obstacles);
     given_up_ += static_cast<std::uint64_t>(layout.given_up);
+    if (layout.unmade) ++unmade_;
   }
   result_.episode_steps[env] = 0;
   task_->resetEnv(env, rngs_[env]);
@@ -317,6 +320,11 @@ void BatchedEnv::checkEnv(int env) const {
     s << "env " << env << " is out of range [0, " << config_.num_envs << ")";
     throw InputError(s.str());
   }
+}
+
+double BatchedEnv::difficulty(int env) const {
+  checkEnv(env);
+  return curriculum_.difficulty(env);
 }
 
 EnvView BatchedEnv::view(int env) const {

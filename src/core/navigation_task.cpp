@@ -7,6 +7,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/laser_scanner.h"
 #include "jetbot_rl/scan_reading.h"
+#include "jetbot_rl/world_generation.h"
 #include "jetbot_rl/world_model.h"
 
 namespace jetbot_rl {
@@ -126,39 +127,48 @@ void NavigationTask::resize(int num_envs) {
   position_.assign(num_envs, Eigen::Vector2d::Zero());
 }
 
-void NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start,
-                                    const WorldModel* world) {
+bool NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& start,
+                                    const WorldModel* world, const WorldDraft* draft) {
   // Distance and direction from the env's stream; with a world, redrawn until the goal keeps its
-  // clearance (the clearest draw stands in when none does).
+  // clearance and, in a generated layout, has a path from the start (otherwise the clearest
+  // draw stands in, and false is returned).
   const int tries = world ? world->config().placement_tries : 1;
+  const std::vector<Obstacle>* obstacles = draft ? draft->obstacles : nullptr;
+  const ReachableGrid* reach = draft ? draft->reach : nullptr;
   double best_clearance = -1.0;
+  bool found = !world;
   for (int k = 0; k < tries; ++k) {
     const double d = config_.goal_distance[0] +
                      (config_.goal_distance[1] - config_.goal_distance[0]) * rng.uniform();
     const double angle = 2.0 * kPi * rng.uniform();
     const Eigen::Vector2d goal = start + d * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    const double clearance = world ? world->staticClearance(goal) : 1e9;
+    const double clearance = world ? world->clearance(goal, obstacles) : 1e9;
     const bool inside = !world || world->region().isEmpty() || world->region().contains(goal);
-    if (inside && clearance > best_clearance) {
+    const bool usable = inside && (!reach || reach->reachable(goal));
+    if (usable && clearance > best_clearance) {
       best_clearance = clearance;
       goals_[env] = goal;
     }
-    if (inside && clearance >= config_.goal_clearance) break;
+    if (usable && clearance >= config_.goal_clearance) {
+      found = true;
+      break;
+    }
   }
   last_distance_[env] = (goals_[env] - start).norm();
   position_[env] = start;
+  return found;
 }
 
-void NavigationTask::drawInWorld(int env, Rng& rng, const WorldModel& world,
-                                 const Eigen::Vector2d& start,
-                                 std::vector<Eigen::Vector2d>& keep_free) {
-  drawGoalAround(env, rng, start, &world);
+bool NavigationTask::drawInWorld(int env, Rng& rng, const WorldModel& world,
+                                 const WorldDraft& draft, std::vector<Eigen::Vector2d>& keep_free) {
+  const bool found = drawGoalAround(env, rng, draft.start, &world, &draft);
   drawn_[env] = 1;
   keep_free.push_back(goals_[env]);
+  return found;
 }
 
 void NavigationTask::resetEnv(int env, Rng& rng) {
-  if (!drawn_[env]) drawGoalAround(env, rng, Eigen::Vector2d::Zero(), nullptr);
+  if (!drawn_[env]) drawGoalAround(env, rng, Eigen::Vector2d::Zero(), nullptr, nullptr);
   drawn_[env] = 0;
   outcome_[env] = static_cast<unsigned char>(Outcome::kTimeOut);
 }

@@ -9,6 +9,7 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/world_generation.h"
 
 namespace jetbot_rl {
 namespace {
@@ -56,8 +57,6 @@ Obstacle wall(double cx, double cy, double hx, double hy, double height) {
   return w;
 }
 
-double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.uniform(); }
-
 }  // namespace
 
 double Obstacle::distance(const Eigen::Vector2d& p) const {
@@ -76,9 +75,42 @@ void checkFieldRules(const WorldConfig& c) {
     throwInvalid("world/region", listText(c.region),
                  "must be [x_min, y_min, x_max, y_max] with min < max, or []");
   }
+  if (c.families.empty()) {
+    if (c.curriculum) {
+      throwInvalid("world/curriculum", "true", "needs world/families (it raises their difficulty)");
+    }
+    return;
+  }
+  for (const std::string& f : c.families) parseEnum<WorldFamily>("world/families", f);
+  if (c.arena_size.size() != 2 || !c.map.empty()) {
+    throwInvalid("world/families", listText(c.families),
+                 "generated layouts fill an arena: give world/arena_size and no world/map");
+  }
+  if (!c.region.empty()) {
+    throwInvalid("world/region", listText(c.region),
+                 "must be [] with world/families (generated layouts fill the arena)");
+  }
+  if (c.num_boxes > 0 || c.num_cylinders > 0) {
+    throwInvalid(c.num_boxes > 0 ? "world/num_boxes" : "world/num_cylinders",
+                 c.num_boxes > 0 ? c.num_boxes : c.num_cylinders,
+                 "must be 0 with world/families (a generated layout has its own obstacles)");
+  }
+  if (!c.family_weights.empty()) {
+    if (c.family_weights.size() != c.families.size()) {
+      throwInvalid(
+          "world/family_weights", listText(c.family_weights),
+          "must have one weight per family (" + std::to_string(c.families.size()) + ") or be []");
+    }
+    double total = 0.0;
+    for (double w : c.family_weights) total += w;
+    if (!(total > 0.0)) {
+      throwInvalid("world/family_weights", listText(c.family_weights), "must not be all 0");
+    }
+  }
 }
 
-WorldModel::WorldModel(const WorldConfig& config, double robot_radius) : config_(config) {
+WorldModel::WorldModel(const WorldConfig& config, double robot_radius)
+    : config_(config), robot_radius_(robot_radius) {
   validateConfig(config_);
   if (!config_.map.empty()) {
     try {
@@ -117,7 +149,8 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius) : config_
       region_.extend(map_pose_ * corner);
     }
   }
-  const bool draws = config_.random_start || config_.num_boxes > 0 || config_.num_cylinders > 0;
+  const bool draws = config_.random_start || config_.num_boxes > 0 || config_.num_cylinders > 0 ||
+                     !config_.families.empty();
   if (draws && region_.isEmpty()) {
     throwInvalid("world/region", "[]",
                  "random starts and obstacles need somewhere to go: give world/region, "
@@ -126,6 +159,7 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius) : config_
   // A start must fit: the origin, or somewhere in the region.
   start_clearance_ = std::max(config_.start_clearance, robot_radius);
   const double clearance = start_clearance_;
+  if (!config_.families.empty()) checkGeneratedLayouts(*this);
   if (!config_.random_start) {
     if (staticClearance(Eigen::Vector2d::Zero()) < clearance) {
       throwInvalid("world/random_start", "false",
@@ -213,6 +247,17 @@ double WorldModel::staticClearance(const Eigen::Vector2d& p) const {
   return std::max(clearance, 0.0);
 }
 
+double WorldModel::clearance(const Eigen::Vector2d& p,
+                             const std::vector<Obstacle>* obstacles) const {
+  double c = staticClearance(p);
+  if (obstacles) {
+    for (const Obstacle& o : *obstacles) {
+      if (o.placed) c = std::min(c, o.distance(p));
+    }
+  }
+  return c;
+}
+
 bool WorldModel::isClear(const Eigen::Vector2d& p, double clearance,
                          const std::vector<Obstacle>& obstacles) const {
   if (staticClearance(p) < clearance) return false;
@@ -231,10 +276,17 @@ std::optional<Eigen::Vector2d> WorldModel::drawFreePoint(Rng& rng, double cleara
   return std::nullopt;
 }
 
-void WorldModel::drawLayout(Rng& rng, int env, WorldDrawing* task, EnvLayout& layout) const {
+void WorldModel::drawLayout(Rng& rng, int env, double difficulty, WorldDrawing* task,
+                            EnvLayout& layout) const {
+  if (!config_.families.empty()) {
+    drawGeneratedLayout(*this, rng, env, difficulty, task, layout);
+    return;
+  }
   drawStart(rng, layout);
   std::vector<Eigen::Vector2d> keep_free{layout.start};
-  if (task) task->drawInWorld(env, rng, *this, layout.start, keep_free);
+  WorldDraft draft;
+  draft.start = layout.start;
+  if (task) task->drawInWorld(env, rng, *this, draft, keep_free);
   drawObstacles(rng, keep_free, layout);
 }
 

@@ -148,5 +148,44 @@ TEST(EnvServer, CommandsGoToTasksThatTakeThem) {
   EXPECT_NE(res.message.find("env 2 is out of range"), std::string::npos) << res.message;
 }
 
+/// A navigation env of `max_obstacles` generated obstacle slots, goals `goal_distance` away.
+std::unique_ptr<BatchedEnv> generatedEnv(int max_obstacles, std::vector<double> goal_distance) {
+  EnvConfig config;
+  config.num_envs = 2;
+  config.num_threads = 1;
+  config.episode_length_s = 0.05;  // a reset every 3 steps
+  config.world.arena_size = {3.0, 3.0};
+  config.world.random_start = true;
+  config.world.start_clearance = 0.2;
+  config.world.families = {"clutter"};
+  config.world.difficulty = 1.0;
+  config.world.max_generated_obstacles = max_obstacles;
+  config.scan.link = "base_link";
+  config.scan.samples = 8;
+  TaskConfig task;
+  task.task = TaskKind::kNavigation;
+  task.navigation.beams = 8;
+  task.navigation.goal_distance = std::move(goal_distance);
+  return std::make_unique<BatchedEnv>(RobotModel::fromUrdfFile(JETBOT_URDF), config,
+                                      makeTask(task));
+}
+
+TEST(EnvServer, CountsObstaclesLeftOutAndUnmadeLayoutsAsTheEnvDoes) {
+  auto crowded = generatedEnv(1, {0.5, 1.0});   // the clutter's other obstacles left out
+  auto unmade = generatedEnv(400, {5.0, 6.0});  // goals never in the arena: layouts unmade
+  EnvServer crowded_server(*crowded, EnvMode::kLockstep, 0.5);
+  EnvServer unmade_server(*unmade, EnvMode::kLockstep, 0.5);
+  EXPECT_EQ(unmade_server.counters().layouts_unmade, 2u);  // the first resets
+  for (std::uint64_t step = 0; step < 6; ++step) {
+    ASSERT_TRUE(crowded_server.onWheelTargets(targets(step, {5, 5, 5, 5}), Clock::now()));
+    ASSERT_TRUE(unmade_server.onWheelTargets(targets(step, {5, 5, 5, 5}), Clock::now()));
+  }
+  EXPECT_GT(crowded_server.counters().obstacles_left_out, 10u);
+  EXPECT_EQ(crowded_server.counters().obstacles_left_out, crowded->obstaclesGivenUp());
+  EXPECT_EQ(crowded_server.counters().layouts_unmade, 0u);
+  EXPECT_GT(unmade_server.counters().layouts_unmade, 2u);
+  EXPECT_EQ(unmade_server.counters().layouts_unmade, unmade->layoutsUnmade());
+}
+
 }  // namespace
 }  // namespace jetbot_rl

@@ -64,6 +64,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("last malformed reason", c.last_malformed));
   s.values.push_back(keyValue("rejected cmd_vel", std::to_string(c.cmd_vel_rejections)));
   s.values.push_back(keyValue("last cmd_vel rejection reason", c.last_cmd_vel_rejection));
+  s.values.push_back(keyValue("obstacles left out", std::to_string(c.obstacles_left_out)));
+  s.values.push_back(keyValue("generated layouts unmade", std::to_string(c.layouts_unmade)));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

@@ -28,6 +28,8 @@ void EnvServer::updateState() {
   toMsg(env_.state(), env_.numEnvs(), env_.obsDim(), simTime(env_.state().step, env_.controlDt()),
         *msg);
   state_ = msg;
+  counters_.obstacles_left_out = env_.obstaclesGivenUp();
+  counters_.layouts_unmade = env_.layoutsUnmade();
 }
 
 bool EnvServer::onWheelTargets(const WheelTargets& msg, SteadyTime received) {

@@ -31,6 +31,9 @@ struct EnvCounters {
 
   std::uint64_t cmd_vel_rejections = 0;  ///< Rejected cmd_vel (lockstep mode, non-finite).
   std::string last_cmd_vel_rejection;    ///< Reason of the last one.
+
+  std::uint64_t obstacles_left_out = 0;  ///< Obstacles that did not fit (BatchedEnv).
+  std::uint64_t layouts_unmade = 0;      ///< Generated layouts not made (BatchedEnv).
 };
 
 /**

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "jetbot_rl/world_config.h"
+
+namespace jetbot_rl {
+
+/**
+ * The difficulty of each env's generated layouts (world/difficulty, world/curriculum): every
+ * env starts at world/difficulty; with the curriculum, after each run of curriculum_episodes of
+ * its episodes it moves up by curriculum_step (to at most 1) when at least curriculum_success of
+ * them reached the goal. Per env and from its own outcomes only: the same on any thread count.
+ */
+class Curriculum {
+ public:
+  Curriculum() = default;
+  Curriculum(const WorldConfig& config, int num_envs)
+      : enabled_(config.curriculum),
+        episodes_per_run_(config.curriculum_episodes),
+        success_(config.curriculum_success),
+        step_(config.curriculum_step),
+        difficulty_(num_envs, config.difficulty),
+        episodes_(num_envs, 0),
+        successes_(num_envs, 0) {}
+
+  /// Env `env`'s difficulty, in [0, 1].
+  double difficulty(int env) const { return difficulty_[env]; }
+  /// Counts env `env`'s ended episode; raises its difficulty when its run is complete and good.
+  void episodeEnded(int env, bool success) {
+    if (!enabled_) return;
+    successes_[env] += success ? 1 : 0;
+    if (++episodes_[env] < episodes_per_run_) return;
+    if (successes_[env] >= success_ * episodes_per_run_) {
+      difficulty_[env] = std::min(1.0, difficulty_[env] + step_);
+    }
+    episodes_[env] = 0;
+    successes_[env] = 0;
+  }
+
+ private:
+  bool enabled_ = false;
+  int episodes_per_run_ = 1;
+  double success_ = 1.0, step_ = 0.0;
+  std::vector<double> difficulty_;
+  std::vector<int> episodes_, successes_;
+};
+
+}  // namespace jetbot_rl
