@@ -40,6 +40,9 @@ add_library(jetbot_rl_core
   src/core/velocity_task.cpp
   src/core/world_model.cpp
   src/core/world_generation.cpp
+  src/core/footprint_grid.cpp
+  src/core/grid_planner.cpp
+  src/core/path_tracker.cpp
   src/core/world_shapes.cpp
 )
 target_include_directories(jetbot_rl_core PUBLIC include)

@@ -36,6 +36,7 @@ catkin_add_gtest(test_core
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
+  test/core/test_grid_planner.cpp
 )
 target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
@@ -51,9 +52,10 @@ catkin_add_gtest(test_ppo
   test/ppo/test_update.cpp
   test/ppo/test_in_process.cpp
   test/ppo/test_memory.cpp
+  test/ppo/test_nav_benchmark.cpp
 )
 target_link_libraries(test_ppo jetbot_rl_ppo)
-target_compile_definitions(test_ppo PRIVATE ${_robots})
+target_compile_definitions(test_ppo PRIVATE ${_robots} JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # ---- ROS adapter without a master ----
 catkin_add_gtest(test_ros_adapter

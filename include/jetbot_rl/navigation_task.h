@@ -1,10 +1,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <atomic>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/path_tracker.h"
 #include "jetbot_rl/task.h"
 #include "jetbot_rl/task_capabilities.h"
 #include "jetbot_rl/task_observer.h"
@@ -23,6 +26,11 @@ struct NavigationConfig {
   double step_cost = 0.01;           ///< Per control step.
   double proximity_distance = 0.25;  ///< Closer than this, a scan range costs [m].
   double proximity_penalty = 0.1;  ///< Per step at range 0, falling linearly to 0 at the distance.
+  bool goal_reachable = false;     ///< Goals only where the robot can drive from the start.
+  bool path = false;               ///< Plan a path to the goal and observe and follow it.
+  double path_lookahead = 0.6;     ///< The observed point this far along the path [m].
+  double path_clearance = 0.3;  ///< Paths keep this beyond the footprint where there is room [m].
+  double path_clearance_cost = 2.0;  ///< The cost of a cell at the footprint, per cell length.
 };
 
 template <typename C, typename V>
@@ -49,6 +57,22 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
   v("nav/proximity_penalty", c.proximity_penalty, atLeast(0.0),
     "Per step: this x (1 - closest range / proximity_distance) when the closest range of the scan "
     "is below proximity_distance.");
+  v("nav/goal_reachable", c.goal_reachable, AnyValue{},
+    "Goals are redrawn until the robot can drive to them from the start in the world's walls and "
+    "map (a path for its footprint on 0.05 m cells): goals anywhere in a map, other rooms "
+    "included. Generated worlds always check (against their obstacles too).");
+  v("nav/path", c.path, AnyValue{},
+    "A global path: at every reset the cheapest path from the start to the goal is planned on the "
+    "env's layout inflated by the robot's footprint (A*, 0.05 m cells); the robot observes what "
+    "is left of it and the direction of a point path_lookahead along it, and the progress "
+    "variant rewards progress along it. Needs a world.");
+  v("nav/path_lookahead", c.path_lookahead, positiveUpTo(100.0, "m"),
+    "The observed point's distance along the path past the robot's nearest point of it.");
+  v("nav/path_clearance", c.path_clearance, atLeast(0.0, "m"),
+    "The clearance beyond the footprint a path keeps from walls and obstacles where there is "
+    "room: a cell nearer costs more (costmap_2d's inflation, linear).");
+  v("nav/path_clearance_cost", c.path_clearance_cost, atLeast(0.0),
+    "What a cell at the footprint costs beyond its length, per cell length (0 at path_clearance).");
 }
 
 /**
@@ -61,7 +85,7 @@ class NavigationObserver : public TaskObserver {
  public:
   /// `beams` beams of a scanner reading [range_min, range_max] [m]; `action_dim` last actions.
   NavigationObserver(int beams, double range_min, double range_max, int action_dim,
-                     double goal_radius);
+                     double goal_radius, bool path = false);
 
   std::vector<std::string> observationNames() const override;
   void observationBounds(std::vector<float>& low, std::vector<float>& high) const override;
@@ -79,6 +103,7 @@ class NavigationObserver : public TaskObserver {
   int beams_, action_dim_;
   float range_min_, range_max_;
   double goal_radius_;
+  bool path_;
 };
 
 /**
@@ -103,17 +128,23 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   void resize(int num_envs) override;
   bool drawInWorld(int env, Rng& rng, const WorldModel& world, const WorldDraft& draft,
                    std::vector<Eigen::Vector2d>& keep_free) override;
+  void layoutDrawn(int env, const WorldModel& world, const EnvLayout& layout) override;
   void resetEnv(int env, Rng& rng) override;
   void sense(int env, const EnvSenses& senses) override;
   void observe(int env, const RootState& state, float* obs) const override;
   float reward(int env, const RootState& state) const override;
   bool terminated(int env, const RootState& state) const override;
   Outcome outcome(int env) const override { return static_cast<Outcome>(outcome_.at(env)); }
-  std::vector<std::string> arrowNames() const override { return {"goal"}; }
+  std::vector<std::string> arrowNames() const override;
   std::vector<double> scanBeamAngles() const override;
   double scanBeamWidth() const override { return beam_width_; }
   Eigen::Vector2d arrowDirection(int env, int arrow) const override;
 
+  /// Env `env`'s path to its goal (nav/path): the start, where it turns, the goal [m]; without
+  /// one planned, the start and the goal.
+  const std::vector<Eigen::Vector2d>& path(int env) const { return trackers_.at(env).points(); }
+  /// Resets since construction whose path could not be planned (the straight line stood in).
+  std::uint64_t pathsUnplanned() const { return unplanned_; }
   /// Env `env`'s goal in the env frame [m].
   const Eigen::Vector2d& goal(int env) const { return goals_.at(env); }
   /// Sets env `env`'s goal (a tool or test), keeping its progress reference.
@@ -138,6 +169,8 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   std::vector<EnvSenses> senses_;       // per env
   mutable std::vector<double> last_distance_;      // per env: to the goal after the last step
   mutable std::vector<unsigned char> outcome_;     // per env: of the episode that ended
+  mutable std::vector<PathTracker> trackers_;      // per env: along its path (nav/path)
+  std::atomic<std::uint64_t> unplanned_{0};        // paths not planned
   mutable std::vector<Eigen::Vector2d> position_;  // per env: last observed root position
 };
 

@@ -13,6 +13,7 @@ namespace jetbot_rl {
 
 class WorldModel;
 struct WorldDraft;
+struct EnvLayout;
 
 /// A task with a command a user can set per env (served by the env node's ~set_command).
 class Commandable {
@@ -47,6 +48,11 @@ class WorldDrawing {
   /// path from the start (a generated layout is then drawn again).
   virtual bool drawInWorld(int env, Rng& rng, const WorldModel& world, const WorldDraft& draft,
                            std::vector<Eigen::Vector2d>& keep_free) = 0;
+  /// After env `env`'s layout is complete (its obstacles placed): what the task derives from it
+  /// (the navigation task's path). Draws nothing from the stream.
+  virtual void layoutDrawn(int env, const WorldModel& world, const EnvLayout& layout) {
+    (void)env, (void)world, (void)layout;
+  }
 };
 
 /// A task with directions worth drawing per env besides the robot's forward arrow (markers).

@@ -19,6 +19,9 @@ struct MeasuredState {
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();      ///< The goal [m] (tasks with one).
   Eigen::Vector2d command = Eigen::Vector2d::UnitX();  ///< The unit command (tasks with one).
   const float* last_action = nullptr;  ///< The last action (action_dim values), or none: zeros.
+  /// Tasks that follow a path: the path left to the goal [m] and a point along it ahead [m].
+  double path_remaining = 0.0;
+  Eigen::Vector2d lookahead = Eigen::Vector2d::Zero();
 };
 
 /**
@@ -58,6 +61,7 @@ struct ObserverSpec {
   double range_min = 0.0;    ///< The trained scanner's [range_min, range_max] [m]: readings are
   double range_max = 0.0;    ///< clamped into it and divided by range_max.
   double goal_radius = 0.2;  ///< A goal is reached within this [m].
+  bool path = false;         ///< Navigation: it observes a path (nav/path).
 };
 
 }  // namespace jetbot_rl

@@ -4,7 +4,6 @@
 // in one of three families, at a difficulty in [0, 1] (docs/world.md#generated-worlds).
 
 #include <Eigen/Geometry>
-#include <cstdint>
 #include <vector>
 
 #include "jetbot_rl/config_fields.h"
@@ -17,8 +16,6 @@ class WorldDrawing;
 
 /// Layouts drawn for one reset before it runs in the bare arena (counted as unmade).
 constexpr int kLayoutAttempts = 20;
-/// The cell size of the grid a start and a goal are checked on for a path [m].
-constexpr double kReachResolution = 0.05;
 
 /// The families of generated layouts.
 enum class WorldFamily {
@@ -56,7 +53,7 @@ int generateObstacles(WorldFamily family, double difficulty, const GenerationAre
  * Draws env `env`'s generated layout (world/families) at `difficulty` from its stream: a family
  * by world/family_weights, its obstacles in the arena, a start with the start clearance the
  * robot can stand on, then `task`'s goal, which must have a path from the start for the robot's
- * footprint on a kReachResolution grid. A layout without such a start and goal is drawn again, up
+ * footprint on a FootprintGrid. A layout without such a start and goal is drawn again, up
  * to kLayoutAttempts; then the episode runs in the bare arena and `layout.unmade` is set.
  */
 void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double difficulty,
@@ -66,31 +63,5 @@ void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double diff
 /// at the hardest the curriculum reaches: ConfigError naming world/difficulty (or
 /// world/arena_size) and the family when none of a few trial layouts has a start.
 void checkGeneratedLayouts(const WorldModel& world);
-
-/**
- * The floor of a layout as a grid of cells a robot's centre may occupy (free of every obstacle
- * and wall by its footprint), and which of them it can reach from a start (4-connected): the
- * check that a start and a goal have a path for the robot.
- */
-class ReachableGrid {
- public:
-  /// `area` at `resolution` [m]; `obstacles` and `walls` inflated by `robot_radius` [m].
-  ReachableGrid(const Eigen::AlignedBox2d& area, double resolution, double robot_radius,
-                const std::vector<Obstacle>& obstacles, const std::vector<Obstacle>& walls);
-  /// True when a robot centred at `p` touches nothing.
-  bool isFree(const Eigen::Vector2d& p) const;
-  /// Marks the cells reachable from `start` (false when `start` is not free).
-  bool reachFrom(const Eigen::Vector2d& start);
-  /// True when `p` is reachable from the last reachFrom()'s start.
-  bool reachable(const Eigen::Vector2d& p) const;
-
- private:
-  long cellOf(const Eigen::Vector2d& p) const;
-
-  Eigen::AlignedBox2d area_;
-  double resolution_;
-  int width_, height_;
-  std::vector<std::uint8_t> free_, reached_;
-};
 
 }  // namespace jetbot_rl

@@ -12,7 +12,7 @@
 namespace jetbot_rl {
 
 class WorldDrawing;
-class ReachableGrid;
+class FootprintGrid;
 
 /// A box or a vertical cylinder standing on the ground, in an env's frame.
 struct Obstacle {
@@ -50,7 +50,7 @@ struct EnvLayout {
 struct WorldDraft {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();   ///< [m]
   const std::vector<Obstacle>* obstacles = nullptr;  ///< null: none yet.
-  const ReachableGrid* reach = nullptr;              ///< null: no path check.
+  const FootprintGrid* reach = nullptr;              ///< null: no path check.
 };
 
 /**

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/footprint_grid.h"
+#include "jetbot_rl/grid_planner.h"
 #include "jetbot_rl/laser_scanner.h"
 #include "jetbot_rl/scan_reading.h"
-#include "jetbot_rl/world_generation.h"
 #include "jetbot_rl/world_model.h"
 
 namespace jetbot_rl {
@@ -23,19 +25,22 @@ double yawOf(const RootState& state) {
 }  // namespace
 
 NavigationObserver::NavigationObserver(int beams, double range_min, double range_max,
-                                       int action_dim, double goal_radius)
+                                       int action_dim, double goal_radius, bool path)
     : beams_(beams),
       action_dim_(action_dim),
       range_min_(static_cast<float>(range_min)),
       range_max_(static_cast<float>(range_max)),
-      goal_radius_(goal_radius) {}
+      goal_radius_(goal_radius),
+      path_(path) {}
 
 std::vector<std::string> NavigationObserver::observationNames() const {
   std::vector<std::string> names;
   for (int i = 0; i < beams_; ++i) names.push_back("beam_" + std::to_string(i));
-  for (const char* n : {"goal_distance", "goal_cos", "goal_sin", "lin_vel_b_x", "ang_vel_z"}) {
-    names.push_back(n);
+  for (const char* n : {"goal_distance", "goal_cos", "goal_sin"}) names.push_back(n);
+  if (path_) {
+    for (const char* n : {"path_remaining", "path_cos", "path_sin"}) names.push_back(n);
   }
+  for (const char* n : {"lin_vel_b_x", "ang_vel_z"}) names.push_back(n);
   for (int a = 0; a < action_dim_; ++a) names.push_back("last_action_" + std::to_string(a));
   return names;
 }
@@ -47,10 +52,12 @@ void NavigationObserver::observationBounds(std::vector<float>& low,
     low[i] = range_min_ / range_max_;
     high[i] = 1.0f;
   }
-  low[beams_] = 0.0f;  // goal distance
-  for (int k = beams_ + 1; k < beams_ + 3; ++k) {
-    low[k] = -1.0f;  // goal cos, sin
-    high[k] = 1.0f;
+  for (int at : path_ ? std::vector<int>{beams_, beams_ + 3} : std::vector<int>{beams_}) {
+    low[at] = 0.0f;  // goal distance, path left
+    for (int k = at + 1; k < at + 3; ++k) {
+      low[k] = -1.0f;  // their cos, sin
+      high[k] = 1.0f;
+    }
   }
 }
 
@@ -64,13 +71,19 @@ float NavigationObserver::beamValue(float range) const {
 void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
   std::size_t k = 0;
   for (int i = 0; i < beams_; ++i) obs[k++] = state.scan ? beamValue(state.scan[i]) : 1.0f;
-  const double yaw = yawOf(state.root);
-  const Eigen::Vector2d in_robot =
-      Eigen::Rotation2Dd(-yaw) * (state.goal - state.root.position.head<2>());
+  const Eigen::Rotation2Dd to_robot(-yawOf(state.root));
+  const Eigen::Vector2d in_robot = to_robot * (state.goal - state.root.position.head<2>());
   const double d = in_robot.norm();
   obs[k++] = static_cast<float>(d);
   obs[k++] = static_cast<float>(d > 1e-9 ? in_robot.x() / d : 1.0);
   obs[k++] = static_cast<float>(d > 1e-9 ? in_robot.y() / d : 0.0);
+  if (path_) {
+    const Eigen::Vector2d ahead = to_robot * (state.lookahead - state.root.position.head<2>());
+    const double a = ahead.norm();
+    obs[k++] = static_cast<float>(state.path_remaining);
+    obs[k++] = static_cast<float>(a > 1e-9 ? ahead.x() / a : 1.0);
+    obs[k++] = static_cast<float>(a > 1e-9 ? ahead.y() / a : 0.0);
+  }
   obs[k++] = static_cast<float>(state.root.comLinearVelocityBody().x());
   obs[k++] = static_cast<float>(state.root.angular_velocity.z());
   for (int a = 0; a < action_dim_; ++a) obs[k++] = state.last_action ? state.last_action[a] : 0.0f;
@@ -111,9 +124,19 @@ void NavigationTask::attach(const TaskContext& context) {
   beam_width_ = scanner.samples > 1
                     ? scan_increment_ * static_cast<double>(scanner.samples) / config_.beams
                     : 0.0;
-  observer_ =
-      NavigationObserver(config_.beams, context.scanner->range_min, context.scanner->range_max,
-                         context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius);
+  observer_ = NavigationObserver(
+      config_.beams, context.scanner->range_min, context.scanner->range_max,
+      context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius, config_.path);
+  if (config_.path && !context.world) {
+    throwInvalid("nav/path", "true",
+                 "plans on the env's world: give it one (world/arena_size, world/map or "
+                 "world/families)");
+  }
+}
+
+std::vector<std::string> NavigationTask::arrowNames() const {
+  if (config_.path) return {"goal", "path"};
+  return {"goal"};
 }
 
 std::vector<double> NavigationTask::scanBeamAngles() const { return beam_angles_; }
@@ -123,6 +146,7 @@ void NavigationTask::resize(int num_envs) {
   drawn_.assign(num_envs, 0);
   senses_.assign(num_envs, EnvSenses());
   last_distance_.assign(num_envs, config_.goal_distance[0]);
+  trackers_.assign(num_envs, PathTracker());
   outcome_.assign(num_envs, static_cast<unsigned char>(Outcome::kTimeOut));
   position_.assign(num_envs, Eigen::Vector2d::Zero());
 }
@@ -134,7 +158,14 @@ bool NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& st
   // draw stands in, and false is returned).
   const int tries = world ? world->config().placement_tries : 1;
   const std::vector<Obstacle>* obstacles = draft ? draft->obstacles : nullptr;
-  const ReachableGrid* reach = draft ? draft->reach : nullptr;
+  const FootprintGrid* reach = draft ? draft->reach : nullptr;
+  std::optional<FootprintGrid> static_reach;  // nav/goal_reachable in a world that is not generated
+  if (world && !reach && config_.goal_reachable) {
+    static_reach.emplace(*world, kFootprintGridResolution, world->robotRadius(),
+                         obstacles ? *obstacles : std::vector<Obstacle>());
+    static_reach->reachFrom(start);
+    reach = &*static_reach;
+  }
   double best_clearance = -1.0;
   bool found = !world;
   for (int k = 0; k < tries; ++k) {
@@ -156,7 +187,21 @@ bool NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& st
   }
   last_distance_[env] = (goals_[env] - start).norm();
   position_[env] = start;
+  trackers_[env].reset({start, goals_[env]});  // until a path is planned on the layout
   return found;
+}
+
+void NavigationTask::layoutDrawn(int env, const WorldModel& world, const EnvLayout& layout) {
+  if (!config_.path) return;
+  const FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(), layout.obstacles,
+                           config_.path_clearance);
+  std::vector<Eigen::Vector2d> path;
+  if (!planPath(grid, layout.start, goals_[env], config_.path_clearance_cost, path)) {
+    ++unplanned_;  // the straight line stands in, as drawn
+    return;
+  }
+  trackers_[env].reset(std::move(path));
+  last_distance_[env] = trackers_[env].remaining(layout.start);
 }
 
 bool NavigationTask::drawInWorld(int env, Rng& rng, const WorldModel& world,
@@ -178,10 +223,14 @@ void NavigationTask::sense(int env, const EnvSenses& senses) { senses_[env] = se
 void NavigationTask::setGoal(int env, const Eigen::Vector2d& goal) {
   if (!goal.allFinite()) throw InputError("goal of env " + std::to_string(env) + " is not finite");
   goals_.at(env) = goal;
+  trackers_.at(env).reset({position_.at(env), goal});
 }
 
 double NavigationTask::distance(int env, const RootState& state) const {
-  return (goals_[env] - state.position.head<2>()).norm();
+  const Eigen::Vector2d p = state.position.head<2>();
+  if (!config_.path) return (goals_[env] - p).norm();
+  trackers_[env].track(p);
+  return trackers_[env].remaining(p);
 }
 
 void NavigationTask::observe(int env, const RootState& state, float* obs) const {
@@ -202,6 +251,12 @@ void NavigationTask::observe(int env, const RootState& state, float* obs) const 
   measured.goal = goals_[env];
   measured.last_action = senses_[env].action;
   position_[env] = state.position.head<2>();
+  if (config_.path) {
+    PathTracker& tracker = trackers_[env];
+    tracker.track(position_[env]);
+    measured.path_remaining = tracker.remaining(position_[env]);
+    measured.lookahead = tracker.lookahead(config_.path_lookahead);
+  }
   observer_.observe(measured, obs);
 }
 
@@ -240,8 +295,10 @@ float NavigationTask::reward(int env, const RootState& state) const {
   return static_cast<float>(r);
 }
 
-Eigen::Vector2d NavigationTask::arrowDirection(int env, int) const {
-  const Eigen::Vector2d rel = goals_.at(env) - position_.at(env);
+Eigen::Vector2d NavigationTask::arrowDirection(int env, int arrow) const {
+  const Eigen::Vector2d target =
+      arrow == 1 ? trackers_.at(env).lookahead(config_.path_lookahead) : goals_.at(env);
+  const Eigen::Vector2d rel = target - position_.at(env);
   return rel.norm() > 1e-9 ? Eigen::Vector2d(rel.normalized()) : Eigen::Vector2d::UnitX();
 }
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <string>
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/footprint_grid.h"
 #include "jetbot_rl/task_capabilities.h"
 
 namespace jetbot_rl {
@@ -237,7 +237,7 @@ void generateFor(const WorldModel& world, int family, double difficulty, Rng& rn
 
 /// A start the robot can stand on in `grid` with the start clearance: drawn (random_start) or
 /// the origin; false when none is found.
-bool drawGeneratedStart(const WorldModel& world, const ReachableGrid& grid, Rng& rng,
+bool drawGeneratedStart(const WorldModel& world, const FootprintGrid& grid, Rng& rng,
                         EnvLayout& layout) {
   const auto fits = [&](const Eigen::Vector2d& p) {
     return grid.isFree(p) && world.isClear(p, world.startClearance(), layout.obstacles);
@@ -264,8 +264,7 @@ void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double diff
                          WorldDrawing* task, EnvLayout& layout) {
   for (int attempt = 0; attempt < kLayoutAttempts; ++attempt) {
     generateFor(world, pickFamily(world.config(), rng), difficulty, rng, layout);
-    ReachableGrid grid(world.region(), kReachResolution, world.robotRadius(), layout.obstacles,
-                       world.walls());
+    FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(), layout.obstacles);
     if (!drawGeneratedStart(world, grid, rng, layout)) continue;
     grid.reachFrom(layout.start);
     WorldDraft draft;
@@ -298,8 +297,8 @@ void checkGeneratedLayouts(const WorldModel& world) {
         Rng rng(0, static_cast<std::uint64_t>(k));
         EnvLayout layout;
         generateFor(world, f, d, rng, layout);
-        const ReachableGrid grid(world.region(), kReachResolution, world.robotRadius(),
-                                 layout.obstacles, world.walls());
+        const FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(),
+                                 layout.obstacles);
         any = drawGeneratedStart(world, grid, rng, layout);
       }
       if (!any) {
@@ -334,76 +333,6 @@ int generateObstacles(WorldFamily family, double difficulty, const GenerationAre
       break;
   }
   return left_out;
-}
-
-ReachableGrid::ReachableGrid(const Eigen::AlignedBox2d& area, double resolution,
-                             double robot_radius, const std::vector<Obstacle>& obstacles,
-                             const std::vector<Obstacle>& walls)
-    : area_(area), resolution_(resolution) {
-  width_ = std::max(1, static_cast<int>(std::ceil(area.sizes().x() / resolution)));
-  height_ = std::max(1, static_cast<int>(std::ceil(area.sizes().y() / resolution)));
-  free_.assign(static_cast<std::size_t>(width_) * height_, 1);
-  const auto block = [&](const Obstacle& o) {
-    if (!o.placed) return;
-    const double reach = o.boundingRadius() + robot_radius;
-    const int x0 =
-        std::max(0, static_cast<int>((o.center.x() - reach - area.min().x()) / resolution));
-    const int x1 = std::min(width_ - 1,
-                            static_cast<int>((o.center.x() + reach - area.min().x()) / resolution));
-    const int y0 =
-        std::max(0, static_cast<int>((o.center.y() - reach - area.min().y()) / resolution));
-    const int y1 = std::min(height_ - 1,
-                            static_cast<int>((o.center.y() + reach - area.min().y()) / resolution));
-    for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) {
-        const Eigen::Vector2d c = area.min() + resolution * Eigen::Vector2d(x + 0.5, y + 0.5);
-        if (o.distance(c) <= robot_radius) free_[static_cast<std::size_t>(y) * width_ + x] = 0;
-      }
-    }
-  };
-  for (const Obstacle& o : obstacles) block(o);
-  for (const Obstacle& w : walls) block(w);
-  reached_.assign(free_.size(), 0);
-}
-
-long ReachableGrid::cellOf(const Eigen::Vector2d& p) const {
-  const Eigen::Vector2d q = (p - area_.min()) / resolution_;
-  const long x = static_cast<long>(std::floor(q.x())), y = static_cast<long>(std::floor(q.y()));
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
-  return y * width_ + x;
-}
-
-bool ReachableGrid::isFree(const Eigen::Vector2d& p) const {
-  const long c = cellOf(p);
-  return c >= 0 && free_[c];
-}
-
-bool ReachableGrid::reachFrom(const Eigen::Vector2d& start) {
-  std::fill(reached_.begin(), reached_.end(), 0);
-  const long s = cellOf(start);
-  if (s < 0 || !free_[s]) return false;
-  std::deque<long> queue{s};
-  reached_[s] = 1;
-  while (!queue.empty()) {
-    const long c = queue.front();
-    queue.pop_front();
-    const long x = c % width_, y = c / width_;
-    for (const auto& [dx, dy] : {std::array<long, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-      const long nx = x + dx, ny = y + dy;
-      if (nx < 0 || ny < 0 || nx >= width_ || ny >= height_) continue;
-      const long n = ny * width_ + nx;
-      if (free_[n] && !reached_[n]) {
-        reached_[n] = 1;
-        queue.push_back(n);
-      }
-    }
-  }
-  return true;
-}
-
-bool ReachableGrid::reachable(const Eigen::Vector2d& p) const {
-  const long c = cellOf(p);
-  return c >= 0 && reached_[c];
 }
 
 }  // namespace jetbot_rl

@@ -280,14 +280,15 @@ void WorldModel::drawLayout(Rng& rng, int env, double difficulty, WorldDrawing* 
                             EnvLayout& layout) const {
   if (!config_.families.empty()) {
     drawGeneratedLayout(*this, rng, env, difficulty, task, layout);
-    return;
+  } else {
+    drawStart(rng, layout);
+    std::vector<Eigen::Vector2d> keep_free{layout.start};
+    WorldDraft draft;
+    draft.start = layout.start;
+    if (task) task->drawInWorld(env, rng, *this, draft, keep_free);
+    drawObstacles(rng, keep_free, layout);
   }
-  drawStart(rng, layout);
-  std::vector<Eigen::Vector2d> keep_free{layout.start};
-  WorldDraft draft;
-  draft.start = layout.start;
-  if (task) task->drawInWorld(env, rng, *this, draft, keep_free);
-  drawObstacles(rng, keep_free, layout);
+  if (task) task->layoutDrawn(env, *this, layout);
 }
 
 void WorldModel::drawStart(Rng& rng, EnvLayout& layout) const {

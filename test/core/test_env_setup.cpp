@@ -75,7 +75,7 @@ TEST(EnvSetup, FieldNamesAreTheEnvsThenTheTasks) {
   ASSERT_FALSE(names.empty());
   EXPECT_EQ(names.front(), "num_envs");
   EXPECT_NE(std::find(names.begin(), names.end(), "reward_variant"), names.end());
-  EXPECT_EQ(names.back(), "nav/proximity_penalty");
+  EXPECT_EQ(names.back(), "nav/path_clearance_cost");
 }
 
 TEST(EnvProgramOptions, OptionsBuildTheSetupAndOldNamesAreRefused) {

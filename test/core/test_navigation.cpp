@@ -106,23 +106,14 @@ TEST(NavigationTask, ACloseScanRangeCostsInProportionToItsNearness) {
 }
 
 EnvConfig navConfig(int envs, int threads = 1) {
-  EnvConfig c = test::smallConfig(envs, threads);
+  EnvConfig c = test::scanningArenaConfig(envs, threads);
   c.episode_length_s = 20.0;
-  c.world.arena_size = {4.0, 4.0};
   c.world.num_boxes = 3;
   c.world.num_cylinders = 2;
-  c.world.random_start = true;
-  c.scan.link = "base_link";
-  c.scan.samples = 24;
-  c.scan.range = {0.05, 3.5};
   return c;
 }
 
-std::unique_ptr<Task> navigation() {
-  TaskConfig t;
-  t.task = TaskKind::kNavigation;
-  return makeTask(t);
-}
+std::unique_ptr<Task> navigation() { return test::navigationTask(); }
 
 TEST(NavigationTask, GoalsAreDrawnInFreeSpaceAwayFromObstacles) {
   EnvConfig c = navConfig(16, 2);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
 namespace test {
@@ -65,6 +66,26 @@ inline EnvConfig smallConfig(int num_envs, int threads = 1) {
   c.num_envs = num_envs;
   c.num_threads = threads;
   return c;
+}
+
+/// The navigation tests' env: a 4 x 4 m arena, random starts, the base scanning 24 samples out
+/// to 3.5 m.
+inline EnvConfig scanningArenaConfig(int num_envs, int threads = 1) {
+  EnvConfig c = smallConfig(num_envs, threads);
+  c.world.arena_size = {4.0, 4.0};
+  c.world.random_start = true;
+  c.scan.link = "base_link";
+  c.scan.samples = 24;
+  c.scan.range = {0.05, 3.5};
+  return c;
+}
+
+/// The navigation task with its defaults; with `path`, following a global path (nav/path).
+inline std::unique_ptr<Task> navigationTask(bool path = false) {
+  TaskConfig t;
+  t.task = TaskKind::kNavigation;
+  t.navigation.path = path;
+  return makeTask(t);
 }
 
 /// The tribot's dofs, with the limits its URDF lacks given as parameters.

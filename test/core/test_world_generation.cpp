@@ -22,23 +22,14 @@ namespace jetbot_rl {
 namespace {
 
 EnvConfig generatedConfig(int envs, int threads, std::vector<std::string> families) {
-  EnvConfig c = test::smallConfig(envs, threads);
+  EnvConfig c = test::scanningArenaConfig(envs, threads);
   c.episode_length_s = 0.05;  // 3 control steps: a new layout every few steps
-  c.world.arena_size = {4.0, 4.0};
-  c.world.random_start = true;
   c.world.start_clearance = 0.3;
   c.world.families = std::move(families);
-  c.scan.link = "base_link";
-  c.scan.samples = 24;
-  c.scan.range = {0.05, 3.5};
   return c;
 }
 
-std::unique_ptr<Task> navigation() {
-  TaskConfig t;
-  t.task = TaskKind::kNavigation;
-  return makeTask(t);
-}
+std::unique_ptr<Task> navigation() { return test::navigationTask(); }
 
 std::vector<float> actions(int envs, int step) {
   Rng rng(500 + step);
@@ -47,7 +38,7 @@ std::vector<float> actions(int envs, int step) {
   return a;
 }
 
-/// An oracle independent of ReachableGrid: a 4-connected walk over 0.02 m cells whose centres
+/// An oracle independent of FootprintGrid: a 4-connected walk over 0.02 m cells whose centres
 /// keep more than `radius` from every wall and placed obstacle (exact distances).
 bool hasPath(const WorldModel& world, const std::vector<Obstacle>& obstacles, double radius,
              const Eigen::Vector2d& from, const Eigen::Vector2d& to) {

@@ -131,5 +131,21 @@ TEST(ObserverOf, ACheckpointWhoseObservationTheTaskDoesNotBuildIsRefusedNamingBo
   }
 }
 
+TEST(ObserverOf, APolicyThatFollowsAGlobalPathIsRefusedSayingSo) {
+  BatchSpec trained;
+  trained.task = "navigation";
+  trained.action_dim = 2;
+  trained.observation_names = {"beam_0",         "goal_distance", "goal_cos", "goal_sin",
+                               "path_remaining", "path_cos",      "path_sin"};
+  try {
+    observerOf(trained, ScanBeams(), 0.2, "path.pt");
+    FAIL() << "accepted a policy that observes a path the deploy node does not plan";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("the policy of path.pt follows a global path"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace jetbot_rl

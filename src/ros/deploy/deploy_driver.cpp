@@ -4,6 +4,7 @@
 #include <ros/console.h>
 #include <ros/this_node.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -49,6 +50,13 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
 
 std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
                                          double goal_radius, const std::string& checkpoint) {
+  const auto& trained_names = trained.observation_names;
+  if (std::find(trained_names.begin(), trained_names.end(), "path_remaining") !=
+      trained_names.end()) {
+    throw ConfigError("the policy of " + checkpoint +
+                      " follows a global path (trained with nav/path: true); the deploy node "
+                      "does not plan paths on a robot yet: deploy a policy trained without it");
+  }
   ObserverSpec o;
   o.task = trained.task;
   o.action_dim = trained.action_dim;

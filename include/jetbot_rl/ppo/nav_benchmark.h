@@ -1,0 +1,46 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/ppo/policy.h"
+
+namespace jetbot_rl {
+namespace ppo {
+
+/// A world of the navigation benchmark: its name and the parameters (YAML) it sets over the
+/// env's own.
+struct BenchmarkWorld {
+  std::string name;
+  std::string yaml;
+};
+
+/// How a policy fared in one world, over the episodes counted.
+struct BenchmarkResult {
+  int episodes = 0;
+  bool steps_ran_out = false;  ///< Not every env finished its quota of episodes.
+  double success = 0.0, collision = 0.0, timeout = 0.0;  ///< Shares of the episodes.
+  double time_to_goal = 0.0;                             ///< Mean over the successes [s].
+  /// Mean over the successes of the distance driven to the goal's circle (nav/goal_radius) over
+  /// the shortest path's length to it (planPath for the footprint, without the clearance cost).
+  double path_ratio = 0.0;
+};
+
+/// The benchmark's worlds: each generated family at difficulty 0, 0.5 and 1 in a 6 x 6 m arena,
+/// goals 1-3 m away; then the map `map` with goals 1-15 m away anywhere the robot can reach
+/// (nav/goal_reachable), other rooms included.
+std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map);
+
+/**
+ * Plays `policy`'s mean action on `env` (the navigation task, its world) until each env has
+ * ended ceil(episodes / envs) episodes or `max_steps` control steps ran; counts each episode's
+ * outcome and, for a success, its time and the distance its root drove (control step by control
+ * step; the last step, whose end the reset hides, as far as the goal's circle) over its shortest
+ * path. ConfigError unless the env has the navigation task and a world.
+ */
+BenchmarkResult runNavigationBenchmark(Policy& policy, BatchedEnv& env, int episodes,
+                                       int max_steps);
+
+}  // namespace ppo
+}  // namespace jetbot_rl

@@ -1,0 +1,82 @@
+// jetbot_rl_nav_benchmark --checkpoint PATH [--episodes N] [--seed S] [--map YAML] [--config YAML
+// ...] [--num-envs N] [--steps S] [--threads T] [--urdf PATH]: the navigation benchmark
+// (config/navigation_env.yaml, then the --config files: those the policy was trained with)
+// (docs/navigation.md#the-benchmark): a navigation policy in each generated family at three
+// difficulties and in a map with goals anywhere reachable, on a seed not used in training; one
+// row per world: success, collision and time-out rates, time to goal, path over the shortest.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/ppo/nav_benchmark.h"
+
+int main(int argc, char** argv) {
+  using namespace jetbot_rl;
+  EnvProgramOptions env_options;
+  env_options.num_envs = 50;
+  env_options.steps = 20000;
+  env_options.threads = 2;
+  env_options.urdf = JETBOT_RL_DEFAULT_LIDAR_URDF;
+  std::string checkpoint, map = JETBOT_RL_DEFAULT_MAP;
+  long long seed = 1000;
+  int episodes = 200;
+  std::string error;
+  const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
+    if (option == "--checkpoint") {
+      checkpoint = value;
+    } else if (option == "--map") {
+      map = value;
+    } else if (option == "--episodes") {
+      parseWholeNumber(option, value, 1, 10000000, episodes, error);
+    } else if (option == "--seed") {
+      parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
+    } else {
+      return env_options.take(option, value, error);
+    }
+    return true;
+  };
+  if (parseOptions(argc, argv, take, error) && checkpoint.empty()) {
+    error = "--checkpoint is required";
+  }
+  if (!error.empty()) {
+    std::fprintf(stderr,
+                 "jetbot_rl_nav_benchmark: %s\nusage: jetbot_rl_nav_benchmark --checkpoint PATH "
+                 "[--episodes N] [--seed S] [--map YAML] %s\n",
+                 error.c_str(), EnvProgramOptions::usage());
+    return 2;
+  }
+  env_options.configs.insert(env_options.configs.begin(), JETBOT_RL_NAVIGATION_ENV);
+  try {
+    if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/latest.pt";
+    ppo::Policy policy(checkpoint);
+    const auto& names = policy.meta().spec.observation_names;
+    const bool path = std::find(names.begin(), names.end(), "path_remaining") != names.end();
+    std::printf("# %s: %d episodes per world, seed %lld, %s\n", checkpoint.c_str(), episodes, seed,
+                path ? "with its global path" : "without a path");
+    std::printf("%-14s %8s %8s %9s %8s %12s %13s\n", "world", "episodes", "success", "collision",
+                "timeout", "time_to_goal", "path/shortest");
+    for (const ppo::BenchmarkWorld& world : ppo::navigationBenchmarkWorlds(map)) {
+      EnvSetup setup = env_options.setup();
+      fieldsFromYaml("task: navigation\n" + world.yaml, setup);
+      fieldsFromYaml(std::string("nav:\n  path: ") + (path ? "true" : "false") + "\n", setup);
+      setup.env.seed = static_cast<std::uint64_t>(seed);
+      const std::unique_ptr<BatchedEnv> env = makeEnv(
+          RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
+          setup);
+      policy.fitTo(env->spec());
+      const ppo::BenchmarkResult r =
+          ppo::runNavigationBenchmark(policy, *env, episodes, env_options.steps);
+      std::printf("%-14s %8d %8.3f %9.3f %8.3f %11.1fs %13.2f%s\n", world.name.c_str(), r.episodes,
+                  r.success, r.collision, r.timeout, r.time_to_goal, r.path_ratio,
+                  r.steps_ran_out ? "  (the steps ran out first)" : "");
+      std::fflush(stdout);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "jetbot_rl_nav_benchmark: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,103 @@
+// The navigation benchmark (jetbot_rl_nav_benchmark): its worlds build, an (untrained) policy's
+// episodes are counted with rates that add up, successes drive no shorter than the shortest
+// path, and an env without the navigation task or a world is refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/checkpoint.h"
+#include "jetbot_rl/ppo/nav_benchmark.h"
+#include "jetbot_rl/ppo/ppo.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+EnvSetup benchmarkSetup(const std::string& world_yaml, int envs) {
+  EnvSetup setup;
+  readEnvSetupFiles({std::string(JETBOT_RL_SOURCE_DIR) + "/config/navigation_env.yaml"}, setup);
+  fieldsFromYaml("task: navigation\n" + world_yaml, setup);
+  setup.env.num_envs = envs;
+  setup.env.num_threads = 1;
+  setup.env.episode_length_s = 4.0;  // time-outs come soon
+  return setup;
+}
+
+RobotModelConstPtr lidarJetbot() {
+  return RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_lidar.urdf");
+}
+
+/// An untrained policy for `env`, saved and loaded as the benchmark loads one.
+Policy untrainedPolicy(const BatchedEnv& env) {
+  torch::manual_seed(3);
+  PpoConfig c;
+  c.actor_hidden_dims = {16};
+  c.critic_hidden_dims = {16};
+  c.init_noise_std = 1.0;
+  Ppo ppo(env.spec(), c);
+  CheckpointMeta meta;
+  meta.obs_dim = env.obsDim();
+  meta.action_dim = env.actionDim();
+  meta.config = c;
+  meta.spec = env.spec();
+  const auto dir = std::filesystem::temp_directory_path() / "jetbot_rl_test_nav_benchmark";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "untrained.pt").string();
+  saveCheckpoint(path, ppo, meta);
+  return Policy(path);
+}
+
+TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
+  const auto worlds =
+      navigationBenchmarkWorlds(std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
+  ASSERT_EQ(worlds.size(), 10u);
+  EXPECT_EQ(worlds[0].name, "clutter 0");
+  EXPECT_EQ(worlds[8].name, "maze 1");
+  EXPECT_EQ(worlds[9].name, "map 1-15 m");
+  for (const BenchmarkWorld& w : worlds) {
+    const EnvSetup setup = benchmarkSetup(w.yaml, 2);
+    EXPECT_NO_THROW(makeEnv(lidarJetbot(), setup)) << w.name;
+  }
+  const EnvSetup map = benchmarkSetup(worlds[9].yaml, 1);
+  EXPECT_TRUE(map.task.navigation.goal_reachable);
+  EXPECT_EQ(map.task.navigation.goal_distance, (std::vector<double>{1.0, 15.0}));
+}
+
+TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPath) {
+  const auto worlds = navigationBenchmarkWorlds("unused.yaml");
+  const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3].yaml, 6));
+  Policy policy = untrainedPolicy(*env);
+  const BenchmarkResult r = runNavigationBenchmark(policy, *env, 12, 5000);
+  EXPECT_FALSE(r.steps_ran_out);
+  EXPECT_EQ(r.episodes, 12);  // two per env
+  EXPECT_NEAR(r.success + r.collision + r.timeout, 1.0, 1e-12);
+  if (r.success > 0.0) {
+    EXPECT_GT(r.time_to_goal, 0.0);
+    EXPECT_GT(r.path_ratio, 0.9);
+  }
+  // With a quota the steps cannot meet, the result says so.
+  const std::unique_ptr<BatchedEnv> again =
+      makeEnv(lidarJetbot(), benchmarkSetup(worlds[3].yaml, 6));
+  EXPECT_TRUE(runNavigationBenchmark(policy, *again, 600, 50).steps_ran_out);
+}
+
+TEST(NavBenchmark, AnEnvWithoutTheNavigationTaskOrAWorldIsRefused) {
+  EnvSetup velocity;
+  velocity.env.num_envs = 2;
+  const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), velocity);
+  Policy policy = untrainedPolicy(*env);
+  try {
+    runNavigationBenchmark(policy, *env, 2, 10);
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs the navigation task in a world (task = velocity)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ppo
+}  // namespace jetbot_rl
