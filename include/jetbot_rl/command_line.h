@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -146,6 +147,49 @@ struct EnvProgramOptions {
       }
       return "";
     };
+  }
+};
+
+/// The options of the programs that play a checkpoint on a batch in this process
+/// (jetbot_rl_evaluate, jetbot_rl_nav_benchmark): --checkpoint PATH (required) --episodes N --seed
+/// S, and EnvProgramOptions'.
+struct PolicyProgramOptions {
+  EnvProgramOptions env;
+  std::string checkpoint;
+  long long seed = 1000;
+  int episodes = 0;
+
+  /// Stores `option` when it is one of these (true; `error` set for a bad value), else false.
+  bool take(const std::string& option, const std::string& value, std::string& error) {
+    if (option == "--checkpoint") {
+      checkpoint = value;
+    } else if (option == "--episodes") {
+      parseWholeNumber(option, value, 0, 10000000, episodes, error);
+    } else if (option == "--seed") {
+      parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
+    } else {
+      return env.take(option, value, error);
+    }
+    return true;
+  }
+  /// Parses argv with these options and the program's own (`take_own`, tried first); false after
+  /// printing "<program>: <error>" and "usage: <program> --checkpoint PATH [--episodes N] [--seed
+  /// S] <own_usage> <EnvProgramOptions::usage()>" on stderr (the program then exits 2).
+  template <typename TakeOwn>
+  bool parse(int argc, char** argv, const char* program, const char* own_usage,
+             TakeOwn&& take_own) {
+    std::string error;
+    const auto take_one = [&](const std::string& option, const std::string& value,
+                              std::string& error) {
+      return take_own(option, value, error) || take(option, value, error);
+    };
+    if (parseOptions(argc, argv, take_one, error) && checkpoint.empty()) {
+      error = "--checkpoint is required";
+    }
+    if (error.empty()) return true;
+    std::fprintf(stderr, "%s: %s\nusage: %s --checkpoint PATH [--episodes N] [--seed S] %s %s\n",
+                 program, error.c_str(), program, own_usage, EnvProgramOptions::usage());
+    return false;
   }
 };
 

@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,42 +18,30 @@
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
-  EnvProgramOptions env_options;
+  PolicyProgramOptions options;
+  EnvProgramOptions& env_options = options.env;
   env_options.num_envs = 64;
   env_options.steps = 600;
   env_options.threads = 1;
   env_options.urdf = JETBOT_RL_DEFAULT_URDF;
-  std::string checkpoint, task;
-  long long seed = 1000;
-  int episodes = 0, obs_from_step = -1;
-  std::string error;
+  std::string task;
+  int obs_from_step = -1;
   const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
-    if (option == "--checkpoint") {
-      checkpoint = value;
-    } else if (option == "--task") {
+    if (option == "--task") {
       task = value;
-    } else if (option == "--episodes") {
-      parseWholeNumber(option, value, 0, 10000000, episodes, error);
     } else if (option == "--obs-from-step") {
       parseWholeNumber(option, value, 0, 100000000, obs_from_step, error);
-    } else if (option == "--seed") {
-      parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
     } else {
-      return env_options.take(option, value, error);
+      return false;
     }
     return true;
   };
-  if (parseOptions(argc, argv, take, error) && checkpoint.empty()) {
-    error = "--checkpoint is required";
-  }
-  if (!error.empty()) {
-    std::fprintf(
-        stderr,
-        "jetbot_rl_evaluate: %s\nusage: jetbot_rl_evaluate --checkpoint PATH [--task NAME] "
-        "[--seed S] [--episodes N] [--obs-from-step K] %s\n",
-        error.c_str(), EnvProgramOptions::usage());
+  if (!options.parse(argc, argv, "jetbot_rl_evaluate", "[--task NAME] [--obs-from-step K]", take)) {
     return 2;
   }
+  std::string checkpoint = options.checkpoint;
+  const long long seed = options.seed;
+  const int episodes = options.episodes;
   try {
     EnvSetup setup = env_options.setup();
     if (!task.empty()) fieldsFromYaml("task: " + task, setup);

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <string>
 
 #include "jetbot_rl/command_line.h"
@@ -15,39 +14,23 @@
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
-  EnvProgramOptions env_options;
+  PolicyProgramOptions options;
+  EnvProgramOptions& env_options = options.env;
   env_options.num_envs = 50;
   env_options.steps = 20000;
   env_options.threads = 2;
   env_options.urdf = JETBOT_RL_DEFAULT_LIDAR_URDF;
-  std::string checkpoint, map = JETBOT_RL_DEFAULT_MAP;
-  long long seed = 1000;
-  int episodes = 200;
-  std::string error;
-  const auto take = [&](const std::string& option, const std::string& value, std::string& error) {
-    if (option == "--checkpoint") {
-      checkpoint = value;
-    } else if (option == "--map") {
-      map = value;
-    } else if (option == "--episodes") {
-      parseWholeNumber(option, value, 1, 10000000, episodes, error);
-    } else if (option == "--seed") {
-      parseWholeNumber(option, value, 0, std::numeric_limits<long long>::max(), seed, error);
-    } else {
-      return env_options.take(option, value, error);
-    }
+  options.episodes = 200;
+  std::string map = JETBOT_RL_DEFAULT_MAP;
+  const auto take = [&](const std::string& option, const std::string& value, std::string&) {
+    if (option != "--map") return false;
+    map = value;
     return true;
   };
-  if (parseOptions(argc, argv, take, error) && checkpoint.empty()) {
-    error = "--checkpoint is required";
-  }
-  if (!error.empty()) {
-    std::fprintf(stderr,
-                 "jetbot_rl_nav_benchmark: %s\nusage: jetbot_rl_nav_benchmark --checkpoint PATH "
-                 "[--episodes N] [--seed S] [--map YAML] %s\n",
-                 error.c_str(), EnvProgramOptions::usage());
-    return 2;
-  }
+  if (!options.parse(argc, argv, "jetbot_rl_nav_benchmark", "[--map YAML]", take)) return 2;
+  std::string checkpoint = options.checkpoint;
+  const long long seed = options.seed;
+  const int episodes = std::max(options.episodes, 1);
   env_options.configs.insert(env_options.configs.begin(), JETBOT_RL_NAVIGATION_ENV);
   try {
     if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/latest.pt";
