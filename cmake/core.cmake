@@ -16,6 +16,7 @@ add_library(jetbot_rl_core
   src/core/dof_limits.cpp
   src/core/env_config.cpp
   src/core/env_physics.cpp
+  src/core/env_obstacles.cpp
   src/core/env_randomizer.cpp
   src/core/env_setup.cpp
   src/core/env_view.cpp

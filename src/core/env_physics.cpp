@@ -18,8 +18,6 @@ constexpr int kWorldUserIndex = 1;  // marks the world's collision objects
 // A contact point this close or closer counts as a collision [m] (Bullet keeps points up to its
 // breaking threshold apart).
 constexpr btScalar kTouching = 1e-3f;
-// Where an obstacle left out of an episode waits, far below the ground (it touches nothing).
-constexpr btScalar kParked = -1000;
 // The velocity loop's integral gain [1/s] and the largest correction, as a fraction of the
 // velocity limit: Bullet's solver leaves a wheel a few per cent below its target at low speed
 // (10 iterations do not converge the motor against the tyre's friction), which the integral
@@ -97,13 +95,9 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     }
     // Obstacle slots: a placeholder shape until the first layout.
     for (int i = 0; i < (obstacle_compound_ ? 0 : num_obstacles); ++i) {
-      Obstacle parked;
-      parked.half_extents = {0.1, 0.1};
-      parked.height = 0.1;
       btTransform pose;
-      obstacle_shapes_.push_back(makeObstacleShape(parked, pose));
-      pose.getOrigin().setZ(kParked);
-      obstacles_.push_back(addStatic(obstacle_shapes_.back().get(), pose));
+      btCollisionShape* shape = parkedShape(pose);
+      obstacles_.push_back(addStatic(shape, pose));
     }
   }
 
@@ -173,56 +167,6 @@ void EnvPhysics::moveRobot(const Eigen::Vector2d& offset) {
       btVector3(static_cast<btScalar>(offset.x()), static_cast<btScalar>(offset.y()), 0);
   robot_->setBaseWorldTransform(base);
   syncColliders();
-}
-
-void EnvPhysics::parkObstacles(btCompoundShape& compound) {
-  // An empty compound has no AABB: a placeholder far below the ground stands in.
-  Obstacle parked;
-  parked.half_extents = {0.1, 0.1};
-  parked.height = 0.1;
-  btTransform pose;
-  obstacle_shapes_.push_back(makeObstacleShape(parked, pose));
-  pose.getOrigin().setZ(kParked);
-  compound.addChildShape(pose, obstacle_shapes_.back().get());
-}
-
-void EnvPhysics::setObstacles(const std::vector<Obstacle>& obstacles) {
-  if (obstacle_compound_) {
-    // A new compound of the placed obstacles; the old one goes once nothing points at it.
-    std::vector<std::unique_ptr<btCollisionShape>> shapes;
-    auto compound = std::make_unique<btCompoundShape>(true, static_cast<int>(obstacles.size()));
-    for (const Obstacle& o : obstacles) {
-      if (!o.placed) continue;
-      btTransform pose;
-      shapes.push_back(makeObstacleShape(o, pose));
-      compound->addChildShape(pose, shapes.back().get());
-    }
-    btCollisionObject& object = *obstacles_.front();
-    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
-        object.getBroadphaseHandle(), dispatcher_.get());
-    std::swap(obstacle_shapes_, shapes);
-    if (compound->getNumChildShapes() == 0) parkObstacles(*compound);
-    object.setCollisionShape(compound.get());
-    world_->updateSingleAabb(&object);
-    obstacle_compound_ = std::move(compound);
-    return;
-  }
-  for (std::size_t i = 0; i < obstacles_.size(); ++i) {
-    btCollisionObject& object = *obstacles_[i];
-    btTransform pose;
-    if (i < obstacles.size() && obstacles[i].placed) {
-      obstacle_shapes_[i] = makeObstacleShape(obstacles[i], pose);
-    } else {
-      pose = object.getWorldTransform();
-      pose.getOrigin().setZ(kParked);
-    }
-    // Its old contacts go with its old shape.
-    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
-        object.getBroadphaseHandle(), dispatcher_.get());
-    object.setCollisionShape(obstacle_shapes_[i].get());
-    object.setWorldTransform(pose);
-    world_->updateSingleAabb(&object);
-  }
 }
 
 bool EnvPhysics::touchesWorld() const {

@@ -104,6 +104,8 @@ class EnvPhysics {
   /// World transform of body `body`'s principal COM frame.
   btTransform comPose(int body) const;
   void syncColliders();
+  /// A placeholder obstacle shape (kept in obstacle_shapes_) and its `pose` far below the ground.
+  btCollisionShape* parkedShape(btTransform& pose);
   /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
   void parkObstacles(btCompoundShape& compound);
   /// True when a contact of the last collision detection joins the robot and the world.
