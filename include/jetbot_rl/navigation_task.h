@@ -98,6 +98,8 @@ class NavigationObserver : public TaskObserver {
   /// clamped into [range_min, range_max], divided by range_max.
   float beamValue(float range) const;
   int actionDim() const { return action_dim_; }
+  /// True when a policy's `observation_names` hold a global path's (trained with nav/path).
+  static bool observesPath(const std::vector<std::string>& observation_names);
 
  private:
   int beams_, action_dim_;

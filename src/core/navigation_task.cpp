@@ -16,6 +16,7 @@ namespace jetbot_rl {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr const char* kPathNames[] = {"path_remaining", "path_cos", "path_sin"};
 
 double yawOf(const RootState& state) {
   const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
@@ -38,7 +39,7 @@ std::vector<std::string> NavigationObserver::observationNames() const {
   for (int i = 0; i < beams_; ++i) names.push_back("beam_" + std::to_string(i));
   for (const char* n : {"goal_distance", "goal_cos", "goal_sin"}) names.push_back(n);
   if (path_) {
-    for (const char* n : {"path_remaining", "path_cos", "path_sin"}) names.push_back(n);
+    for (const char* n : kPathNames) names.push_back(n);
   }
   for (const char* n : {"lin_vel_b_x", "ang_vel_z"}) names.push_back(n);
   for (int a = 0; a < action_dim_; ++a) names.push_back("last_action_" + std::to_string(a));
@@ -87,6 +88,11 @@ void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
   obs[k++] = static_cast<float>(state.root.comLinearVelocityBody().x());
   obs[k++] = static_cast<float>(state.root.angular_velocity.z());
   for (int a = 0; a < action_dim_; ++a) obs[k++] = state.last_action ? state.last_action[a] : 0.0f;
+}
+
+bool NavigationObserver::observesPath(const std::vector<std::string>& observation_names) {
+  return std::find(observation_names.begin(), observation_names.end(), kPathNames[0]) !=
+         observation_names.end();
 }
 
 bool NavigationObserver::reached(const MeasuredState& state) const {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "jetbot_rl/command_line.h"
+#include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/ppo/nav_benchmark.h"
 
 int main(int argc, char** argv) {
@@ -35,8 +36,7 @@ int main(int argc, char** argv) {
   try {
     if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/latest.pt";
     ppo::Policy policy(checkpoint);
-    const auto& names = policy.meta().spec.observation_names;
-    const bool path = std::find(names.begin(), names.end(), "path_remaining") != names.end();
+    const bool path = NavigationObserver::observesPath(policy.meta().spec.observation_names);
     std::printf("# %s: %d episodes per world, seed %lld, %s\n", checkpoint.c_str(), episodes, seed,
                 path ? "with its global path" : "without a path");
     std::printf("%-14s %8s %8s %9s %8s %12s %13s\n", "world", "episodes", "success", "collision",
@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
       const std::unique_ptr<BatchedEnv> env = makeEnv(
           RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
           setup);
-      policy.fitTo(env->spec());
+      for (const std::string& warning : policy.fitTo(env->spec())) {
+        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+      }
       const ppo::BenchmarkResult r =
           ppo::runNavigationBenchmark(policy, *env, episodes, env_options.steps);
       std::printf("%-14s %8d %8.3f %9.3f %8.3f %11.1fs %13.2f%s\n", world.name.c_str(), r.episodes,

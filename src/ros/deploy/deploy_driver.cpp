@@ -4,11 +4,11 @@
 #include <ros/console.h>
 #include <ros/this_node.h>
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "jetbot_rl/command_task.h"
+#include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/ros/common/private_topic.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
 #include "jetbot_rl/task_factory.h"
@@ -50,9 +50,7 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
 
 std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
                                          double goal_radius, const std::string& checkpoint) {
-  const auto& trained_names = trained.observation_names;
-  if (std::find(trained_names.begin(), trained_names.end(), "path_remaining") !=
-      trained_names.end()) {
+  if (NavigationObserver::observesPath(trained.observation_names)) {
     throw ConfigError("the policy of " + checkpoint +
                       " follows a global path (trained with nav/path: true); the deploy node "
                       "does not plan paths on a robot yet: deploy a policy trained without it");
