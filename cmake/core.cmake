@@ -43,6 +43,7 @@ add_library(jetbot_rl_core
   src/core/world_generation.cpp
   src/core/footprint_grid.cpp
   src/core/grid_planner.cpp
+  src/core/map_planner.cpp
   src/core/path_tracker.cpp
   src/core/world_shapes.cpp
 )

@@ -117,7 +117,11 @@ class NavigationObserver : public TaskObserver {
  * collision_penalty on a collision and step_cost per step; reaching the goal or colliding
  * terminates the episode. Needs a laser scanner.
  */
-class NavigationTask : public Task, public ScanObserving, public WorldDrawing, public ArrowDrawing {
+class NavigationTask : public Task,
+                       public ScanObserving,
+                       public PathObserving,
+                       public WorldDrawing,
+                       public ArrowDrawing {
  public:
   enum class Variant { kProgress, kSparse };
 
@@ -140,6 +144,7 @@ class NavigationTask : public Task, public ScanObserving, public WorldDrawing, p
   std::vector<std::string> arrowNames() const override;
   std::vector<double> scanBeamAngles() const override;
   double scanBeamWidth() const override { return beam_width_; }
+  double pathLookahead() const override { return config_.path ? config_.path_lookahead : 0.0; }
   Eigen::Vector2d arrowDirection(int env, int arrow) const override;
 
   /// Env `env`'s path to its goal (nav/path): the start, where it turns, the goal [m]; without

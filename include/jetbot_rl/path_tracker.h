@@ -22,6 +22,8 @@ class PathTracker {
   void track(const Eigen::Vector2d& p);
   /// The path left from the tracked point, plus `p`'s distance from it [m].
   double remaining(const Eigen::Vector2d& p) const;
+  /// `p`'s distance from the tracked point [m]: how far the robot strayed from the path.
+  double offset(const Eigen::Vector2d& p) const { return (p - pointAt(at_)).norm(); }
   /// The point `distance` [m] along the path past the tracked point (the goal at the end).
   Eigen::Vector2d lookahead(double distance) const;
   const std::vector<Eigen::Vector2d>& points() const { return points_; }

@@ -58,6 +58,8 @@ struct BatchSpec {
   /// Each beam's sector [rad]: the smallest reading in [angle, angle + width); 0: the nearest
   /// sample (and in checkpoints written before sectors).
   double scan_beam_width = 0.0;
+  /// A task that observes a global path: the observed point's distance along it [m]; 0: none.
+  double path_lookahead = 0.0;
 };
 
 /// The fields of BatchSpec a trained policy is bound to: an env it acts on must have the same
@@ -77,6 +79,9 @@ IfConfig<C, BatchSpec> visitPolicyBoundFields(C& c, V&& v) {
   v("scan_beam_width", c.scan_beam_width, AnyValue{"rad"},
     "Each beam's sector: the beam is the smallest reading in [angle, angle + width); 0: the "
     "sample nearest to its angle.");
+  v("path_lookahead", c.path_lookahead, AnyValue{"m"},
+    "A task that observes a global path (nav/path): the observed point's distance along it past "
+    "the robot (nav/path_lookahead); 0: no path observed.");
 }
 
 /// Every field of BatchSpec (EnvSpec.msg names the same).

@@ -38,6 +38,14 @@ class ScanObserving {
   virtual double scanBeamWidth() const = 0;
 };
 
+/// A task that may observe a global path to its goal (navigation with nav/path).
+class PathObserving {
+ public:
+  virtual ~PathObserving() = default;
+  /// The observed point's distance along the path past the robot [m]; 0: it observes no path.
+  virtual double pathLookahead() const = 0;
+};
+
 /// A task that places something in an env's world at each reset (a goal kept free of obstacles).
 class WorldDrawing {
  public:

@@ -65,6 +65,8 @@ class WorldModel {
   /// ConfigError naming world/start_clearance (or world/map, world/region) when no free point
   /// has the clearance. `robot_radius` [m]: the robot's footprint.
   WorldModel(const WorldConfig& config, double robot_radius);
+  /// The same with a map already loaded (a robot's /map) in place of world/map's file.
+  WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap& map);
 
   const WorldConfig& config() const { return config_; }
   /// The map, if one is loaded.
@@ -111,6 +113,7 @@ class WorldModel {
   double startClearance() const { return start_clearance_; }
 
  private:
+  WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap* loaded);
   void mergeObstacleCells();
   void computeDistanceField();
 

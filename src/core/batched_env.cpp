@@ -311,6 +311,9 @@ BatchSpec BatchedEnv::spec() const {
     spec.scan_beam_width = scan_task->scanBeamWidth();
     spec.scan_range = {scan_->spec().range_min, scan_->spec().range_max};
   }
+  if (const auto* path_task = capability<PathObserving>(*task_)) {
+    spec.path_lookahead = path_task->pathLookahead();
+  }
   return spec;
 }
 

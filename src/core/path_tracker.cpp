@@ -35,7 +35,7 @@ void PathTracker::track(const Eigen::Vector2d& p) {
 }
 
 double PathTracker::remaining(const Eigen::Vector2d& p) const {
-  return (length() - at_) + (p - pointAt(at_)).norm();
+  return (length() - at_) + offset(p);
 }
 
 Eigen::Vector2d PathTracker::lookahead(double distance) const { return pointAt(at_ + distance); }

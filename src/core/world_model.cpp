@@ -110,14 +110,24 @@ void checkFieldRules(const WorldConfig& c) {
 }
 
 WorldModel::WorldModel(const WorldConfig& config, double robot_radius)
+    : WorldModel(config, robot_radius, nullptr) {}
+
+WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap& map)
+    : WorldModel(config, robot_radius, &map) {}
+
+WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap* loaded)
     : config_(config), robot_radius_(robot_radius) {
   validateConfig(config_);
-  if (!config_.map.empty()) {
+  if (loaded) {
+    map_ = *loaded;
+  } else if (!config_.map.empty()) {
     try {
       map_ = OccupancyMap::fromYamlFile(config_.map);
     } catch (const ConfigError& e) {
       throw ConfigError(std::string("world/map: ") + e.what());
     }
+  }
+  if (map_) {
     map_pose_ = map_->pose();
     obstacle_cells_.resize(map_->data.size());
     for (int y = 0; y < map_->height; ++y) {

@@ -131,20 +131,35 @@ TEST(ObserverOf, ACheckpointWhoseObservationTheTaskDoesNotBuildIsRefusedNamingBo
   }
 }
 
-TEST(ObserverOf, APolicyThatFollowsAGlobalPathIsRefusedSayingSo) {
+TEST(ObserverOf, APolicyThatFollowsAGlobalPathObservesItWithTheLookAheadItsCheckpointHolds) {
+  ObserverSpec o;
+  o.task = "navigation";
+  o.scan_beams = 1;
+  o.range_min = 0.15;
+  o.range_max = 3.5;
+  o.path = true;
   BatchSpec trained;
   trained.task = "navigation";
   trained.action_dim = 2;
-  trained.observation_names = {"beam_0",         "goal_distance", "goal_cos", "goal_sin",
-                               "path_remaining", "path_cos",      "path_sin"};
+  trained.observation_names = makeObserver(o)->observationNames();
+  ScanBeams beams;
+  beams.angles = {0.0};
+  beams.range_min = o.range_min;
+  beams.range_max = o.range_max;
+  // Written before checkpoints held the look-ahead: refused, saying what to do.
   try {
-    observerOf(trained, ScanBeams(), 0.2, "path.pt");
-    FAIL() << "accepted a policy that observes a path the deploy node does not plan";
+    observerOf(trained, beams, 0.2, "path.pt");
+    FAIL() << "accepted a path policy without its look-ahead";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("the policy of path.pt follows a global path"),
+    EXPECT_NE(std::string(e.what()).find("the policy of path.pt follows a global path, but its "
+                                         "checkpoint does not hold the look-ahead"),
               std::string::npos)
         << e.what();
   }
+  trained.path_lookahead = 0.6;
+  const auto observer = observerOf(trained, beams, 0.2, "path.pt");
+  EXPECT_EQ(observer->observationNames(), trained.observation_names);
+  EXPECT_TRUE(NavigationObserver::observesPath(observer->observationNames()));
 }
 
 }  // namespace

@@ -20,6 +20,7 @@ class TestRefuseStartPpo(unittest.TestCase):
     count = 0
     trained = None
     trained_navigation = None
+    trained_path = None
 
     @classmethod
     def checkpoint(cls):
@@ -42,6 +43,20 @@ class TestRefuseStartPpo(unittest.TestCase):
                             'run_dir:=' + cls.trained_navigation, 'output:=log'], check=True,
                            timeout=10 * RUN_TIMEOUT, stdout=subprocess.DEVNULL)
         return cls.trained_navigation
+
+    @classmethod
+    def path_checkpoint(cls):
+        """A navigation run of one iteration that follows a global path (nav/path)."""
+        if cls.trained_path is None:
+            cls.trained_path = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_path_')
+            path_config = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test',
+                                       'sim2real', 'navigation_path.yaml')
+            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                            'task:=navigation', 'iterations:=1', 'num_envs:=4',
+                            'world:=' + path_config, 'run_dir:=' + cls.trained_path,
+                            'output:=log'], check=True, timeout=10 * RUN_TIMEOUT,
+                           stdout=subprocess.DEVNULL)
+        return cls.trained_path
 
     def refuses(self, node_type, params, *texts, lists=None):
         """`lists`: private parameters set on the server (a command line gives only scalars)."""
@@ -143,6 +158,19 @@ class TestRefuseStartPpo(unittest.TestCase):
         self.refuses('jetbot_deploy_node',
                      {'checkpoint': self.navigation_checkpoint(), 'nav/goal_radius': 0.3},
                      'nav/goal_radius = (set): was renamed goal_radius')
+
+    def test_deploy_path_policy_without_a_map(self):
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.path_checkpoint(), 'footprint_radius': 0.1},
+                     "map_topic = ''", 'follows a global path, which is planned on a map')
+
+    def test_deploy_path_policy_without_a_footprint(self):
+        checkpoint = self.path_checkpoint()
+        if rospy.has_param('/robot_description'):  # train.launch leaves its robot on the master
+            rospy.delete_param('/robot_description')
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': checkpoint, 'map_topic': '/map'},
+                     'footprint_radius = 0', 'robot_description, which is not set')
 
     def test_deploy_without_checkpoint(self):
         self.refuses('jetbot_deploy_node', {}, 'checkpoint')

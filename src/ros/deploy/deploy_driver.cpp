@@ -42,6 +42,7 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
   }
   PolicyRun run;
   run.control_rate = 1.0 / spec.control_dt;
+  run.path_lookahead = spec.path_lookahead;
   run.twist = spec.action_names == std::vector<std::string>{"linear_x", "angular_z"};
   run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
   run.checkpoint = checkpoint;
@@ -50,12 +51,14 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
 
 std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
                                          double goal_radius, const std::string& checkpoint) {
-  if (NavigationObserver::observesPath(trained.observation_names)) {
-    throw ConfigError("the policy of " + checkpoint +
-                      " follows a global path (trained with nav/path: true); the deploy node "
-                      "does not plan paths on a robot yet: deploy a policy trained without it");
-  }
   ObserverSpec o;
+  o.path = NavigationObserver::observesPath(trained.observation_names);
+  if (o.path && !(trained.path_lookahead > 0.0)) {
+    throw ConfigError("the policy of " + checkpoint +
+                      " follows a global path, but its checkpoint does not hold the look-ahead "
+                      "it was trained with (path_lookahead; written before checkpoints held it): "
+                      "resume it for one iteration to save it again");
+  }
   o.task = trained.task;
   o.action_dim = trained.action_dim;
   o.scan_beams = static_cast<int>(beams.angles.size());
@@ -90,7 +93,7 @@ RootState rootStateOf(const nav_msgs::Odometry& odometry) {
 DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                            const TaskObserver& observer, const DeployParams& p,
                            const PolicyRun& run, const ScanBeams& beams,
-                           const std::optional<DiffDrive>& kinematics)
+                           const std::optional<DiffDrive>& kinematics, double footprint_radius)
     : policy_(policy),
       observer_(observer),
       run_(run),
@@ -121,8 +124,29 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     goals_ = std::make_unique<GoalInput>(
         nh, pnh, p.goal_topic, p.outcome_topic, p.map_topic,
         [this] { return odom_.latest() ? odom_.latest()->header.frame_id : std::string(); },
-        [this] { policy_.resetMemory(); });  // each goal is an episode
+        [this] {
+          policy_.resetMemory();  // each goal is an episode
+          new_goal_ = true;
+        });
     inputs += " and goals on " + goals_->topic();
+  }
+  if (run.path_lookahead > 0.0) {
+    if (p.map_topic.empty()) {
+      throwInvalid("map_topic", "''",
+                   "the policy of " + run.checkpoint +
+                       " follows a global path, which is planned on a map: name its topic");
+    }
+    PathFollowing f;
+    f.planner.robot_radius = footprint_radius;
+    f.planner.clearance = p.path_clearance;
+    f.planner.clearance_cost = p.path_clearance_cost;
+    f.lookahead = run.path_lookahead;
+    f.replan_distance = p.path_replan_distance;
+    f.blocked_distance = p.path_blocked_distance;
+    f.replan_period = p.path_replan_period;
+    path_ = std::make_unique<PathFollower>(pnh, f, goals_->tf());
+    inputs += ", paths planned on " + p.map_topic + " for a footprint of " +
+              std::to_string(footprint_radius) + " m (on ~plan)";
   }
   if (observer.takesCommand()) {
     command_sub_ =
@@ -189,9 +213,12 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
     if (goals_) state.goal = *goals_->goal();
     state.command = command_;
     state.last_action = last_action_.data();
-    if (goals_ && observer_.reached(state)) {
+    if (path_ && !followPath(state)) {
+      stand("no goal", false);
+    } else if (goals_ && observer_.reached(state)) {
       ROS_INFO("goal (%.2f, %.2f) reached", state.goal.x(), state.goal.y());
       goals_->end("reached");
+      if (path_) path_->clear();
       stand("goal reached", false);
     } else {
       twist = act(state);
@@ -199,6 +226,42 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
     }
   }
   cmd_vel_pub_.publish(twist);
+}
+
+bool DeployDriver::followPath(MeasuredState& state) {
+  const sensor_msgs::LaserScan* scan = scan_ ? scan_->latest().get() : nullptr;
+  if (goals_->mapsReceived() != path_map_ && goals_->map()) {
+    std::string why;
+    if (!path_->setMap(*goals_->map(), goals_->mapFrame(), why)) {
+      ROS_WARN_THROTTLE(5.0, "no paths on the map: %s", why.c_str());
+    }
+    path_map_ = goals_->mapsReceived();
+  }
+  std::string why;
+  if (new_goal_) {
+    new_goal_ = false;
+    if (!goals_->goalInMap()) {
+      why = "no map on which to plan a path yet";
+    } else {
+      why = path_->plan(*goals_->goalInMap(), *odom_.latest(), scan);
+    }
+    if (!why.empty()) {
+      ROS_WARN("no path: %s; the robot stays stopped", why.c_str());
+      goals_->end("no path: " + why);
+      path_->clear();
+      return false;
+    }
+    ROS_INFO("planned a path of %zu points to (%.2f, %.2f) in %s", path_->points().size(),
+             goals_->goalInMap()->x(), goals_->goalInMap()->y(), goals_->mapFrame().c_str());
+  }
+  why = path_->follow(*odom_.latest(), scan, state);
+  if (!why.empty()) {
+    ROS_WARN("goal aborted: %s; the robot stops", why.c_str());
+    goals_->end("aborted: " + why);
+    path_->clear();
+    return false;
+  }
+  return true;
 }
 
 geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
@@ -234,6 +297,10 @@ void DeployDriver::onStatus(const ros::WallTimerEvent&) {
   add("odometry age [s]", std::to_string(odom_.age()));
   if (scan_) add("scan age [s]", std::to_string(scan_->age()));
   add("dropped input", std::to_string(drops_.count()));
+  if (path_) {
+    add("paths planned", std::to_string(path_->plans()));
+    add("re-plans", std::to_string(path_->replans()));
+  }
   diagnostic_msgs::DiagnosticArray msg;
   msg.header.stamp = ros::Time::now();
   msg.status.push_back(std::move(status));

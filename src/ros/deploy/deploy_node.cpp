@@ -62,6 +62,7 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
   PolicyRun run;
   ScanBeams beams;
   std::optional<DiffDrive> kinematics;
+  double footprint_radius = params->footprint_radius;
   try {
     run = policyRunOf(*policy, params->checkpoint);
     if (observesScan(policy->meta().spec.task)) {
@@ -74,6 +75,14 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     }
     observer = observerOf(policy->meta().spec, beams, params->goal_radius, params->checkpoint);
     if (!run.twist) kinematics = makeKinematics(nh, *params, run.action_high);
+    if (run.path_lookahead > 0.0 && footprint_radius == 0.0) {
+      if (!nh.hasParam("robot_description")) {
+        throwInvalid("footprint_radius", 0.0,
+                     "0 takes it from robot_description, which is not set (a policy that follows "
+                     "a path plans for the robot's footprint)");
+      }
+      footprint_radius = loadRobotDescription(nh)->footprintRadius();
+    }
   } catch (const ConfigError& e) {
     logParamError(pnh, e);
     return 1;
@@ -85,7 +94,8 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().spec.task.c_str());
   try {
-    DeployDriver driver(nh, pnh, *policy, *observer, *params, run, beams, kinematics);
+    DeployDriver driver(nh, pnh, *policy, *observer, *params, run, beams, kinematics,
+                        footprint_radius);
     ros::AsyncSpinner spinner(1);
     spinner.start();
     waitForStop(stop);

@@ -46,6 +46,7 @@ GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::strin
 
 void GoalInput::end(const std::string& outcome) {
   goal_.reset();
+  goal_in_map_.reset();
   report(outcome);
 }
 
@@ -69,6 +70,8 @@ void GoalInput::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     return;
   }
   map_ = occupancyMapOf(*msg);
+  map_frame_ = msg->header.frame_id;
+  ++maps_received_;
 }
 
 bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const {
@@ -85,22 +88,36 @@ bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const 
   return true;
 }
 
+bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,
+                          Eigen::Vector2d& out, std::string& why) const {
+  try {
+    const geometry_msgs::PoseStamped in_frame =
+        tf_buffer_.transform(msg, frame, ros::Duration(0.2));
+    out = Eigen::Vector2d(in_frame.pose.position.x, in_frame.pose.position.y);
+    return true;
+  } catch (const tf2::TransformException& e) {
+    why =
+        "cannot transform it from '" + msg.header.frame_id + "' into '" + frame + "': " + e.what();
+    return false;
+  }
+}
+
 void GoalInput::onGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
   if (!finitePose(msg->pose)) return refuse("its pose is not finite");
   const std::string frame = odom_frame_();
   if (frame.empty()) return refuse("no odometry yet (its frame is unknown)");
-  geometry_msgs::PoseStamped in_odom;
-  try {
-    in_odom = tf_buffer_.transform(*msg, frame, ros::Duration(0.2));
-  } catch (const tf2::TransformException& e) {
-    return refuse("cannot transform it from '" + msg->header.frame_id + "' into '" + frame +
-                  "': " + e.what());
-  }
-  const Eigen::Vector2d goal(in_odom.pose.position.x, in_odom.pose.position.y);
+  Eigen::Vector2d goal, in_map;
   std::string why;
-  if (!onFreeCell(goal, why)) {
-    return refuse("(" + std::to_string(goal.x()) + ", " + std::to_string(goal.y()) + ") in " +
-                  frame + " is " + why);
+  if (!transform(*msg, frame, goal, why)) return refuse(why);
+  if (map_) {
+    // The map's cells are looked up in the map's own frame: a drifting map -> odom is followed.
+    const std::string& map_frame = map_frame_.empty() ? frame : map_frame_;
+    if (!transform(*msg, map_frame, in_map, why)) return refuse(why);
+    if (!onFreeCell(in_map, why)) {
+      return refuse("(" + std::to_string(in_map.x()) + ", " + std::to_string(in_map.y()) + ") in " +
+                    map_frame + " is " + why);
+    }
+    goal_in_map_ = in_map;
   }
   goal_ = goal;
   accepted_();

@@ -20,6 +20,7 @@
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/fresh_input.h"
 #include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/deploy/path_follower.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
 #include "jetbot_rl/task_observer.h"
 
@@ -32,6 +33,8 @@ struct PolicyRun {
   bool twist = false;         ///< Actions (linear_x, angular_z) rather than wheel targets.
   std::vector<double> action_high;
   std::string checkpoint;  ///< Its file, for messages.
+  /// A policy that follows a global path: the observed point's distance along it [m]; else 0.
+  double path_lookahead = 0.0;
 };
 
 /// The PolicyRun of `policy`'s checkpoint; ConfigError naming the file for a checkpoint without
@@ -39,9 +42,10 @@ struct PolicyRun {
 PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint);
 
 /// The observer of the task `trained` (a checkpoint's env spec) was trained on, with the policy's
-/// `beams` (none for a task without a scan) and goal test within `goal_radius` [m]: the same code
-/// the simulated task observes with. ConfigError when its observation's names are not the ones
-/// the policy of `checkpoint` was trained on.
+/// `beams` (none for a task without a scan) and goal test within `goal_radius` [m], and a global
+/// path when the policy observes one: the same code the simulated task observes with.
+/// ConfigError when its observation's names are not the ones the policy of `checkpoint` was
+/// trained on.
 std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
                                          double goal_radius, const std::string& checkpoint);
 
@@ -62,10 +66,12 @@ RootState rootStateOf(const nav_msgs::Odometry& odometry);
 class DeployDriver {
  public:
   /// `beams`: the policy's scan beams (a task that observes a scan); `kinematics`: wheel targets
-  /// -> Twist for a policy with wheel actions.
+  /// -> Twist for a policy with wheel actions; `footprint_radius` [m]: a policy that follows a
+  /// path plans for it.
   DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                const TaskObserver& observer, const DeployParams& p, const PolicyRun& run,
-               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics);
+               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics,
+               double footprint_radius = 0.0);
   /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
   void stop();
 
@@ -77,7 +83,9 @@ class DeployDriver {
   geometry_msgs::Twist act(const MeasuredState& state);
   /// Stops with a zero last action; `fresh_start`: the memory starts over too.
   void stand(const std::string& why, bool fresh_start);
-
+  /// A policy that follows a path: plans for a new goal and follows the plan, filling `state`'s
+  /// goal and path; false when the goal ended (no map, no path).
+  bool followPath(MeasuredState& state);
   ppo::Policy& policy_;
   const TaskObserver& observer_;
   PolicyRun run_;
@@ -87,7 +95,10 @@ class DeployDriver {
   FreshInput<nav_msgs::Odometry> odom_;
   std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
   std::unique_ptr<GoalInput> goals_;                          // a task with goals
-  ros::Subscriber command_sub_;                               // a task with a command
+  std::unique_ptr<PathFollower> path_;                        // a policy that follows a path
+  int path_map_ = 0;             // the map the follower plans on (GoalInput::mapsReceived())
+  bool new_goal_ = false;        // a goal came since the last plan
+  ros::Subscriber command_sub_;  // a task with a command
   ros::Publisher cmd_vel_pub_, status_pub_;
   ros::WallTimer timer_, status_timer_;
   Eigen::Vector2d command_ = Eigen::Vector2d::UnitX();

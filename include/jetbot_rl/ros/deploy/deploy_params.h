@@ -39,6 +39,13 @@ struct DeployParams {
   std::vector<double> scan_angles;
   std::vector<double> scan_range;
   std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
+  // ---- a policy that follows a global path (trained with nav/path) ----
+  double footprint_radius = 0.0;      ///< The robot's footprint [m]; 0: robot_description's.
+  double path_clearance = 0.3;        ///< Paths keep this beyond the footprint where there is room.
+  double path_clearance_cost = 2.0;   ///< A cell at the footprint's cost beyond its length.
+  double path_replan_distance = 0.5;  ///< Farther from the path re-plans [m].
+  double path_blocked_distance = 1.0;  ///< The path ahead checked against the scan [m]; 0: off.
+  double path_replan_period = 1.0;     ///< At most one re-plan per this [s, wall].
 };
 
 template <typename C, typename V>
@@ -80,8 +87,25 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "Navigation: [range_min, range_max] readings are clamped into and divided by the max of. "
     "Empty: the checkpoint's (likewise).");
   v("map_topic", c.map_topic, AnyValue{"", "empty: none"},
-    "Navigation: nav_msgs/OccupancyGrid in the odometry frame; a goal off its free cells is "
-    "refused.");
+    "Navigation: nav_msgs/OccupancyGrid (map_server's /map), looked up in its header's frame "
+    "through tf2; a goal off its free cells is refused. A policy that follows a path plans on it "
+    "(required then).");
+  v("footprint_radius", c.footprint_radius, atLeast(0.0, "m", "0: robot_description's"),
+    "Path: the robot's footprint radius the map is inflated by; 0: robot_description's, as "
+    "training takes it.");
+  v("path_clearance", c.path_clearance, atLeast(0.0, "m"),
+    "Path: the clearance beyond the footprint a path keeps where there is room (the training's "
+    "nav/path_clearance).");
+  v("path_clearance_cost", c.path_clearance_cost, atLeast(0.0),
+    "Path: what a cell at the footprint costs beyond its length, per cell length (the training's "
+    "nav/path_clearance_cost).");
+  v("path_replan_distance", c.path_replan_distance, positiveUpTo(100.0, "m"),
+    "Path: the robot farther than this from the path re-plans from where it is.");
+  v("path_blocked_distance", c.path_blocked_distance, atLeast(0.0, "m", "0: off"),
+    "Path: a scan point the map does not hold within the footprint of the path this far ahead "
+    "re-plans around what the scan sees.");
+  v("path_replan_period", c.path_replan_period, positive("s, wall"),
+    "Path: at most one re-plan per this.");
 }
 
 /// checkpoint given; dof_names two wheel joints; scan_angles and scan_range none or two values.

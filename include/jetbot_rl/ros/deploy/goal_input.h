@@ -22,8 +22,9 @@ OccupancyMap occupancyMapOf(const nav_msgs::OccupancyGrid& grid);
 
 /**
  * Goals for a task with one (navigation): PoseStamped goals as RViz's "2D Nav Goal" publishes
- * them, transformed into the odometry frame with tf2 and checked against the map's free cells;
- * what became of each goal (accepted, reached, refused: why) is published as a std_msgs/String.
+ * them, transformed into the odometry frame with tf2 and, with a map, into the map's frame
+ * (its header's) and checked against its free cells there; what became of each goal (accepted,
+ * reached, refused: why) is published as a std_msgs/String.
  */
 class GoalInput {
  public:
@@ -38,6 +39,14 @@ class GoalInput {
 
   /// The current goal in the odometry frame, or none (no goal yet, reached or refused).
   const std::optional<Eigen::Vector2d>& goal() const { return goal_; }
+  /// The current goal in the map's frame (with a map).
+  const std::optional<Eigen::Vector2d>& goalInMap() const { return goal_in_map_; }
+  /// The last valid map on the map topic, if any came, its frame, and how many came.
+  const std::optional<OccupancyMap>& map() const { return map_; }
+  const std::string& mapFrame() const { return map_frame_; }
+  int mapsReceived() const { return maps_received_; }
+  /// The tf2 buffer goals are transformed with.
+  const tf2_ros::Buffer& tf() const { return tf_buffer_; }
   /// Ends the current goal with `outcome` (e.g. "reached").
   void end(const std::string& outcome);
   std::string topic() const { return goal_sub_.getTopic(); }
@@ -47,8 +56,11 @@ class GoalInput {
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
   void refuse(const std::string& why);
   void report(const std::string& outcome);
-  /// True when `goal` (odometry frame) lies on a free cell of the map, or no map is given.
+  /// True when `goal` (the map's frame) lies on a free cell of the map, or no map is given.
   bool onFreeCell(const Eigen::Vector2d& goal, std::string& why) const;
+  /// `msg` in `frame` (x, y), or false with `why`.
+  bool transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,
+                 Eigen::Vector2d& out, std::string& why) const;
 
   OdomFrame odom_frame_;
   std::function<void()> accepted_;
@@ -57,7 +69,9 @@ class GoalInput {
   ros::Publisher outcome_pub_;
   ros::Subscriber goal_sub_, map_sub_;
   std::optional<OccupancyMap> map_;
-  std::optional<Eigen::Vector2d> goal_;
+  std::string map_frame_;
+  int maps_received_ = 0;
+  std::optional<Eigen::Vector2d> goal_, goal_in_map_;
 };
 
 }  // namespace jetbot_rl

@@ -1,0 +1,84 @@
+"""Test helpers for a navigation policy deployed on the env node's robot: train it in-process, run
+jetbot_deploy_node on env 0's scan, odometry and cmd_vel with the map, send goals as RViz's
+"2D Nav Goal" sends them and record odometry, scans, outcomes and plans."""
+import signal
+import subprocess
+import tempfile
+import unittest
+
+import rospy
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Odometry, Path
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import String
+
+from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
+
+
+def goal_msg(x, y, frame='env_0/map'):
+    msg = PoseStamped()
+    msg.header.frame_id = frame
+    msg.header.stamp = rospy.Time(0)
+    msg.pose.position.x = x
+    msg.pose.position.y = y
+    msg.pose.orientation.w = 1.0
+    return msg
+
+
+class DeployedNavigation(unittest.TestCase):
+    """Trains (200 iterations, `train_args` added) and deploys once per class."""
+    node_name = 'test_deployed_navigation'
+    train_args = []
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node(cls.node_name)
+        cls.run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_nav_')
+        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
+                        'task:=navigation', 'iterations:=200', 'run_dir:=' + cls.run_dir,
+                        'output:=log'] + cls.train_args,
+                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
+        with open(cls.run_dir + '/summary.yaml') as f:
+            print(f.read())
+        cls.odoms, cls.scans, cls.outcomes, cls.plans = (EventList(), EventList(), EventList(),
+                                                         EventList())
+        rospy.Subscriber('/env_0/odom', Odometry, cls.odoms.append)
+        rospy.Subscriber('/env_0/scan', LaserScan, cls.scans.append)
+        rospy.Subscriber('/deploy/outcome', String, lambda m: cls.outcomes.append(m.data))
+        rospy.Subscriber('/deploy/plan', Path, cls.plans.append)
+        cls.goal_pub = rospy.Publisher('/move_base_simple/goal', PoseStamped, queue_size=1,
+                                       latch=True)
+        cls.policy = subprocess.Popen([
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=deploy',
+            '_checkpoint:=' + cls.run_dir, '_task:=navigation',
+            '_odom_topic:=/env_0/odom',
+            '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
+            '_wheel_radius:=0', '_wheel_separation:=0'])
+        wait_for(lambda: cls.odoms and cls.scans, what='odometry and scans')
+        wait_for(lambda: cls.goal_pub.get_num_connections() > 0, what='the policy node',
+                 recheck=0.2)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.policy.send_signal(signal.SIGINT)
+        cls.policy.wait(timeout=TIMEOUT)
+
+    def send(self, msg, outcome):
+        """Publishes the goal `msg`; its first outcome must start with `outcome`. Returns the
+        outcomes' count before it."""
+        count = len(self.outcomes)
+        self.goal_pub.publish(msg)
+        wait_for(lambda: len(self.outcomes) > count, what='the goal\'s outcome')
+        self.assertTrue(self.outcomes[count].startswith(outcome), self.outcomes[count])
+        return count
+
+    def position(self):
+        p = self.odoms[-1].pose.pose.position
+        return p.x, p.y
+
+    def assert_still(self, start):
+        """A second of odometry (50 Hz) later the robot is where it was: it would have moved."""
+        seen = len(self.odoms)
+        wait_for(lambda: len(self.odoms) > seen + 50, what='a second of odometry')
+        end = self.position()
+        self.assertLess(((end[0] - start[0]) ** 2 + (end[1] - start[1]) ** 2) ** 0.5, 0.02)
