@@ -44,6 +44,7 @@ add_library(jetbot_rl_core
   src/core/footprint_grid.cpp
   src/core/grid_planner.cpp
   src/core/map_planner.cpp
+  src/core/goal_watch.cpp
   src/core/path_tracker.cpp
   src/core/world_shapes.cpp
 )

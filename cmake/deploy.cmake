@@ -6,6 +6,7 @@ add_library(jetbot_rl_deploy
   src/ros/deploy/deploy_node.cpp
   src/ros/deploy/deploy_params.cpp
   src/ros/deploy/goal_input.cpp
+  src/ros/deploy/goal_pursuit.cpp
   src/ros/deploy/path_follower.cpp
   src/ros/deploy/scan_beams.cpp
 )

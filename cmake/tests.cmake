@@ -38,6 +38,7 @@ catkin_add_gtest(test_core
   test/core/test_world_generation.cpp
   test/core/test_grid_planner.cpp
   test/core/test_map_planner.cpp
+  test/core/test_goal_watch.cpp
 )
 target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
@@ -116,6 +117,7 @@ endforeach()
 
 # ---- sim-to-real: a policy trained with randomisation drives the env's robot view (deploy node) ----
 foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation closed_loop_path
+    closed_loop_move_base
     closed_loop_memory
     deploy_node)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})

@@ -35,7 +35,8 @@ class MapPlanner {
   /// The path from `start` to `goal` around the map and the `seen` points (e.g. scan endpoints;
   /// those the map explains are left out): the start, where it turns, the goal. A start the
   /// footprint does not fit (a robot brushing a wall) leaves from the nearest free cell within
-  /// the footprint's radius. Returns "" and the path, or why there is none (and `path` empty).
+  /// the footprint's diameter and a cell. Returns "" and the path, or why there is none (and `path`
+  /// empty).
   std::string plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal,
                    const std::vector<Eigen::Vector2d>& seen,
                    std::vector<Eigen::Vector2d>& path) const;

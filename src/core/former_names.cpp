@@ -20,7 +20,8 @@ const std::vector<FormerName>& formerNames() {
       {"twist_limits", "checkpoint", "comes from the checkpoint now (its action bounds)"},
       {"policy_actions", "checkpoint", "comes from the checkpoint now (its action names)"},
       {"nav/beams", "scan_beams"},
-      {"nav/goal_radius", "goal_radius"},
+      {"nav/goal_radius", "xy_goal_tolerance"},
+      {"goal_radius", "xy_goal_tolerance"},
   };
   return names;
 }

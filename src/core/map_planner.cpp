@@ -93,10 +93,12 @@ std::string MapPlanner::plan(const Eigen::Vector2d& start, const Eigen::Vector2d
   }
   Eigen::Vector2d from = start;
   if (!grid.isFree(start)) {
-    const long cell = nearestFreeCell(grid, start, config_.robot_radius);
+    // As far as the footprint's diameter: a robot pushed into a wall's end is that deep in.
+    const double reach = 2.0 * config_.robot_radius + grid.resolution();
+    const long cell = nearestFreeCell(grid, start, reach);
     if (cell < 0) {
       return "the robot at " + pointText(start) + " has no free cell for its footprint within " +
-             std::to_string(config_.robot_radius) + " m";
+             std::to_string(reach) + " m";
     }
     from = grid.centre(cell);
   }

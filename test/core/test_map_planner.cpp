@@ -131,8 +131,11 @@ TEST(MapPlanner, AStartBrushingAWallLeavesFromTheNearestFreeCell) {
   EXPECT_EQ(path.front(), start);
   EXPECT_LT((path[1] - start).norm(), 0.15 + 1e-9);
   EXPECT_GT(path[1].x(), start.x());
-  // Deep inside a wall there is none.
-  const std::string why = planner.plan({2.05, 0.3}, {1.5, 1.0}, {}, path);
+  // Pushed into a wall's end (the footprint half in it) it finds one too.
+  ASSERT_EQ(planner.plan({2.02, 0.87}, {1.5, 1.0}, {}, path), "");
+  EXPECT_EQ(path.front(), Eigen::Vector2d(2.02, 0.87));
+  // Off the map there is none.
+  const std::string why = planner.plan({-1.0, -1.0}, {1.5, 1.0}, {}, path);
   EXPECT_NE(why.find("no free cell"), std::string::npos) << why;
 }
 

@@ -6,8 +6,10 @@ import subprocess
 import tempfile
 import unittest
 
+import actionlib
 import rospy
 from geometry_msgs.msg import PoseStamped
+from move_base_msgs.msg import MoveBaseAction
 from nav_msgs.msg import Odometry, Path
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
@@ -26,9 +28,11 @@ def goal_msg(x, y, frame='env_0/map'):
 
 
 class DeployedNavigation(unittest.TestCase):
-    """Trains (200 iterations, `train_args` added) and deploys once per class."""
+    """Trains (200 iterations, `train_args` added) and deploys once per class as /deploy
+    (`deploy_args` added)."""
     node_name = 'test_deployed_navigation'
     train_args = []
+    deploy_args = []
 
     @classmethod
     def setUpClass(cls):
@@ -48,15 +52,24 @@ class DeployedNavigation(unittest.TestCase):
         rospy.Subscriber('/deploy/plan', Path, cls.plans.append)
         cls.goal_pub = rospy.Publisher('/move_base_simple/goal', PoseStamped, queue_size=1,
                                        latch=True)
-        cls.policy = subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=deploy',
-            '_checkpoint:=' + cls.run_dir, '_task:=navigation',
-            '_odom_topic:=/env_0/odom',
-            '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
-            '_wheel_radius:=0', '_wheel_separation:=0'])
+        cls.policy = cls.deploy('deploy', cls.deploy_args)
         wait_for(lambda: cls.odoms and cls.scans, what='odometry and scans')
         wait_for(lambda: cls.goal_pub.get_num_connections() > 0, what='the policy node',
                  recheck=0.2)
+        # Its move_base action starts once its odometry, scan and map are there: it takes goals.
+        cls.client = actionlib.SimpleActionClient('move_base', MoveBaseAction)
+        assert cls.client.wait_for_server(rospy.Duration(TIMEOUT)), 'no move_base action server'
+
+    @classmethod
+    def deploy(cls, name, args):
+        """Starts jetbot_deploy_node `name` on env 0 with the trained policy, `args` added
+        ('_param:=value')."""
+        return subprocess.Popen([
+            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=' + name,
+            '_checkpoint:=' + cls.run_dir, '_task:=navigation',
+            '_odom_topic:=/env_0/odom',
+            '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
+            '_wheel_radius:=0', '_wheel_separation:=0'] + list(args))
 
     @classmethod
     def tearDownClass(cls):

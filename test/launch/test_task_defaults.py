@@ -134,7 +134,7 @@ class TestTaskDefaults(unittest.TestCase):
 
     def test_given_urdf_and_task_config_win(self):
         tribot = os.path.join(PKG, 'urdf', 'examples', 'tribot.urdf')
-        other = os.path.join(PKG, 'test', 'sim2real', 'navigation_robot.yaml')
+        other = os.path.join(PKG, 'config', 'navigation_robot.yaml')
         expected = file_params(other)
         self.assertNotEqual({k: self.nav_env.get(k) for k in expected}, expected,
                             'the test needs a task file that differs from navigation_env.yaml')

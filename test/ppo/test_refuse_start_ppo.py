@@ -157,7 +157,11 @@ class TestRefuseStartPpo(unittest.TestCase):
         # A simulation parameter of the robot mode's time is refused by its name now.
         self.refuses('jetbot_deploy_node',
                      {'checkpoint': self.navigation_checkpoint(), 'nav/goal_radius': 0.3},
-                     'nav/goal_radius = (set): was renamed goal_radius')
+                     'nav/goal_radius = (set): was renamed xy_goal_tolerance')
+        # move_base's name for the goal test.
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.navigation_checkpoint(), 'goal_radius': 0.3},
+                     'goal_radius = (set): was renamed xy_goal_tolerance')
 
     def test_deploy_path_policy_without_a_map(self):
         self.refuses('jetbot_deploy_node',

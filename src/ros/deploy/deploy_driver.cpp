@@ -121,32 +121,15 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     inputs += ", " + scan_->topic();
   }
   if (observer.hasGoal()) {
-    goals_ = std::make_unique<GoalInput>(
-        nh, pnh, p.goal_topic, p.outcome_topic, p.map_topic,
+    pursuit_ = std::make_unique<GoalPursuit>(
+        nh, pnh, p, run.path_lookahead, footprint_radius,
         [this] { return odom_.latest() ? odom_.latest()->header.frame_id : std::string(); },
-        [this] {
-          policy_.resetMemory();  // each goal is an episode
-          new_goal_ = true;
+        [this] { policy_.resetMemory(); },  // each goal is an episode
+        [this] {                            // a cancel stops the robot at once
+          stand("goal canceled", false);
+          publish(geometry_msgs::Twist(), true);
         });
-    inputs += " and goals on " + goals_->topic();
-  }
-  if (run.path_lookahead > 0.0) {
-    if (p.map_topic.empty()) {
-      throwInvalid("map_topic", "''",
-                   "the policy of " + run.checkpoint +
-                       " follows a global path, which is planned on a map: name its topic");
-    }
-    PathFollowing f;
-    f.planner.robot_radius = footprint_radius;
-    f.planner.clearance = p.path_clearance;
-    f.planner.clearance_cost = p.path_clearance_cost;
-    f.lookahead = run.path_lookahead;
-    f.replan_distance = p.path_replan_distance;
-    f.blocked_distance = p.path_blocked_distance;
-    f.replan_period = p.path_replan_period;
-    path_ = std::make_unique<PathFollower>(pnh, f, goals_->tf());
-    inputs += ", paths planned on " + p.map_topic + " for a footprint of " +
-              std::to_string(footprint_radius) + " m (on ~plan)";
+    inputs += " and " + pursuit_->describe();
   }
   if (observer.takesCommand()) {
     command_sub_ =
@@ -191,8 +174,13 @@ void DeployDriver::stand(const std::string& why, bool fresh_start) {
   if (fresh_start) policy_.resetMemory();
 }
 
+void DeployDriver::publish(const geometry_msgs::Twist& twist, bool stop) {
+  if (pursuit_ && stop && stopped_) return;  // quiet: one zero Twist per stop
+  stopped_ = stop;
+  cmd_vel_pub_.publish(twist);
+}
+
 void DeployDriver::onTick(const ros::WallTimerEvent&) {
-  geometry_msgs::Twist twist;  // zero: stand
   const bool stale_odom = !odom_.fresh();
   const bool stale_scan = scan_ && !scan_->fresh();
   if (stale_odom || stale_scan) {
@@ -200,68 +188,42 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
         stale_odom ? "odometry on " + odom_.topic() : "scan on " + scan_->topic();
     ROS_WARN_THROTTLE(2.0, "no fresh %s: the robot stands", what.c_str());
     stand("no fresh " + what, true);  // its memory starts over with the next drive
-  } else if (goals_ && !goals_->goal()) {
-    stand("no goal", false);
-  } else {
-    MeasuredState state;
-    state.root = rootStateOf(*odom_.latest());
-    if (scan_) {
-      std::string error;
-      resampleScan(*scan_->latest(), beams_, ranges_, error);  // it took it: it covers them
-      state.scan = ranges_.data();
-    }
-    if (goals_) state.goal = *goals_->goal();
-    state.command = command_;
-    state.last_action = last_action_.data();
-    if (path_ && !followPath(state)) {
-      stand("no goal", false);
-    } else if (goals_ && observer_.reached(state)) {
-      ROS_INFO("goal (%.2f, %.2f) reached", state.goal.x(), state.goal.y());
-      goals_->end("reached");
-      if (path_) path_->clear();
-      stand("goal reached", false);
-    } else {
-      twist = act(state);
-      standing_.clear();
+    if (pursuit_) pursuit_->stale(what);
+    publish(geometry_msgs::Twist(), true);
+    return;
+  }
+  MeasuredState state;
+  state.root = rootStateOf(*odom_.latest());
+  if (scan_) {
+    std::string error;
+    resampleScan(*scan_->latest(), beams_, ranges_, error);  // it took it: it covers them
+    state.scan = ranges_.data();
+  }
+  state.command = command_;
+  state.last_action = last_action_.data();
+  if (pursuit_) {
+    PlanarTwist fixed;
+    switch (
+        pursuit_->step(*odom_.latest(), scan_ ? scan_->latest().get() : nullptr, state, fixed)) {
+      case GoalPursuit::Mode::kStand:
+        stand("no goal", false);
+        publish(geometry_msgs::Twist(), true);
+        return;
+      case GoalPursuit::Mode::kTwist: {
+        standing_.clear();
+        std::fill(last_action_.begin(), last_action_.end(), 0.0f);
+        geometry_msgs::Twist twist;
+        twist.linear.x = fixed.linear;
+        twist.angular.z = fixed.angular;
+        publish(twist, false);
+        return;
+      }
+      case GoalPursuit::Mode::kPolicy:
+        break;
     }
   }
-  cmd_vel_pub_.publish(twist);
-}
-
-bool DeployDriver::followPath(MeasuredState& state) {
-  const sensor_msgs::LaserScan* scan = scan_ ? scan_->latest().get() : nullptr;
-  if (goals_->mapsReceived() != path_map_ && goals_->map()) {
-    std::string why;
-    if (!path_->setMap(*goals_->map(), goals_->mapFrame(), why)) {
-      ROS_WARN_THROTTLE(5.0, "no paths on the map: %s", why.c_str());
-    }
-    path_map_ = goals_->mapsReceived();
-  }
-  std::string why;
-  if (new_goal_) {
-    new_goal_ = false;
-    if (!goals_->goalInMap()) {
-      why = "no map on which to plan a path yet";
-    } else {
-      why = path_->plan(*goals_->goalInMap(), *odom_.latest(), scan);
-    }
-    if (!why.empty()) {
-      ROS_WARN("no path: %s; the robot stays stopped", why.c_str());
-      goals_->end("no path: " + why);
-      path_->clear();
-      return false;
-    }
-    ROS_INFO("planned a path of %zu points to (%.2f, %.2f) in %s", path_->points().size(),
-             goals_->goalInMap()->x(), goals_->goalInMap()->y(), goals_->mapFrame().c_str());
-  }
-  why = path_->follow(*odom_.latest(), scan, state);
-  if (!why.empty()) {
-    ROS_WARN("goal aborted: %s; the robot stops", why.c_str());
-    goals_->end("aborted: " + why);
-    path_->clear();
-    return false;
-  }
-  return true;
+  standing_.clear();
+  publish(act(state), false);
 }
 
 geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
@@ -297,10 +259,7 @@ void DeployDriver::onStatus(const ros::WallTimerEvent&) {
   add("odometry age [s]", std::to_string(odom_.age()));
   if (scan_) add("scan age [s]", std::to_string(scan_->age()));
   add("dropped input", std::to_string(drops_.count()));
-  if (path_) {
-    add("paths planned", std::to_string(path_->plans()));
-    add("re-plans", std::to_string(path_->replans()));
-  }
+  if (pursuit_) pursuit_->addStatus(add);
   diagnostic_msgs::DiagnosticArray msg;
   msg.header.stamp = ros::Time::now();
   msg.status.push_back(std::move(status));

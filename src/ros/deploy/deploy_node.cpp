@@ -73,13 +73,17 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
       throwInvalid("task", "'" + params->task + "'",
                    "the checkpoint was trained on task '" + trained_task + "'");
     }
-    observer = observerOf(policy->meta().spec, beams, params->goal_radius, params->checkpoint);
+    observer =
+        observerOf(policy->meta().spec, beams, params->xy_goal_tolerance, params->checkpoint);
     if (!run.twist) kinematics = makeKinematics(nh, *params, run.action_high);
-    if (run.path_lookahead > 0.0 && footprint_radius == 0.0) {
+    const bool plans =
+        run.path_lookahead > 0.0 ||
+        (observer->hasGoal() && !params->map_topic.empty() && params->carrot_distance > 0.0);
+    if (plans && footprint_radius == 0.0) {
       if (!nh.hasParam("robot_description")) {
         throwInvalid("footprint_radius", 0.0,
-                     "0 takes it from robot_description, which is not set (a policy that follows "
-                     "a path plans for the robot's footprint)");
+                     "0 takes it from robot_description, which is not set (paths on the map are "
+                     "planned for the robot's footprint)");
       }
       footprint_radius = loadRobotDescription(nh)->footprintRadius();
     }

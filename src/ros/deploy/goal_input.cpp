@@ -1,5 +1,6 @@
 #include "jetbot_rl/ros/deploy/goal_input.h"
 
+#include <move_base_msgs/MoveBaseActionGoal.h>
 #include <ros/console.h>
 #include <std_msgs/String.h>
 #include <tf2_geometry_msgs/tf2_geometry_msgs.h>
@@ -35,30 +36,95 @@ OccupancyMap occupancyMapOf(const nav_msgs::OccupancyGrid& grid) {
   return map;
 }
 
-GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& goal_topic,
-                     const std::string& outcome_topic, const std::string& map_topic,
-                     OdomFrame odom_frame, std::function<void()> accepted)
-    : odom_frame_(std::move(odom_frame)), accepted_(std::move(accepted)), tf_listener_(tf_buffer_) {
+GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& action_name,
+                     const std::string& goal_topic, const std::string& outcome_topic,
+                     const std::string& map_topic, OdomFrame odom_frame,
+                     std::function<void()> accepted, std::function<void()> canceled)
+    : odom_frame_(std::move(odom_frame)),
+      accepted_(std::move(accepted)),
+      canceled_(std::move(canceled)),
+      action_name_(nh.resolveName(action_name)),
+      tf_listener_(tf_buffer_) {
   outcome_pub_ = nh.advertise<std_msgs::String>(resolvePrivateTopic(pnh, outcome_topic), 10);
-  goal_sub_ = nh.subscribe(resolvePrivateTopic(pnh, goal_topic), 10, &GoalInput::onGoal, this);
+  server_ = std::make_unique<actionlib::SimpleActionServer<move_base_msgs::MoveBaseAction>>(
+      nh, action_name_, false);
+  server_->registerGoalCallback([this] { onActionGoal(); });
+  server_->registerPreemptCallback([this] { onPreempt(); });
+  // A simple goal becomes an action goal on the server's own goal topic, as move_base sends it.
+  action_goal_pub_ = nh.advertise<move_base_msgs::MoveBaseActionGoal>(action_name_ + "/goal", 1);
+  current_goal_pub_ = pnh.advertise<geometry_msgs::PoseStamped>("current_goal", 1, true);
+  goal_sub_ =
+      nh.subscribe(resolvePrivateTopic(pnh, goal_topic), 10, &GoalInput::onSimpleGoal, this);
   if (!map_topic.empty()) map_sub_ = nh.subscribe(map_topic, 1, &GoalInput::onMap, this);
 }
 
-void GoalInput::end(const std::string& outcome) {
+GoalInput::~GoalInput() {
+  if (started_ && server_->isActive()) {
+    server_->setAborted(move_base_msgs::MoveBaseResult(), "shut down");
+  }
+  server_->shutdown();
+}
+
+void GoalInput::start() {
+  if (started_) return;
+  server_->start();
+  started_ = true;
+  ROS_INFO("the move_base action %s takes goals", action_name_.c_str());
+}
+
+void GoalInput::clear() {
   goal_.reset();
   goal_in_map_.reset();
-  report(outcome);
+}
+
+void GoalInput::succeed() {
+  clear();
+  if (server_->isActive()) server_->setSucceeded(move_base_msgs::MoveBaseResult(), "reached");
+  report("reached");
+}
+
+void GoalInput::abort(const std::string& why) {
+  ROS_WARN("goal ended: %s; the robot stops", why.c_str());
+  clear();
+  if (server_->isActive()) server_->setAborted(move_base_msgs::MoveBaseResult(), why);
+  report(why);
+}
+
+void GoalInput::feedback(const nav_msgs::Odometry& odom) {
+  if (!server_->isActive()) return;
+  move_base_msgs::MoveBaseFeedback f;
+  f.base_position.header = odom.header;
+  f.base_position.pose = odom.pose.pose;
+  server_->publishFeedback(f);
+}
+
+void GoalInput::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
+  if (!started_) {
+    ROS_WARN("goal on %s refused: not ready (no odometry, scan or map yet)",
+             goal_sub_.getTopic().c_str());
+    report("refused: not ready (no odometry, scan or map yet)");
+    return;
+  }
+  move_base_msgs::MoveBaseActionGoal goal;
+  goal.header.stamp = ros::Time::now();
+  goal.goal.target_pose = *msg;
+  action_goal_pub_.publish(goal);
+}
+
+void GoalInput::onPreempt() {
+  // A new goal preempts the current one in onActionGoal; without one this is a cancel.
+  if (server_->isNewGoalAvailable()) return;
+  clear();
+  server_->setPreempted(move_base_msgs::MoveBaseResult(), "canceled");
+  ROS_INFO("goal canceled; the robot stops");
+  canceled_();
+  report("canceled");
 }
 
 void GoalInput::report(const std::string& outcome) {
   std_msgs::String msg;
   msg.data = outcome;
   outcome_pub_.publish(msg);
-}
-
-void GoalInput::refuse(const std::string& why) {
-  ROS_WARN("goal refused: %s; the robot stays stopped", why.c_str());
-  end("refused: " + why);
 }
 
 void GoalInput::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
@@ -89,11 +155,13 @@ bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const 
 }
 
 bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,
-                          Eigen::Vector2d& out, std::string& why) const {
+                          Eigen::Vector2d& out, double& yaw, std::string& why) const {
   try {
     const geometry_msgs::PoseStamped in_frame =
         tf_buffer_.transform(msg, frame, ros::Duration(0.2));
+    const auto& q = in_frame.pose.orientation;
     out = Eigen::Vector2d(in_frame.pose.position.x, in_frame.pose.position.y);
+    yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
     return true;
   } catch (const tf2::TransformException& e) {
     why =
@@ -102,17 +170,27 @@ bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::stri
   }
 }
 
-void GoalInput::onGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
-  if (!finitePose(msg->pose)) return refuse("its pose is not finite");
+void GoalInput::onActionGoal() {
+  const bool preempting = goal_.has_value();
+  const geometry_msgs::PoseStamped target = server_->acceptNewGoal()->target_pose;
+  clear();
+  if (preempting) report("preempted");
+  const auto refuse = [this](const std::string& why) { abort("refused: " + why); };
+  if (!finitePose(target.pose)) return refuse("its pose is not finite");
+  const auto& q = target.pose.orientation;
+  if (std::abs(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w - 1.0) > 1e-2) {
+    return refuse("its orientation is no unit quaternion");
+  }
   const std::string frame = odom_frame_();
   if (frame.empty()) return refuse("no odometry yet (its frame is unknown)");
   Eigen::Vector2d goal, in_map;
+  double yaw = 0.0, map_yaw = 0.0;
   std::string why;
-  if (!transform(*msg, frame, goal, why)) return refuse(why);
+  if (!transform(target, frame, goal, yaw, why)) return refuse(why);
   if (map_) {
     // The map's cells are looked up in the map's own frame: a drifting map -> odom is followed.
     const std::string& map_frame = map_frame_.empty() ? frame : map_frame_;
-    if (!transform(*msg, map_frame, in_map, why)) return refuse(why);
+    if (!transform(target, map_frame, in_map, map_yaw, why)) return refuse(why);
     if (!onFreeCell(in_map, why)) {
       return refuse("(" + std::to_string(in_map.x()) + ", " + std::to_string(in_map.y()) + ") in " +
                     map_frame + " is " + why);
@@ -120,6 +198,8 @@ void GoalInput::onGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
     goal_in_map_ = in_map;
   }
   goal_ = goal;
+  goal_yaw_ = yaw;
+  current_goal_pub_.publish(target);
   accepted_();
   ROS_INFO("new goal (%.2f, %.2f) in %s", goal.x(), goal.y(), frame.c_str());
   report("accepted");

@@ -19,8 +19,7 @@
 #include "jetbot_rl/ros/common/drop_counter.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/fresh_input.h"
-#include "jetbot_rl/ros/deploy/goal_input.h"
-#include "jetbot_rl/ros/deploy/path_follower.h"
+#include "jetbot_rl/ros/deploy/goal_pursuit.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
 #include "jetbot_rl/task_observer.h"
 
@@ -58,9 +57,11 @@ RootState rootStateOf(const nav_msgs::Odometry& odometry);
  * (odometry always; a scan resampled to the policy's beams and goals for navigation; a command
  * for the command task), each with its freshness, become the observation through the same
  * TaskObserver the simulated task observes with; the policy's mean action goes out as a Twist at
- * the policy's control rate. The robot stands (zero Twists) while an input is stale, while a task
- * with goals has none, and on arrival (the observer's goal test); the policy's memory starts over
- * with each goal or command and after each stop for stale input. A 1 Hz DiagnosticStatus
+ * the policy's control rate. The robot stands while an input is stale (zero Twists; with goals
+ * one zero, and the goal pursued on); a task with goals is pursued by GoalPursuit (the move_base
+ * action, plans, the goal's heading, recovery) and is quiet without one: one zero Twist when it
+ * stops, none while idle. The policy's memory starts over with each goal or command and after
+ * each stop for stale input. A 1 Hz DiagnosticStatus
  * "<node>: deploy" tells the inputs' ages and why the robot stands.
  */
 class DeployDriver {
@@ -83,9 +84,9 @@ class DeployDriver {
   geometry_msgs::Twist act(const MeasuredState& state);
   /// Stops with a zero last action; `fresh_start`: the memory starts over too.
   void stand(const std::string& why, bool fresh_start);
-  /// A policy that follows a path: plans for a new goal and follows the plan, filling `state`'s
-  /// goal and path; false when the goal ended (no map, no path).
-  bool followPath(MeasuredState& state);
+  /// Publishes `twist`; with goals, a stop only once (quiet while idle).
+  void publish(const geometry_msgs::Twist& twist, bool stop);
+
   ppo::Policy& policy_;
   const TaskObserver& observer_;
   PolicyRun run_;
@@ -94,11 +95,9 @@ class DeployDriver {
   DropCounter drops_;
   FreshInput<nav_msgs::Odometry> odom_;
   std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
-  std::unique_ptr<GoalInput> goals_;                          // a task with goals
-  std::unique_ptr<PathFollower> path_;                        // a policy that follows a path
-  int path_map_ = 0;             // the map the follower plans on (GoalInput::mapsReceived())
-  bool new_goal_ = false;        // a goal came since the last plan
-  ros::Subscriber command_sub_;  // a task with a command
+  std::unique_ptr<GoalPursuit> pursuit_;                      // a task with goals
+  bool stopped_ = false;                                      // the last Twist published was a stop
+  ros::Subscriber command_sub_;                               // a task with a command
   ros::Publisher cmd_vel_pub_, status_pub_;
   ros::WallTimer timer_, status_timer_;
   Eigen::Vector2d command_ = Eigen::Vector2d::UnitX();

@@ -31,7 +31,17 @@ struct DeployParams {
   std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
   std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
   double scan_timeout = 0.5;                          ///< An older scan stops the robot [s, wall].
-  double goal_radius = 0.2;  ///< A goal is reached within this of the robot's origin [m].
+  std::string action_name = "move_base";              ///< The move_base_msgs/MoveBaseAction server.
+  double xy_goal_tolerance = 0.2;    ///< A goal is reached within this of the robot's origin [m].
+  double yaw_goal_tolerance = 0.1;   ///< ... then turned to within this of its heading [rad].
+  double turn_speed = 1.0;           ///< The turn to the heading's top rate [rad/s].
+  double goal_timeout = 120.0;       ///< A goal not reached by then is ABORTED [s, wall]; 0: never.
+  double controller_patience = 3.0;  ///< Inputs stale this long ABORT the goal [s, wall].
+  double oscillation_timeout = 10.0;  ///< No progress this long is stuck [s, wall]; 0: never.
+  double oscillation_distance = 0.2;  ///< Moving this far is progress [m].
+  int max_recoveries = 2;             ///< Recoveries before a stuck goal is ABORTED.
+  double recovery_backoff = 0.15;     ///< A recovery backs off this far [m].
+  double carrot_distance = 0.6;  ///< With a map, a policy without a path: its goal this far along.
   /// The policy's beams, only for a checkpoint written before checkpoints held them: their
   /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
   /// trained scanner's [range_min, range_max] [m]; given with a newer checkpoint they must agree.
@@ -73,8 +83,35 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "Navigation: std_msgs/String, what became of each goal (accepted, reached, refused: ...).");
   v("scan_timeout", c.scan_timeout, positive("s, wall"),
     "Navigation: an older scan stops the robot.");
-  v("goal_radius", c.goal_radius, positiveUpTo(100.0, "m"),
-    "Navigation: a goal is reached within this of the robot's odometry origin.");
+  v("action_name", c.action_name, AnyValue{},
+    "Navigation: the move_base_msgs/MoveBaseAction server's name (actionlib), resolved in the "
+    "node's namespace as move_base's is.");
+  v("xy_goal_tolerance", c.xy_goal_tolerance, positiveUpTo(100.0, "m"),
+    "Navigation: a goal is reached within this of the robot's odometry origin (move_base's local "
+    "planners' name; the task's goal test).");
+  v("yaw_goal_tolerance", c.yaw_goal_tolerance,
+    Range<double>{0.0, 7.0, true, false, "rad", ">= pi: any heading"},
+    "Navigation: once within xy_goal_tolerance the robot turns in place to the goal's heading "
+    "within this; the goal SUCCEEDS then.");
+  v("turn_speed", c.turn_speed, positiveUpTo(10.0, "rad/s"),
+    "Navigation: the top rate of the turn to the goal's heading.");
+  v("goal_timeout", c.goal_timeout, atLeast(0.0, "s, wall", "0: never"),
+    "Navigation: a goal not reached by then is ABORTED (timed out).");
+  v("controller_patience", c.controller_patience, positive("s, wall"),
+    "Navigation: inputs stale this long ABORT the goal (stale inputs); the robot stands while "
+    "they are.");
+  v("oscillation_timeout", c.oscillation_timeout, atLeast(0.0, "s, wall", "0: never"),
+    "Navigation: a robot that has not moved oscillation_distance for this long is stuck: it "
+    "backs off and plans again (a recovery), and the goal is ABORTED after max_recoveries.");
+  v("oscillation_distance", c.oscillation_distance, positiveUpTo(100.0, "m"),
+    "Navigation: moving this far from where the robot last made progress is progress.");
+  v("max_recoveries", c.max_recoveries, inRange(0, 1000),
+    "Navigation: recoveries of a stuck robot before its goal is ABORTED (stuck).");
+  v("recovery_backoff", c.recovery_backoff, positiveUpTo(10.0, "m"),
+    "Navigation: a recovery backs off this far (at 0.1 m/s), then plans again.");
+  v("carrot_distance", c.carrot_distance, atLeast(0.0, "m", "0: the goal itself"),
+    "Navigation with a map, a policy that observes no path: a path is planned and the policy's "
+    "goal is the point this far along it (a carrot), so that goals behind walls are reached.");
   v("scan_beams", c.scan_beams, inRange(0, 100000, "", "0: the checkpoint's"),
     "Navigation: the policy's beam count; only a checkpoint written before checkpoints held "
     "their beams needs it (with scan_angles and scan_range; given, it must agree).");

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <nav_msgs/Odometry.h>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/goal_watch.h"
+#include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/deploy/path_follower.h"
+#include "jetbot_rl/task_observer.h"
+
+namespace jetbot_rl {
+
+/**
+ * A navigation goal from its acceptance to its end, as move_base pursues one with a learnt local
+ * planner: goals from GoalInput (the move_base action and RViz's topic); with a map, a plan
+ * (PathFollower) that a path policy observes and any other policy follows by a carrot (its goal
+ * observation a point `carrot_distance` along the plan); arrival within `xy_goal_tolerance`,
+ * then a turn in place to the goal's heading within `yaw_goal_tolerance`; recovery (back off,
+ * re-plan) when the robot makes no progress, ABORTED when recoveries run out, the goal times out
+ * or the inputs stay stale for `controller_patience`.
+ */
+class GoalPursuit {
+ public:
+  /// What the robot does this control step.
+  enum class Mode {
+    kStand,   ///< No goal: stop (quiet: the driver sends one zero Twist).
+    kPolicy,  ///< The policy acts on the measured state (its goal and path filled in).
+    kTwist,   ///< A fixed twist (turning to the heading, backing off).
+  };
+
+  /// `path_lookahead` [m]: the policy observes a path with it (0: it does not);
+  /// `footprint_radius` [m] plans for the robot; `new_episode` is called when a goal starts
+  /// (the policy's memory starts over) and `stop_now` when one is canceled.
+  GoalPursuit(ros::NodeHandle& nh, ros::NodeHandle& pnh, const DeployParams& p,
+              double path_lookahead, double footprint_radius, GoalInput::OdomFrame odom_frame,
+              std::function<void()> new_episode, std::function<void()> stop_now);
+
+  /// One control step on fresh inputs: fills `state`'s goal (and path) for kPolicy, or `twist`.
+  Mode step(const nav_msgs::Odometry& odom, const sensor_msgs::LaserScan* scan,
+            MeasuredState& state, PlanarTwist& twist);
+  /// One control step on stale inputs (`what` names them): ABORTED after controller_patience.
+  void stale(const std::string& what);
+  /// True while a goal is pursued.
+  bool active() const { return goals_.goal().has_value(); }
+  /// What the driver's status tells: the goal topic, plans, re-plans and recoveries.
+  std::string describe() const;
+  void addStatus(const std::function<void(const std::string&, const std::string&)>& add) const;
+
+ private:
+  static double now();
+  void end(const std::string& why);
+  /// Plans for a new goal; false when it ended.
+  bool planNewGoal(const nav_msgs::Odometry& odom, const sensor_msgs::LaserScan* scan);
+
+  DeployParams params_;
+  double path_lookahead_, footprint_radius_;
+  ros::Publisher footprint_pub_;  // the footprint planned for, once odometry names the frame
+  bool footprint_sent_ = false;
+  GoalInput goals_;
+  std::unique_ptr<PathFollower> path_;  // with a map: a path policy or a carrot
+  int path_map_ = 0;                    // the map the follower plans on
+  bool new_goal_ = false;               // a goal came since the last step
+  GoalWatch watch_;
+  bool xy_reached_ = false;  // latched: only the heading is left
+  int recoveries_ = 0, recoveries_total_ = 0;
+  std::optional<double> backing_off_since_;  // a recovery's back-off [s]
+  Eigen::Vector2d backoff_from_ = Eigen::Vector2d::Zero();
+  std::optional<double> stale_since_;  // [s]
+};
+
+}  // namespace jetbot_rl
