@@ -41,6 +41,6 @@ install(FILES bench/bench_common.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION
 install(FILES bench/world_obstacles.yaml bench/world_map.yaml bench/scan_24.yaml bench/scan_360.yaml
   DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
 install(FILES bench/bench_nodelets.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
-catkin_install_python(PROGRAMS bench/python_bench.py bench/soak.py
+catkin_install_python(PROGRAMS bench/python_bench.py bench/soak.py bench/move_base_goals.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 

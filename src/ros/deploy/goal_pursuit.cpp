@@ -13,6 +13,13 @@ namespace jetbot_rl {
 namespace {
 
 constexpr double kBackoffSpeed = 0.1;  // a recovery backs off at this [m/s]
+constexpr double kAlignFrom = 1.0;     // a way this far off the heading is turned to first [rad]
+constexpr double kAlignTo = 0.3;       // ... until it is this far off [rad]
+
+/// A turn in place towards `error` [rad] off, at up to `top` [rad/s].
+PlanarTwist turnTowards(double error, double top) {
+  return {0.0, std::copysign(std::clamp(2.0 * std::abs(error), 0.2, top), error)};
+}
 
 double yawOf(const Eigen::Quaterniond& q) {
   return std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()),
@@ -152,6 +159,8 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     backing_off_since_.reset();
     watch_.start(t, p);
     if (path_ && !planNewGoal(odom, scan)) return Mode::kStand;
+    aligning_ = true;
+    align_turning_ = false;
   }
   Eigen::Vector2d goal = *goals_.goal();
   state.goal = goal;
@@ -181,6 +190,8 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
         return Mode::kStand;
       }
     }
+    aligning_ = true;  // then turns towards the way
+    align_turning_ = false;
   }
   if (!xy_reached_ && (goal - p).norm() <= params_.xy_goal_tolerance) xy_reached_ = true;
   std::string why;
@@ -189,10 +200,13 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     end("aborted: " + why);
     return Mode::kStand;
   }
+  const double heading = yawOf(state.root.orientation);
+  const auto offHeading = [heading](double direction) {
+    return std::atan2(std::sin(direction - heading), std::cos(direction - heading));
+  };
   if (xy_reached_) {
     // Only the heading is left (move_base's latch_xy_goal_tolerance): turn in place.
-    const double d = goals_.goalYaw() - yawOf(state.root.orientation);
-    const double error = std::atan2(std::sin(d), std::cos(d));
+    const double error = offHeading(goals_.goalYaw());
     if (std::abs(error) <= params_.yaw_goal_tolerance) {
       ROS_INFO("goal (%.2f, %.2f) reached, heading within %.2f rad", goal.x(), goal.y(),
                std::abs(error));
@@ -200,9 +214,20 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
       if (path_) path_->clear();
       return Mode::kStand;
     }
-    const double rate = std::clamp(1.5 * std::abs(error), 0.2, params_.turn_speed);
-    twist = {0.0, std::copysign(rate, error)};
+    twist = turnTowards(error, params_.turn_speed);
     return Mode::kTwist;
+  }
+  if (aligning_) {
+    const Eigen::Vector2d way = state.goal - p;  // the carrot, the goal or the path's point ahead
+    const Eigen::Vector2d ahead = path_lookahead_ > 0.0 ? state.lookahead - p : way;
+    const double error = offHeading(std::atan2(ahead.y(), ahead.x()));
+    // Only a way well off the heading is turned to; then until it is nearly ahead.
+    if (ahead.norm() > 1e-6 && std::abs(error) > (align_turning_ ? kAlignTo : kAlignFrom)) {
+      align_turning_ = true;
+      twist = turnTowards(error, params_.turn_speed);
+      return Mode::kTwist;
+    }
+    aligning_ = align_turning_ = false;
   }
   if (verdict == GoalWatch::Verdict::kStuck) {
     if (recoveries_ >= params_.max_recoveries) {

@@ -34,7 +34,7 @@ struct DeployParams {
   std::string action_name = "move_base";              ///< The move_base_msgs/MoveBaseAction server.
   double xy_goal_tolerance = 0.2;    ///< A goal is reached within this of the robot's origin [m].
   double yaw_goal_tolerance = 0.1;   ///< ... then turned to within this of its heading [rad].
-  double turn_speed = 1.0;           ///< The turn to the heading's top rate [rad/s].
+  double turn_speed = 2.0;           ///< The turn to the heading's top rate [rad/s].
   double goal_timeout = 120.0;       ///< A goal not reached by then is ABORTED [s, wall]; 0: never.
   double controller_patience = 3.0;  ///< Inputs stale this long ABORT the goal [s, wall].
   double oscillation_timeout = 10.0;  ///< No progress this long is stuck [s, wall]; 0: never.

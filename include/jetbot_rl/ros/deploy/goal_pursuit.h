@@ -25,7 +25,9 @@ namespace jetbot_rl {
  * A navigation goal from its acceptance to its end, as move_base pursues one with a learnt local
  * planner: goals from GoalInput (the move_base action and RViz's topic); with a map, a plan
  * (PathFollower) that a path policy observes and any other policy follows by a carrot (its goal
- * observation a point `carrot_distance` along the plan); arrival within `xy_goal_tolerance`,
+ * observation a point `carrot_distance` along the plan); a turn in place towards the way first
+ * when it lies more than 1 rad off the robot's heading (a reactive policy may freeze on a goal
+ * behind it), at each goal and after each recovery; arrival within `xy_goal_tolerance`,
  * then a turn in place to the goal's heading within `yaw_goal_tolerance`; recovery (back off,
  * re-plan) when the robot makes no progress, ABORTED when recoveries run out, the goal times out
  * or the inputs stay stale for `controller_patience`.
@@ -72,7 +74,9 @@ class GoalPursuit {
   int path_map_ = 0;                    // the map the follower plans on
   bool new_goal_ = false;               // a goal came since the last step
   GoalWatch watch_;
-  bool xy_reached_ = false;  // latched: only the heading is left
+  bool xy_reached_ = false;     // latched: only the heading is left
+  bool aligning_ = false;       // checking the way's bearing first (a goal's start, a recovery)
+  bool align_turning_ = false;  // ... and turning in place towards it
   int recoveries_ = 0, recoveries_total_ = 0;
   std::optional<double> backing_off_since_;  // a recovery's back-off [s]
   Eigen::Vector2d backoff_from_ = Eigen::Vector2d::Zero();
