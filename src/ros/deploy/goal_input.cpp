@@ -3,6 +3,7 @@
 #include <move_base_msgs/MoveBaseActionGoal.h>
 #include <ros/console.h>
 #include <std_msgs/String.h>
+#include <tf2/utils.h>
 #include <tf2_geometry_msgs/tf2_geometry_msgs.h>
 
 #include <cmath>
@@ -25,11 +26,10 @@ bool finitePose(const geometry_msgs::Pose& p) {
 OccupancyMap occupancyMapOf(const nav_msgs::OccupancyGrid& grid) {
   OccupancyMap map;
   const auto& info = grid.info;
-  const auto& q = info.origin.orientation;
   map.resolution = info.resolution;
   map.origin_x = info.origin.position.x;
   map.origin_y = info.origin.position.y;
-  map.origin_yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+  map.origin_yaw = tf2::getYaw(info.origin.orientation);
   map.width = static_cast<int>(info.width);
   map.height = static_cast<int>(info.height);
   map.data = grid.data;
@@ -159,9 +159,8 @@ bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::stri
   try {
     const geometry_msgs::PoseStamped in_frame =
         tf_buffer_.transform(msg, frame, ros::Duration(0.2));
-    const auto& q = in_frame.pose.orientation;
     out = Eigen::Vector2d(in_frame.pose.position.x, in_frame.pose.position.y);
-    yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+    yaw = tf2::getYaw(in_frame.pose.orientation);
     return true;
   } catch (const tf2::TransformException& e) {
     why =

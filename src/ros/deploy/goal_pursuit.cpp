@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/PolygonStamped.h>
 #include <ros/console.h>
+#include <tf2/utils.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,11 +20,6 @@ constexpr double kAlignTo = 0.3;       // ... until it is this far off [rad]
 /// A turn in place towards `error` [rad] off, at up to `top` [rad/s].
 PlanarTwist turnTowards(double error, double top) {
   return {0.0, std::copysign(std::clamp(2.0 * std::abs(error), 0.2, top), error)};
-}
-
-double yawOf(const Eigen::Quaterniond& q) {
-  return std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()),
-                    1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
 }
 
 GoalWatchConfig watchConfig(const DeployParams& p) {
@@ -200,7 +196,7 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     end("aborted: " + why);
     return Mode::kStand;
   }
-  const double heading = yawOf(state.root.orientation);
+  const double heading = tf2::getYaw(odom.pose.pose.orientation);
   const auto offHeading = [heading](double direction) {
     return std::atan2(std::sin(direction - heading), std::cos(direction - heading));
   };

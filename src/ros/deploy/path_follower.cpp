@@ -2,6 +2,7 @@
 
 #include <nav_msgs/Path.h>
 #include <ros/console.h>
+#include <tf2/utils.h>
 
 #include <cmath>
 
@@ -12,10 +13,8 @@ namespace {
 
 /// The planar part (x, y, yaw) of a transform.
 Eigen::Isometry2d planar(const geometry_msgs::TransformStamped& t) {
-  const auto& q = t.transform.rotation;
-  const double yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
   return Eigen::Translation2d(t.transform.translation.x, t.transform.translation.y) *
-         Eigen::Rotation2Dd(yaw);
+         Eigen::Rotation2Dd(tf2::getYaw(t.transform.rotation));
 }
 
 }  // namespace
