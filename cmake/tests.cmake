@@ -79,6 +79,10 @@ catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.
 target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
 target_compile_definitions(test_deploy PRIVATE ${_robots})
 
+# ---- the deploy node's goals and paths through tf, with a master ----
+add_rostest_gtest(test_goal_frames test/deploy/goal_frames.test test/deploy/test_goal_frames.cpp)
+target_link_libraries(test_goal_frames jetbot_rl_deploy)
+
 # ---- the env node (rostest) ----
 foreach(_scenario interface lockstep step_service reset rejection realtime_hz realtime_brake clock
     markers refuse_start hostile_bytes cmd_vel_drive cmd_vel_tribot cmd_vel_lockstep cmd_vel_brake

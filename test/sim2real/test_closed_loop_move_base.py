@@ -7,8 +7,9 @@ obstacle, in an unknown frame or too near a wall ABORTED at once with the reason
 still; a goal behind a wall SUCCEEDED through the door (a plan, the policy following a carrot
 along it) at the goal's heading, with feedback; a new goal preempting the current one; a cancel
 stopping the robot at once; a robot whose wheels get no commands stuck, recovering, then
-ABORTED."""
+ABORTED; a mission script killed mid-goal leaving the robot stopped."""
 import math
+import subprocess
 import time
 
 import actionlib
@@ -162,6 +163,33 @@ class TestClosedLoopMoveBase(DeployedNavigation):
         finally:
             stuck.terminate()
             stuck.wait(timeout=TIMEOUT)
+
+    def test_7_a_killed_client_leaves_the_robot_stopped(self):
+        # The shipped mission script, killed mid-goal: nothing can cancel its goal any more.
+        mission = subprocess.Popen(['rosrun', 'jetbot_rl', 'move_base_client.py',
+                                    str(OTHER_SIDE[0]), str(OTHER_SIDE[1])])
+        try:
+            wait_for(self.moving, what='the robot to drive to the script\'s goal')
+            count, outcomes = len(self.twists), len(self.outcomes)
+            killed = time.monotonic()
+            mission.kill()
+            mission.wait(timeout=TIMEOUT)
+        finally:
+            if mission.poll() is None:
+                mission.kill()
+        wait_for(lambda: any(is_zero(m) for _, m in self.twists[count:]),
+                 what='a zero Twist after the client died')
+        stopped = next(t for t, m in self.twists[count:] if is_zero(m)) - killed
+        wait_for(lambda: len(self.outcomes) > outcomes, what='the goal\'s end')
+        seen = len(self.odoms)
+        wait_for(lambda: len(self.odoms) > seen + 50, what='a second of odometry')
+        speed = abs(self.odoms[-1].twist.twist.linear.x)
+        print('FIGURE: move_base: client killed mid-goal: a zero Twist %.3f s later (%s); '
+              '%.3f m/s a second later' % (stopped, self.outcomes[outcomes], speed))
+        self.assertIn('disconnected', self.outcomes[outcomes])
+        self.assertLess(stopped, 0.5)
+        self.assertTrue(all(is_zero(m) for _, m in self.twists[count:][-1:]))
+        self.assertLess(speed, 0.02)
 
 
 if __name__ == '__main__':

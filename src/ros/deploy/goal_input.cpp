@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "jetbot_rl/ros/common/peer_links.h"
 #include "jetbot_rl/ros/common/private_topic.h"
 
 namespace jetbot_rl {
@@ -46,10 +47,10 @@ GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::strin
       action_name_(nh.resolveName(action_name)),
       tf_listener_(tf_buffer_) {
   outcome_pub_ = nh.advertise<std_msgs::String>(resolvePrivateTopic(pnh, outcome_topic), 10);
-  server_ = std::make_unique<actionlib::SimpleActionServer<move_base_msgs::MoveBaseAction>>(
-      nh, action_name_, false);
-  server_->registerGoalCallback([this] { onActionGoal(); });
-  server_->registerPreemptCallback([this] { onPreempt(); });
+  // actionlib's ActionServer rather than its SimpleActionServer: the goal's id names its client.
+  server_ = std::make_unique<Server>(
+      nh, action_name_, [this](Server::GoalHandle h) { onActionGoal(h); },
+      [this](Server::GoalHandle h) { onCancel(h); }, false);
   // A simple goal becomes an action goal on the server's own goal topic, as move_base sends it.
   action_goal_pub_ = nh.advertise<move_base_msgs::MoveBaseActionGoal>(action_name_ + "/goal", 1);
   current_goal_pub_ = pnh.advertise<geometry_msgs::PoseStamped>("current_goal", 1, true);
@@ -59,10 +60,7 @@ GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::strin
 }
 
 GoalInput::~GoalInput() {
-  if (started_ && server_->isActive()) {
-    server_->setAborted(move_base_msgs::MoveBaseResult(), "shut down");
-  }
-  server_->shutdown();
+  if (active_) active_->setAborted(move_base_msgs::MoveBaseResult(), "shut down");
 }
 
 void GoalInput::start() {
@@ -75,27 +73,42 @@ void GoalInput::start() {
 void GoalInput::clear() {
   goal_.reset();
   goal_in_map_.reset();
+  active_.reset();
+  client_.clear();
 }
 
 void GoalInput::succeed() {
+  if (active_) active_->setSucceeded(move_base_msgs::MoveBaseResult(), "reached");
   clear();
-  if (server_->isActive()) server_->setSucceeded(move_base_msgs::MoveBaseResult(), "reached");
   report("reached");
 }
 
 void GoalInput::abort(const std::string& why) {
   ROS_WARN("goal ended: %s; the robot stops", why.c_str());
+  if (active_) active_->setAborted(move_base_msgs::MoveBaseResult(), why);
   clear();
-  if (server_->isActive()) server_->setAborted(move_base_msgs::MoveBaseResult(), why);
   report(why);
 }
 
+bool GoalInput::clientGone(std::string& why) const {
+  if (client_.empty()) return false;
+  // A client subscribes to the action's status, feedback and result: gone from all three, it is
+  // gone (a mission script stopped with Ctrl-C or killed), and nothing would cancel its goal.
+  for (const char* topic : {"/status", "/feedback", "/result"}) {
+    for (const std::string& node : subscribersOf(action_name_ + topic)) {
+      if (node == client_) return false;
+    }
+  }
+  why = "its client " + client_ + " disconnected";
+  return true;
+}
+
 void GoalInput::feedback(const nav_msgs::Odometry& odom) {
-  if (!server_->isActive()) return;
+  if (!active_) return;
   move_base_msgs::MoveBaseFeedback f;
   f.base_position.header = odom.header;
   f.base_position.pose = odom.pose.pose;
-  server_->publishFeedback(f);
+  active_->publishFeedback(f);
 }
 
 void GoalInput::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
@@ -111,11 +124,11 @@ void GoalInput::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
   action_goal_pub_.publish(goal);
 }
 
-void GoalInput::onPreempt() {
-  // A new goal preempts the current one in onActionGoal; without one this is a cancel.
-  if (server_->isNewGoalAvailable()) return;
+void GoalInput::onCancel(Server::GoalHandle handle) {
+  // Goals are taken or ended as they come, so only the active one can be canceled.
+  if (!active_ || *active_ != handle) return;
+  active_->setCanceled(move_base_msgs::MoveBaseResult(), "canceled");  // PREEMPTED
   clear();
-  server_->setPreempted(move_base_msgs::MoveBaseResult(), "canceled");
   ROS_INFO("goal canceled; the robot stops");
   canceled_();
   report("canceled");
@@ -169,11 +182,24 @@ bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::stri
   }
 }
 
-void GoalInput::onActionGoal() {
-  const bool preempting = goal_.has_value();
-  const geometry_msgs::PoseStamped target = server_->acceptNewGoal()->target_pose;
-  clear();
-  if (preempting) report("preempted");
+void GoalInput::onActionGoal(Server::GoalHandle handle) {
+  if (active_) {
+    // A new goal preempts the current one (PREEMPTED), as move_base's does.
+    active_->setCanceled(move_base_msgs::MoveBaseResult(), "preempted by a new goal");
+    clear();
+    report("preempted");
+  }
+  handle.setAccepted();
+  active_ = handle;
+  // Its client is watched while it stays connected; a goal sent on a topic by hand is not.
+  const std::string sender = goalSender(handle.getGoalID().id);
+  for (const std::string& node : subscribersOf(action_name_ + "/status")) {
+    if (!sender.empty() && node == sender) client_ = sender;
+  }
+  take(handle.getGoal()->target_pose);
+}
+
+void GoalInput::take(const geometry_msgs::PoseStamped& target) {
   const auto refuse = [this](const std::string& why) { abort("refused: " + why); };
   if (!finitePose(target.pose)) return refuse("its pose is not finite");
   const auto& q = target.pose.orientation;

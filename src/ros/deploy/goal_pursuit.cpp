@@ -45,7 +45,10 @@ GoalPursuit::GoalPursuit(ros::NodeHandle& nh, ros::NodeHandle& pnh, const Deploy
             new_goal_ = true;
             new_episode();
           },
-          std::move(stop_now)),
+          [this, stop_now] {
+            if (path_) path_->clear();  // a canceled goal's plan goes from RViz too
+            stop_now();
+          }),
       watch_(watchConfig(p)) {
   if (path_lookahead > 0.0 && p.map_topic.empty()) {
     throwInvalid("map_topic", "''",
@@ -94,6 +97,7 @@ void GoalPursuit::end(const std::string& why) {
   goals_.abort(why);
   if (path_) path_->clear();
   backing_off_since_.reset();
+  plan_due_.reset();
 }
 
 void GoalPursuit::stale(const std::string& what) {
@@ -145,7 +149,12 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     path_map_ = goals_.mapsReceived();
   }
   if (!goals_.started() && (params_.map_topic.empty() || goals_.map())) goals_.start();
-  if (!goals_.goal()) return Mode::kStand;
+  std::string gone;
+  if (goals_.goal() && goals_.clientGone(gone)) end("aborted: " + gone);
+  if (!goals_.goal()) {
+    if (path_ && path_->following()) path_->clear();  // a refused goal preempted one
+    return Mode::kStand;
+  }
   const Eigen::Vector2d p = state.root.position.head<2>();
   const double t = now();
   if (new_goal_) {
@@ -153,49 +162,30 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     xy_reached_ = false;
     recoveries_ = 0;
     backing_off_since_.reset();
+    plan_due_.reset();
     watch_.start(t, p);
     if (path_ && !planNewGoal(odom, scan)) return Mode::kStand;
     aligning_ = true;
-    align_turning_ = false;
-  }
-  Eigen::Vector2d goal = *goals_.goal();
-  state.goal = goal;
-  if (path_) {
-    const std::string why = path_->follow(odom, scan, state);
-    if (!why.empty()) {
-      end("aborted: " + why);
-      return Mode::kStand;
-    }
-    goal = state.goal;                                         // where tf puts it now
-    if (path_lookahead_ == 0.0) state.goal = state.lookahead;  // the carrot
+    align_turning_ = align_fully_ = false;
   }
   goals_.feedback(odom);
-  // A recovery backs off, then plans again from where it got to.
-  if (backing_off_since_) {
-    const double limit = 3.0 * params_.recovery_backoff / kBackoffSpeed;
-    if ((p - backoff_from_).norm() < params_.recovery_backoff && t - *backing_off_since_ < limit) {
-      twist = {-kBackoffSpeed, 0.0};
-      return Mode::kTwist;
-    }
-    backing_off_since_.reset();
-    watch_.restartProgress(t, p);
-    if (path_) {
-      const std::string why = path_->plan(*goals_.goalInMap(), odom, scan);
-      if (!why.empty()) {
-        end("aborted: no path after a recovery: " + why);
-        return Mode::kStand;
-      }
-    }
-    aligning_ = true;  // then turns towards the way
-    align_turning_ = false;
-  }
-  if (!xy_reached_ && (goal - p).norm() <= params_.xy_goal_tolerance) xy_reached_ = true;
   std::string why;
   const GoalWatch::Verdict verdict = watch_.check(t, p, why);
   if (verdict == GoalWatch::Verdict::kTimedOut) {
     end("aborted: " + why);
     return Mode::kStand;
   }
+  if (backing_off_since_ || plan_due_) return recover(odom, scan, p, t, twist);
+  Eigen::Vector2d goal = *goals_.goal();
+  state.goal = goal;
+  if (path_) {
+    const std::string lost = path_->follow(odom, scan, state);
+    // A re-plan that found no way (blocked by what the scan sees, or no transform): recovery.
+    if (!lost.empty()) return startRecovery("no path: " + lost, p, t, twist);
+    goal = state.goal;                                         // where tf puts it now
+    if (path_lookahead_ == 0.0) state.goal = state.lookahead;  // the carrot
+  }
+  if (!xy_reached_ && (goal - p).norm() <= params_.xy_goal_tolerance) xy_reached_ = true;
   const double heading = tf2::getYaw(odom.pose.pose.orientation);
   const auto offHeading = [heading](double direction) {
     return std::atan2(std::sin(direction - heading), std::cos(direction - heading));
@@ -213,34 +203,81 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
     twist = turnTowards(error, params_.turn_speed);
     return Mode::kTwist;
   }
+  // Stuck (also turning in place without getting round): recovery.
+  if (verdict == GoalWatch::Verdict::kStuck) return startRecovery(why, p, t, twist);
   if (aligning_) {
     const Eigen::Vector2d way = state.goal - p;  // the carrot, the goal or the path's point ahead
     const Eigen::Vector2d ahead = path_lookahead_ > 0.0 ? state.lookahead - p : way;
     const double error = offHeading(std::atan2(ahead.y(), ahead.x()));
-    // Only a way well off the heading is turned to; then until it is nearly ahead.
-    if (ahead.norm() > 1e-6 && std::abs(error) > (align_turning_ ? kAlignTo : kAlignFrom)) {
+    // A way well off the heading is turned to (after a recovery, any), until nearly ahead.
+    const bool turn = align_turning_ || align_fully_;
+    if (ahead.norm() > 1e-6 && std::abs(error) > (turn ? kAlignTo : kAlignFrom)) {
       align_turning_ = true;
       twist = turnTowards(error, params_.turn_speed);
       return Mode::kTwist;
     }
-    aligning_ = align_turning_ = false;
-  }
-  if (verdict == GoalWatch::Verdict::kStuck) {
-    if (recoveries_ >= params_.max_recoveries) {
-      end("aborted: " + why + ", after " + std::to_string(recoveries_) +
-          " recoveries (max_recoveries)");
-      return Mode::kStand;
-    }
-    ++recoveries_;
-    ++recoveries_total_;
-    ROS_WARN("%s: recovery %d of %d: backing off %.2f m, then planning again", why.c_str(),
-             recoveries_, params_.max_recoveries, params_.recovery_backoff);
-    backing_off_since_ = t;
-    backoff_from_ = p;
-    twist = {-kBackoffSpeed, 0.0};
-    return Mode::kTwist;
+    aligning_ = align_turning_ = align_fully_ = false;
   }
   return Mode::kPolicy;
+}
+
+GoalPursuit::Mode GoalPursuit::startRecovery(const std::string& why, const Eigen::Vector2d& p,
+                                             double t, PlanarTwist& twist) {
+  if (recoveries_ >= params_.max_recoveries) {
+    end("aborted: " + why + ", after " + std::to_string(recoveries_) +
+        " recoveries (max_recoveries)");
+    return Mode::kStand;
+  }
+  ++recoveries_;
+  ++recoveries_total_;
+  ROS_WARN("%s: recovery %d of %d: backing off %.2f m, planning again, turning to the way",
+           why.c_str(), recoveries_, params_.max_recoveries, params_.recovery_backoff);
+  recovery_why_ = why;
+  backing_off_since_ = t;
+  backoff_from_ = p;
+  twist = {-kBackoffSpeed, 0.0};
+  return Mode::kTwist;
+}
+
+GoalPursuit::Mode GoalPursuit::recover(const nav_msgs::Odometry& odom,
+                                       const sensor_msgs::LaserScan* scan, const Eigen::Vector2d& p,
+                                       double t, PlanarTwist& twist) {
+  // 1. Back off (bounded in time: a wall behind stops it too).
+  if (backing_off_since_) {
+    const double limit = 3.0 * params_.recovery_backoff / kBackoffSpeed;
+    if ((p - backoff_from_).norm() < params_.recovery_backoff && t - *backing_off_since_ < limit) {
+      twist = {-kBackoffSpeed, 0.0};
+      return Mode::kTwist;
+    }
+    backing_off_since_.reset();
+    plan_due_ = t;
+    planning_retries_ = 0;
+  }
+  // 2. Plan again from there around what the scan sees, standing; tried again once per
+  //    path_replan_period up to max_planning_retries times, then the next recovery.
+  twist = {0.0, 0.0};
+  if (t < *plan_due_) return Mode::kTwist;
+  if (path_) {
+    const std::string why = path_->plan(*goals_.goalInMap(), odom, scan);
+    if (!why.empty()) {
+      if (planning_retries_ < params_.max_planning_retries) {
+        ++planning_retries_;
+        plan_due_ = t + params_.path_replan_period;
+        return Mode::kTwist;
+      }
+      plan_due_.reset();
+      return startRecovery("no path after a recovery (" + recovery_why_ + "), " +
+                               std::to_string(planning_retries_) +
+                               " planning retries (max_planning_retries): " + why,
+                           p, t, twist);
+    }
+  }
+  // 3. Then turn in place towards the way before the policy drives again.
+  plan_due_.reset();
+  watch_.restartProgress(t, p);
+  aligning_ = align_fully_ = true;
+  align_turning_ = false;
+  return Mode::kTwist;
 }
 
 }  // namespace jetbot_rl

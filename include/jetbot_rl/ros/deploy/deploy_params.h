@@ -41,6 +41,7 @@ struct DeployParams {
   double oscillation_distance = 0.2;  ///< Moving this far is progress [m].
   int max_recoveries = 2;             ///< Recoveries before a stuck goal is ABORTED.
   double recovery_backoff = 0.15;     ///< A recovery backs off this far [m].
+  int max_planning_retries = 2;       ///< A recovery's failed plan is tried again this often.
   double carrot_distance = 0.6;  ///< With a map, a policy without a path: its goal this far along.
   /// The policy's beams, only for a checkpoint written before checkpoints held them: their
   /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
@@ -102,13 +103,19 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "they are.");
   v("oscillation_timeout", c.oscillation_timeout, atLeast(0.0, "s, wall", "0: never"),
     "Navigation: a robot that has not moved oscillation_distance for this long is stuck: it "
-    "backs off and plans again (a recovery), and the goal is ABORTED after max_recoveries.");
+    "backs off, plans again and turns to the way (a recovery), and the goal is ABORTED after "
+    "max_recoveries.");
   v("oscillation_distance", c.oscillation_distance, positiveUpTo(100.0, "m"),
     "Navigation: moving this far from where the robot last made progress is progress.");
   v("max_recoveries", c.max_recoveries, inRange(0, 1000),
-    "Navigation: recoveries of a stuck robot before its goal is ABORTED (stuck).");
+    "Navigation: recoveries of a stuck robot, or of one whose re-plan finds no way, before its "
+    "goal is ABORTED.");
   v("recovery_backoff", c.recovery_backoff, positiveUpTo(10.0, "m"),
     "Navigation: a recovery backs off this far (at 0.1 m/s), then plans again.");
+  v("max_planning_retries", c.max_planning_retries, inRange(0, 1000),
+    "Navigation with a map: a recovery's plan that finds no way is tried again this often, once "
+    "per path_replan_period with the robot standing, before the next recovery (move_base's "
+    "name).");
   v("carrot_distance", c.carrot_distance, atLeast(0.0, "m", "0: the goal itself"),
     "Navigation with a map, a policy that observes no path: a path is planned and the policy's "
     "goal is the point this far along it (a carrot), so that goals behind walls are reached.");

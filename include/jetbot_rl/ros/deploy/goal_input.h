@@ -1,6 +1,6 @@
 #pragma once
 
-#include <actionlib/server/simple_action_server.h>
+#include <actionlib/server/action_server.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <move_base_msgs/MoveBaseAction.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -33,7 +33,9 @@ OccupancyMap occupancyMapOf(const nav_msgs::OccupancyGrid& grid);
  * header's) and checked against its free cells there; a goal that fails is ABORTED at once
  * ("refused: why"). What became of each goal (accepted, reached, refused: ..., no path: ...,
  * aborted: ..., canceled, preempted) is also published as a std_msgs/String, and the goal being
- * pursued on ~current_goal (as move_base does; RViz shows it).
+ * pursued on ~current_goal (as move_base does; RViz shows it). A goal whose client disconnects
+ * (its node exits or dies: its connections to the action's topics close) is ABORTED and the robot
+ * stops.
  */
 class GoalInput {
  public:
@@ -69,6 +71,9 @@ class GoalInput {
   void succeed();
   /// Ends the current goal ABORTED with `why` as its status text and outcome.
   void abort(const std::string& why);
+  /// True (with `why`) when the node that sent the current goal has disconnected from the
+  /// action: nothing could cancel the goal any more.
+  bool clientGone(std::string& why) const;
   /// Publishes the action's feedback: the robot's pose from `odom`.
   void feedback(const nav_msgs::Odometry& odom);
   std::string topic() const { return goal_sub_.getTopic(); }
@@ -77,8 +82,11 @@ class GoalInput {
 
  private:
   void onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg);
-  void onActionGoal();
-  void onPreempt();
+  using Server = actionlib::ActionServer<move_base_msgs::MoveBaseAction>;
+  void onActionGoal(Server::GoalHandle handle);
+  void onCancel(Server::GoalHandle handle);
+  /// Validates the current goal's target and takes it, or aborts it ("refused: why").
+  void take(const geometry_msgs::PoseStamped& target);
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
   void clear();
   void report(const std::string& outcome);
@@ -93,7 +101,9 @@ class GoalInput {
   std::string action_name_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  std::unique_ptr<actionlib::SimpleActionServer<move_base_msgs::MoveBaseAction>> server_;
+  std::unique_ptr<Server> server_;
+  std::optional<Server::GoalHandle> active_;  // the goal pursued
+  std::string client_;  // the node that sent it, while connected to the action; "": none
   ros::Publisher outcome_pub_, action_goal_pub_, current_goal_pub_;
   ros::Subscriber goal_sub_, map_sub_;
   std::optional<OccupancyMap> map_;

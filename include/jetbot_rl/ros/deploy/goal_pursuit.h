@@ -29,8 +29,10 @@ namespace jetbot_rl {
  * when it lies more than 1 rad off the robot's heading (a reactive policy may freeze on a goal
  * behind it), at each goal and after each recovery; arrival within `xy_goal_tolerance`,
  * then a turn in place to the goal's heading within `yaw_goal_tolerance`; recovery (back off,
- * re-plan) when the robot makes no progress, ABORTED when recoveries run out, the goal times out
- * or the inputs stay stale for `controller_patience`.
+ * re-plan around what the scan sees, retried up to `max_planning_retries` times, turn to the way)
+ * when the robot makes no progress or a re-plan finds no way, ABORTED when recoveries run out,
+ * the goal times out, the inputs stay stale for `controller_patience` or the goal's client
+ * disconnects.
  */
 class GoalPursuit {
  public:
@@ -64,6 +66,13 @@ class GoalPursuit {
   void end(const std::string& why);
   /// Plans for a new goal; false when it ended.
   bool planNewGoal(const nav_msgs::Odometry& odom, const sensor_msgs::LaserScan* scan);
+  /// A recovery for `why` (stuck, no path any more): backing off, or ABORTED after
+  /// max_recoveries.
+  Mode startRecovery(const std::string& why, const Eigen::Vector2d& p, double t,
+                     PlanarTwist& twist);
+  /// A recovery's step: backing off, then planning again (standing; retried), then turning.
+  Mode recover(const nav_msgs::Odometry& odom, const sensor_msgs::LaserScan* scan,
+               const Eigen::Vector2d& p, double t, PlanarTwist& twist);
 
   DeployParams params_;
   double path_lookahead_, footprint_radius_;
@@ -77,9 +86,13 @@ class GoalPursuit {
   bool xy_reached_ = false;     // latched: only the heading is left
   bool aligning_ = false;       // checking the way's bearing first (a goal's start, a recovery)
   bool align_turning_ = false;  // ... and turning in place towards it
+  bool align_fully_ = false;    // ... after a recovery: whenever it is off
   int recoveries_ = 0, recoveries_total_ = 0;
+  std::string recovery_why_;                 // what the current recovery is for
   std::optional<double> backing_off_since_;  // a recovery's back-off [s]
   Eigen::Vector2d backoff_from_ = Eigen::Vector2d::Zero();
+  std::optional<double> plan_due_;     // a recovery plans again at this time [s]
+  int planning_retries_ = 0;           // ... after this many failed plans
   std::optional<double> stale_since_;  // [s]
 };
 

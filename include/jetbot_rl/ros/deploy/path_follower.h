@@ -53,6 +53,8 @@ class PathFollower {
                      MeasuredState& state);
   /// Drops the plan (an empty Path is published).
   void clear();
+  /// True while a plan is followed (from plan() until clear()).
+  bool following() const { return goal_.has_value(); }
   /// Plans made since start-up, and of them re-plans (strayed, blocked).
   int plans() const { return plans_; }
   int replans() const { return replans_; }
