@@ -7,7 +7,8 @@ obstacle, in an unknown frame or too near a wall ABORTED at once with the reason
 still; a goal behind a wall SUCCEEDED through the door (a plan, the policy following a carrot
 along it) at the goal's heading, with feedback; a new goal preempting the current one; a cancel
 stopping the robot at once; a robot whose wheels get no commands stuck, recovering, then
-ABORTED; a mission script killed mid-goal leaving the robot stopped."""
+ABORTED; a robot boxed in (its scan) after the plan recovering, then ABORTED; a mission script
+killed mid-goal leaving the robot stopped."""
 import math
 import subprocess
 import time
@@ -18,6 +19,8 @@ import rospy
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from geometry_msgs.msg import Twist
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+from nav_msgs.msg import Path
+from sensor_msgs.msg import LaserScan
 
 from jetbot_rl_test.deployed_navigation import DeployedNavigation, goal_msg
 from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
@@ -163,6 +166,52 @@ class TestClosedLoopMoveBase(DeployedNavigation):
         finally:
             stuck.terminate()
             stuck.wait(timeout=TIMEOUT)
+
+    def test_6b_a_way_blocked_after_the_plan_recovers_then_aborts(self):
+        # A second navigator on the same robot whose scan the test relays; once it drives, the
+        # relay boxes it in (every reading at most 0.35 m): what the scan sees blocks the plan,
+        # and no re-plan finds a way out.
+        boxed_in = []
+
+        def relay(scan):
+            if boxed_in:
+                scan.ranges = [min(r, 0.35) for r in scan.ranges]
+            boxed_scan.publish(scan)
+
+        boxed_scan = rospy.Publisher('/boxed/scan', LaserScan, queue_size=1)
+        relay_sub = rospy.Subscriber('/env_0/scan', LaserScan, relay)
+        boxed = self.deploy('boxed', ['_scan_topic:=/boxed/scan',
+                                      '_action_name:=boxed_move_base', '_goal_topic:=~goal',
+                                      '_max_recoveries:=1', '_max_planning_retries:=1'])
+        plans = EventList()
+        plan_sub = rospy.Subscriber('/boxed/plan', Path, plans.append)
+        try:
+            client = actionlib.SimpleActionClient('boxed_move_base', MoveBaseAction)
+            self.assertTrue(client.wait_for_server(rospy.Duration(TIMEOUT)))
+            sent = time.monotonic()
+            client.send_goal(action_goal(*OTHER_SIDE))
+            wait_for(lambda: any(p.poses for p in plans), what='a plan')
+            wait_for(self.moving, what='the robot to drive')
+            boxed_in.append(True)
+            self.assertTrue(client.wait_for_result(rospy.Duration(60.0)), 'no result in 60 s')
+            state, why = client.get_state(), client.get_goal_status_text()
+            took = time.monotonic() - sent
+            seen = len(self.odoms)
+            wait_for(lambda: len(self.odoms) > seen + 50, what='a second of odometry')
+            speed = abs(self.odoms[-1].twist.twist.linear.x)
+            wait_for(lambda: not plans[-1].poses, what='the plan to be emptied')
+            print('FIGURE: move_base: boxed in after the plan: ABORTED after %.1f s (%s); '
+                  '%.3f m/s a second later' % (took, why, speed))
+            self.assertEqual(state, GoalStatus.ABORTED, why)
+            self.assertIn('no path', why)
+            self.assertIn('max_planning_retries', why)
+            self.assertIn('after 1 recoveries', why)
+            self.assertLess(speed, 0.02)
+        finally:
+            relay_sub.unregister()
+            plan_sub.unregister()
+            boxed.terminate()
+            boxed.wait(timeout=TIMEOUT)
 
     def test_7_a_killed_client_leaves_the_robot_stopped(self):
         # The shipped mission script, killed mid-goal: nothing can cancel its goal any more.

@@ -16,10 +16,11 @@ namespace {
 constexpr double kBackoffSpeed = 0.1;  // a recovery backs off at this [m/s]
 constexpr double kAlignFrom = 1.0;     // a way this far off the heading is turned to first [rad]
 constexpr double kAlignTo = 0.3;       // ... until it is this far off [rad]
+constexpr double kTurnGain = 4.0;      // a turn in place slows down at this rate [1/s]
 
 /// A turn in place towards `error` [rad] off, at up to `top` [rad/s].
 PlanarTwist turnTowards(double error, double top) {
-  return {0.0, std::copysign(std::clamp(2.0 * std::abs(error), 0.2, top), error)};
+  return {0.0, std::copysign(std::clamp(kTurnGain * std::abs(error), 0.2, top), error)};
 }
 
 GoalWatchConfig watchConfig(const DeployParams& p) {

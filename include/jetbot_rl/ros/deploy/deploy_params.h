@@ -34,7 +34,7 @@ struct DeployParams {
   std::string action_name = "move_base";              ///< The move_base_msgs/MoveBaseAction server.
   double xy_goal_tolerance = 0.2;    ///< A goal is reached within this of the robot's origin [m].
   double yaw_goal_tolerance = 0.1;   ///< ... then turned to within this of its heading [rad].
-  double turn_speed = 2.0;           ///< The turn to the heading's top rate [rad/s].
+  double turn_speed = 3.0;           ///< A turn in place's top rate [rad/s].
   double goal_timeout = 120.0;       ///< A goal not reached by then is ABORTED [s, wall]; 0: never.
   double controller_patience = 3.0;  ///< Inputs stale this long ABORT the goal [s, wall].
   double oscillation_timeout = 10.0;  ///< No progress this long is stuck [s, wall]; 0: never.
@@ -95,7 +95,8 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "Navigation: once within xy_goal_tolerance the robot turns in place to the goal's heading "
     "within this; the goal SUCCEEDS then.");
   v("turn_speed", c.turn_speed, positiveUpTo(10.0, "rad/s"),
-    "Navigation: the top rate of the turn to the goal's heading.");
+    "Navigation: the top rate of a turn in place (towards the way, to the goal's heading); the "
+    "turn slows down proportionally (4 rad/s per rad) within 0.75 rad of its end.");
   v("goal_timeout", c.goal_timeout, atLeast(0.0, "s, wall", "0: never"),
     "Navigation: a goal not reached by then is ABORTED (timed out).");
   v("controller_patience", c.controller_patience, positive("s, wall"),
