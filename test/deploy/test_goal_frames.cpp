@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/deploy/goal_pursuit.h"
 #include "jetbot_rl/ros/deploy/path_follower.h"
 
 namespace jetbot_rl {
@@ -191,6 +192,50 @@ TEST_F(GoalFrames, APathIsFollowedThroughAMovingMapToOdom) {
   const Eigen::Vector2d ahead_now = state.lookahead + Eigen::Vector2d(-2.5, 0.5);
   EXPECT_LT((ahead_now - ahead_in_map).norm(), 0.5 + 0.75);
   EXPECT_NE(ahead_now, ahead_in_map);
+}
+
+TEST_F(GoalFrames, APursuedGoalStaysOnTheMapAsMapToOdomMoves) {
+  DeployParams p;  // a second navigator, without a plan: the policy's goal is the goal itself
+  p.action_name = "pursuit";
+  p.goal_topic = "~pursuit_goal";
+  p.outcome_topic = "~pursuit_outcome";
+  p.map_topic = "/map";
+  p.carrot_distance = 0.0;
+  GoalPursuit pursuit(
+      nh_, pnh_, p, 0.0, 0.1, [] { return std::string("odom"); }, [] {}, [] {});
+  setMapOdom(0.0, 0.0, 0.0);
+  nav_msgs::Odometry odom;  // the robot at odom's origin, facing +x
+  odom.header.frame_id = "odom";
+  odom.child_frame_id = "base_link";
+  odom.pose.pose.orientation.w = 1.0;
+  MeasuredState state;
+  PlanarTwist twist;
+  GoalPursuit::Mode mode = GoalPursuit::Mode::kStand;
+  const auto step = [&] { mode = pursuit.step(odom, nullptr, state, twist); };
+  Client client(nh_, "pursuit", false);
+  ASSERT_TRUE(spinUntil([&] {
+    step();  // its server starts at a step once the map is there
+    return client.isServerConnected();
+  }));
+  move_base_msgs::MoveBaseGoal goal;
+  goal.target_pose.header.frame_id = "map";
+  goal.target_pose.pose.position.x = 3.0;
+  goal.target_pose.pose.orientation.w = 1.0;
+  client.sendGoal(goal);
+  ASSERT_TRUE(spinUntil([&] {
+    step();
+    return mode == GoalPursuit::Mode::kPolicy;
+  })) << client.getState().getText();
+  EXPECT_NEAR(state.goal.x(), 3.0, 1e-6);
+  // The localisation moves odom's origin to (0.5, 0.5) in the map: the goal, still at (3, 0) on
+  // the map, is at (2.5, -0.5) in odom.
+  setMapOdom(0.5, 0.5, 0.0);
+  EXPECT_TRUE(spinUntil([&] {
+    step();
+    return (state.goal - Eigen::Vector2d(2.5, -0.5)).norm() < 1e-6;
+  })) << "the goal in odom stayed at ("
+      << state.goal.x() << ", " << state.goal.y() << ")";
+  EXPECT_EQ(mode, GoalPursuit::Mode::kPolicy);
 }
 
 TEST_F(GoalFrames, AGoalWhoseClientDisconnectsEnds) {

@@ -10,6 +10,7 @@
 
 #include "jetbot_rl/ros/common/peer_links.h"
 #include "jetbot_rl/ros/common/private_topic.h"
+#include "jetbot_rl/ros/deploy/planar_transform.h"
 
 namespace jetbot_rl {
 namespace {
@@ -165,6 +166,17 @@ bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const 
     return false;
   }
   return true;
+}
+
+std::optional<Eigen::Vector2d> GoalInput::fromMap(const Eigen::Vector2d& q,
+                                                  const std::string& frame) const {
+  if (map_frame_.empty() || map_frame_ == frame) return q;
+  try {
+    return planarTransform(tf_buffer_.lookupTransform(frame, map_frame_, ros::Time(0)).transform) *
+           q;
+  } catch (const tf2::TransformException&) {
+    return std::nullopt;
+  }
 }
 
 bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,

@@ -178,6 +178,12 @@ GoalPursuit::Mode GoalPursuit::step(const nav_msgs::Odometry& odom,
   }
   if (backing_off_since_ || plan_due_) return recover(odom, scan, p, t, twist);
   Eigen::Vector2d goal = *goals_.goal();
+  if (!path_ && goals_.goalInMap()) {
+    // With a map and no plan the goal stays where it is on the map: map -> odom at each step.
+    if (const auto in_odom = goals_.fromMap(*goals_.goalInMap(), odom.header.frame_id)) {
+      goal = *in_odom;
+    }
+  }
   state.goal = goal;
   if (path_) {
     const std::string lost = path_->follow(odom, scan, state);
@@ -233,7 +239,6 @@ GoalPursuit::Mode GoalPursuit::startRecovery(const std::string& why, const Eigen
   ++recoveries_total_;
   ROS_WARN("%s: recovery %d of %d: backing off %.2f m, planning again, turning to the way",
            why.c_str(), recoveries_, params_.max_recoveries, params_.recovery_backoff);
-  recovery_why_ = why;
   backing_off_since_ = t;
   backoff_from_ = p;
   twist = {-kBackoffSpeed, 0.0};
@@ -267,9 +272,8 @@ GoalPursuit::Mode GoalPursuit::recover(const nav_msgs::Odometry& odom,
         return Mode::kTwist;
       }
       plan_due_.reset();
-      return startRecovery("no path after a recovery (" + recovery_why_ + "), " +
-                               std::to_string(planning_retries_) +
-                               " planning retries (max_planning_retries): " + why,
+      return startRecovery("no path: " + why + " (also after " + std::to_string(planning_retries_) +
+                               " planning retries: max_planning_retries)",
                            p, t, twist);
     }
   }

@@ -2,22 +2,13 @@
 
 #include <nav_msgs/Path.h>
 #include <ros/console.h>
-#include <tf2/utils.h>
 
 #include <cmath>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/deploy/planar_transform.h"
 
 namespace jetbot_rl {
-namespace {
-
-/// The planar part (x, y, yaw) of a transform.
-Eigen::Isometry2d planar(const geometry_msgs::TransformStamped& t) {
-  return Eigen::Translation2d(t.transform.translation.x, t.transform.translation.y) *
-         Eigen::Rotation2Dd(tf2::getYaw(t.transform.rotation));
-}
-
-}  // namespace
 
 PathFollower::PathFollower(ros::NodeHandle& pnh, const PathFollowing& config,
                            const tf2_ros::Buffer& tf)
@@ -44,7 +35,7 @@ bool PathFollower::lookup(const std::string& from, Eigen::Isometry2d& map_from,
     return true;
   }
   try {
-    map_from = planar(tf_.lookupTransform(map_frame_, from, ros::Time(0)));
+    map_from = planarTransform(tf_.lookupTransform(map_frame_, from, ros::Time(0)).transform);
     return true;
   } catch (const tf2::TransformException& e) {
     why = "no transform from '" + from + "' into the map's frame '" + map_frame_ + "': " + e.what();

@@ -57,6 +57,8 @@ class GoalInput {
   double goalYaw() const { return goal_yaw_; }
   /// The current goal in the map's frame (with a map).
   const std::optional<Eigen::Vector2d>& goalInMap() const { return goal_in_map_; }
+  /// `q` (the map's frame) in `frame` through tf's latest transform, or none without one.
+  std::optional<Eigen::Vector2d> fromMap(const Eigen::Vector2d& q, const std::string& frame) const;
   /// The last valid map on the map topic, if any came, its frame, and how many came.
   const std::optional<OccupancyMap>& map() const { return map_; }
   const std::string& mapFrame() const { return map_frame_; }

@@ -88,7 +88,6 @@ class GoalPursuit {
   bool align_turning_ = false;  // ... and turning in place towards it
   bool align_fully_ = false;    // ... after a recovery: whenever it is off
   int recoveries_ = 0, recoveries_total_ = 0;
-  std::string recovery_why_;                 // what the current recovery is for
   std::optional<double> backing_off_since_;  // a recovery's back-off [s]
   Eigen::Vector2d backoff_from_ = Eigen::Vector2d::Zero();
   std::optional<double> plan_due_;     // a recovery plans again at this time [s]
