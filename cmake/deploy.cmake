@@ -8,6 +8,7 @@ add_library(jetbot_rl_deploy
   src/ros/deploy/goal_input.cpp
   src/ros/deploy/goal_pursuit.cpp
   src/ros/deploy/path_follower.cpp
+  src/ros/deploy/planar_transform.cpp
   src/ros/deploy/scan_beams.cpp
 )
 target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_ppo jetbot_rl_ros_common)

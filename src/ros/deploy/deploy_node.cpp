@@ -12,6 +12,7 @@
 #include "jetbot_rl/ros/common/robot_description.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
+#include "jetbot_rl/ros/deploy/goal_pursuit.h"
 #include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
@@ -76,9 +77,7 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     observer =
         observerOf(policy->meta().spec, beams, params->xy_goal_tolerance, params->checkpoint);
     if (!run.twist) kinematics = makeKinematics(nh, *params, run.action_high);
-    const bool plans =
-        run.path_lookahead > 0.0 ||
-        (observer->hasGoal() && !params->map_topic.empty() && params->carrot_distance > 0.0);
+    const bool plans = observer->hasGoal() && GoalPursuit::plansPaths(*params, run.path_lookahead);
     if (plans && footprint_radius == 0.0) {
       if (!nh.hasParam("robot_description")) {
         throwInvalid("footprint_radius", 0.0,

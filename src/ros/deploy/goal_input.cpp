@@ -170,13 +170,10 @@ bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const 
 
 std::optional<Eigen::Vector2d> GoalInput::fromMap(const Eigen::Vector2d& q,
                                                   const std::string& frame) const {
-  if (map_frame_.empty() || map_frame_ == frame) return q;
-  try {
-    return planarTransform(tf_buffer_.lookupTransform(frame, map_frame_, ros::Time(0)).transform) *
-           q;
-  } catch (const tf2::TransformException&) {
-    return std::nullopt;
-  }
+  Eigen::Isometry2d frame_map;
+  std::string why;
+  if (!lookupPlanar(tf_buffer_, frame, map_frame_, frame_map, why)) return std::nullopt;
+  return frame_map * q;
 }
 
 bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,

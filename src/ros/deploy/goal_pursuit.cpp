@@ -55,7 +55,7 @@ GoalPursuit::GoalPursuit(ros::NodeHandle& nh, ros::NodeHandle& pnh, const Deploy
     throwInvalid("map_topic", "''",
                  "the policy follows a global path, which is planned on a map: name its topic");
   }
-  if (path_lookahead > 0.0 || (!p.map_topic.empty() && p.carrot_distance > 0.0)) {
+  if (plansPaths(p, path_lookahead)) {
     PathFollowing f;
     f.planner.robot_radius = footprint_radius;
     f.planner.clearance = p.path_clearance;

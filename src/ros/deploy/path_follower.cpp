@@ -28,26 +28,11 @@ bool PathFollower::setMap(const OccupancyMap& map, const std::string& frame, std
   return true;
 }
 
-bool PathFollower::lookup(const std::string& from, Eigen::Isometry2d& map_from,
-                          std::string& why) const {
-  if (from == map_frame_ || map_frame_.empty()) {
-    map_from = Eigen::Isometry2d::Identity();
-    return true;
-  }
-  try {
-    map_from = planarTransform(tf_.lookupTransform(map_frame_, from, ros::Time(0)).transform);
-    return true;
-  } catch (const tf2::TransformException& e) {
-    why = "no transform from '" + from + "' into the map's frame '" + map_frame_ + "': " + e.what();
-    return false;
-  }
-}
-
 std::vector<Eigen::Vector2d> PathFollower::seen(const sensor_msgs::LaserScan* scan) const {
   std::vector<Eigen::Vector2d> points;
   Eigen::Isometry2d map_scan;
   std::string why;
-  if (!scan || !lookup(scan->header.frame_id, map_scan, why)) return points;
+  if (!scan || !lookupPlanar(tf_, map_frame_, scan->header.frame_id, map_scan, why)) return points;
   for (std::size_t i = 0; i < scan->ranges.size(); ++i) {
     const float r = scan->ranges[i];
     if (!(r >= scan->range_min && r < scan->range_max)) continue;  // NaN and ±inf too
@@ -66,7 +51,7 @@ std::string PathFollower::plan(const Eigen::Vector2d& goal, const nav_msgs::Odom
   }
   Eigen::Isometry2d map_odom;
   std::string why;
-  if (!lookup(odom.header.frame_id, map_odom, why)) {
+  if (!lookupPlanar(tf_, map_frame_, odom.header.frame_id, map_odom, why)) {
     publish({});
     return why;
   }
@@ -105,7 +90,7 @@ std::string PathFollower::follow(const nav_msgs::Odometry& odom, const sensor_ms
   if (!goal_) return "no plan";
   Eigen::Isometry2d map_odom;
   std::string why;
-  if (!lookup(odom.header.frame_id, map_odom, why)) return why;
+  if (!lookupPlanar(tf_, map_frame_, odom.header.frame_id, map_odom, why)) return why;
   const auto& p = odom.pose.pose.position;
   const Eigen::Vector2d robot = map_odom * Eigen::Vector2d(p.x, p.y);
   tracker_.track(robot);

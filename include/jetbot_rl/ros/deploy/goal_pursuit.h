@@ -50,6 +50,11 @@ class GoalPursuit {
               double path_lookahead, double footprint_radius, GoalInput::OdomFrame odom_frame,
               std::function<void()> new_episode, std::function<void()> stop_now);
 
+  /// True when goals are planned on the map: a policy that observes a path
+  /// (`path_lookahead` > 0 [m]), or any other with a map and a carrot.
+  static bool plansPaths(const DeployParams& p, double path_lookahead) {
+    return path_lookahead > 0.0 || (!p.map_topic.empty() && p.carrot_distance > 0.0);
+  }
   /// One control step on fresh inputs: fills `state`'s goal (and path) for kPolicy, or `twist`.
   Mode step(const nav_msgs::Odometry& odom, const sensor_msgs::LaserScan* scan,
             MeasuredState& state, PlanarTwist& twist);

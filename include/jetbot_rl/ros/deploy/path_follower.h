@@ -62,8 +62,6 @@ class PathFollower {
   const std::vector<Eigen::Vector2d>& points() const { return tracker_.points(); }
 
  private:
-  /// The transform from `from` into the map's frame at the latest time; false with `why`.
-  bool lookup(const std::string& from, Eigen::Isometry2d& map_from, std::string& why) const;
   /// The scan's endpoints in the map's frame (none without a scan or its transform).
   std::vector<Eigen::Vector2d> seen(const sensor_msgs::LaserScan* scan) const;
   /// Why the path ahead is blocked by `points` ("" when it is not).
