@@ -21,9 +21,11 @@ import numpy as np
 import rospy
 from actionlib_msgs.msg import GoalStatus
 from diagnostic_msgs.msg import DiagnosticArray
-from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+from move_base_msgs.msg import MoveBaseAction
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan
+
+from jetbot_rl.move_base_goal import move_base_goal
 
 
 STATES = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
@@ -118,12 +120,7 @@ def main():
             if math.hypot(x - p.x, y - p.y) >= args.min_distance:
                 break
         heading = rng.uniform(-math.pi, math.pi)
-        goal = MoveBaseGoal()
-        goal.target_pose.header.frame_id = args.frame
-        goal.target_pose.pose.position.x = x
-        goal.target_pose.pose.position.y = y
-        goal.target_pose.pose.orientation.z = math.sin(0.5 * heading)
-        goal.target_pose.pose.orientation.w = math.cos(0.5 * heading)
+        goal = move_base_goal(x, y, heading, args.frame)
         plans = len(rec.plans)
         rec.touched = False
         sent = time.monotonic()

@@ -10,13 +10,14 @@ did not succeed.
     rosrun jetbot_rl move_base_client.py --cancel-after 2 1.5 -0.5    # cancel it after 2 s
 """
 import argparse
-import math
 import sys
 
 import actionlib
 import rospy
 from actionlib_msgs.msg import GoalStatus
-from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+from move_base_msgs.msg import MoveBaseAction
+
+from jetbot_rl.move_base_goal import move_base_goal
 
 STATES = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
 
@@ -51,13 +52,7 @@ def main():
         return 1
     failed = 0
     for x, y, yaw in goals:
-        goal = MoveBaseGoal()
-        goal.target_pose.header.frame_id = args.frame
-        goal.target_pose.header.stamp = rospy.Time.now()
-        goal.target_pose.pose.position.x = x
-        goal.target_pose.pose.position.y = y
-        goal.target_pose.pose.orientation.z = math.sin(0.5 * yaw)
-        goal.target_pose.pose.orientation.w = math.cos(0.5 * yaw)
+        goal = move_base_goal(x, y, yaw, args.frame, stamp=rospy.Time.now())
         last = []
         start = rospy.get_time()
         client.send_goal(goal, feedback_cb=last.append)

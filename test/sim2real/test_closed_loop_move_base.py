@@ -18,11 +18,12 @@ import rostest
 import rospy
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from geometry_msgs.msg import Twist
-from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+from move_base_msgs.msg import MoveBaseAction
 from nav_msgs.msg import Path
 from sensor_msgs.msg import LaserScan
 
-from jetbot_rl_test.deployed_navigation import DeployedNavigation, goal_msg
+from jetbot_rl.move_base_goal import move_base_goal
+from jetbot_rl_test.deployed_navigation import DeployedNavigation
 from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
 from jetbot_rl_test.robot_view_client import yaw
 
@@ -34,11 +35,7 @@ REACH_WITHIN = 90.0       # [s]
 
 
 def action_goal(x, y, heading=0.0, frame='env_0/map'):
-    goal = MoveBaseGoal()
-    goal.target_pose = goal_msg(x, y, frame)
-    goal.target_pose.pose.orientation.z = math.sin(0.5 * heading)
-    goal.target_pose.pose.orientation.w = math.cos(0.5 * heading)
-    return goal
+    return move_base_goal(x, y, heading, frame)
 
 
 def is_zero(twist):
