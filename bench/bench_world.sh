@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The world and the laser scanner's cost (docs/performance.md): jetbot_rl_bench env steps/s per
 # thread for an empty world, random obstacles (a 4 x 4 m arena, 3 boxes, 2 cylinders), the office
-# map and clutter (a 10 x 10 m arena, 200 obstacles), each with no scanner, 24 beams every step,
+# map, clutter (a 10 x 10 m arena, 200 obstacles) and a Gazebo world of 500 cylinder models
+# (world_gazebo.yaml), each with no scanner, 24 beams every step,
 # 360 beams every 6th step and 360 beams every step, as a markdown table with each row's ratio to
 # the empty world without a scanner; then the memory per env.
 # Needs no ROS at run time (jetbot_rl_bench from the workspace, or $JETBOT_RL_BENCH):
@@ -31,7 +32,7 @@ echo "| threads | world | scanner | env steps/s | per thread | / empty, no scann
 echo "|---|---|---|---|---|---|"
 for t in "${threads[@]}"; do
   base=""
-  for world in none obstacles map clutter; do
+  for world in none obstacles map clutter gazebo; do
     for scan in none 24 360 360_every_step; do
       rate=$(run "$t" "$world" "$scan" | field env_steps_per_s)
       [ -n "$base" ] || base=$rate
@@ -46,8 +47,9 @@ for t in "${threads[@]}"; do
   done
 done
 echo
-for world in none obstacles map clutter; do
+for world in none obstacles map clutter gazebo; do
   small=$(steps=20 run 2 "$world" 24 1000 | field rss_kib)
   large=$(steps=20 run 2 "$world" 24 10000 | field rss_kib)
+  [ "$world" != gazebo ] || echo "start-up, world gazebo: $( { /usr/bin/time -f %e $bench --num-envs 1 --steps 1 --config "$here/world_gazebo.yaml" >/dev/null; } 2>&1 | tail -1) s (1 env, 1 step)"
   echo "memory, world $world, 24 beams: $(awk "BEGIN { printf \"%.1f\", ($large - $small) / 9000 }") KiB per env (resident set growth from 1,000 to 10,000 envs)"
 done

@@ -6,6 +6,8 @@ pkg_check_modules(ASSIMP REQUIRED assimp)
 pkg_check_modules(TINYXML2 REQUIRED tinyxml2)
 pkg_check_modules(STB REQUIRED stb)
 find_package(yaml-cpp REQUIRED)
+# Gazebo world files (SDF), read with Debian's libsdformat-dev as Gazebo reads them.
+find_package(sdformat12 REQUIRED)
 add_library(jetbot_rl_core
   src/core/action_layout.cpp
   src/core/batch_spec.cpp
@@ -22,6 +24,8 @@ add_library(jetbot_rl_core
   src/core/env_view.cpp
   src/core/former_names.cpp
   src/core/gazebo_blocks.cpp
+  src/core/gazebo_world.cpp
+  src/core/sdf_prepass.cpp
   src/core/laser_scanner.cpp
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
@@ -40,6 +44,8 @@ add_library(jetbot_rl_core
   src/core/thread_pool.cpp
   src/core/velocity_task.cpp
   src/core/world_model.cpp
+  src/core/world_gazebo.cpp
+  src/core/world_cut.cpp
   src/core/world_generation.cpp
   src/core/footprint_grid.cpp
   src/core/grid_planner.cpp
@@ -58,16 +64,19 @@ target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
 target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
 target_include_directories(jetbot_rl_core PRIVATE ${ASSIMP_INCLUDE_DIRS} ${TINYXML2_INCLUDE_DIRS})
 target_link_libraries(jetbot_rl_core PRIVATE ${ASSIMP_LIBRARIES} ${TINYXML2_LIBRARIES}
-  ${STB_LIBRARIES} yaml-cpp)
+  ${STB_LIBRARIES} yaml-cpp sdformat12::sdformat12)
 
 # Headless demo of the batched core.
 add_executable(jetbot_rl_demo src/nodes/demo_main.cpp)
 target_compile_definitions(jetbot_rl_demo PRIVATE ${JETBOT_RL_DEFAULT_URDF_DEFINE})
 target_link_libraries(jetbot_rl_demo jetbot_rl_core)
+# A Gazebo world's grid as a map_server map (docs/world.md).
+add_executable(jetbot_rl_world_map src/nodes/world_map_main.cpp)
+target_link_libraries(jetbot_rl_world_map jetbot_rl_core)
 
 install(TARGETS jetbot_rl_core
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
-install(TARGETS jetbot_rl_demo RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(TARGETS jetbot_rl_demo jetbot_rl_world_map RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY include/jetbot_rl/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})

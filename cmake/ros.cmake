@@ -26,6 +26,7 @@ add_library(jetbot_rl_env_node
   src/ros/env_node/env_node.cpp
   src/ros/env_node/env_server.cpp
   src/ros/env_node/map_publisher.cpp
+  src/ros/env_node/world_geometry_publisher.cpp
   src/ros/env_node/marker_publisher.cpp
   src/ros/env_node/node_params.cpp
   src/ros/env_node/randomization_service.cpp

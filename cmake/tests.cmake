@@ -33,6 +33,7 @@ catkin_add_gtest(test_core
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp
   test/core/test_world.cpp
+  test/core/test_gazebo_world.cpp
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
@@ -97,6 +98,7 @@ add_dependencies(test_tf ${${PROJECT_NAME}_EXPORTED_TARGETS})
 # ---- the world and the laser scanner ----
 add_rostest(test/world/world_scan.test)
 add_rostest(test/world/world_view.test)
+add_rostest(test/world/gazebo_world.test)
 
 # ---- the programs the rostests below start ----
 set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_deploy_node jetbot_rl_manager

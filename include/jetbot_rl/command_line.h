@@ -81,6 +81,7 @@ struct EnvProgramOptions {
   int threads = 0;  ///< 0: all cores
   std::string urdf;
   std::vector<std::string> configs;
+  std::string gazebo_world;  ///< --gazebo-world: world/gazebo_world over the files'.
 
   /// Stores `option` when it is one of these (true; `error` set for a bad value), else false.
   bool take(const std::string& option, const std::string& value, std::string& error) {
@@ -88,6 +89,8 @@ struct EnvProgramOptions {
       urdf = value;
     } else if (option == "--config") {
       configs.push_back(value);
+    } else if (option == "--gazebo-world") {
+      gazebo_world = value;
     } else if (option == "--num-envs") {
       parseWholeNumber(option, value, 1, 1000000, num_envs, error);
     } else if (option == "--steps") {
@@ -99,15 +102,17 @@ struct EnvProgramOptions {
     }
     return true;
   }
-  /// "[--num-envs N] [--steps S] [--threads T] [--urdf PATH] [--config YAML ...]"
+  /// "[--num-envs N] [--steps S] [--threads T] [--urdf PATH] [--config YAML ...] ..."
   static const char* usage() {
-    return "[--num-envs N] [--steps S] [--threads T] [--urdf PATH] [--config YAML ...]";
+    return "[--num-envs N] [--steps S] [--threads T] [--urdf PATH] [--config YAML ...] "
+           "[--gazebo-world PATH]";
   }
   /// The setup the options describe: the files' fields over the defaults, then num_envs and
   /// threads. ConfigError naming the file or field.
   EnvSetup setup() const {
     EnvSetup s;
     readEnvSetupFiles(configs, s);
+    if (!gazebo_world.empty()) s.env.world.gazebo_world = gazebo_world;
     s.env.num_envs = num_envs;
     s.env.num_threads = threads;
     return s;

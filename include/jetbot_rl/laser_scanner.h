@@ -40,6 +40,9 @@ struct ScannerSpec {
 std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const RobotModel& robot,
                                           double control_dt);
 
+/// The height of the scanner's beams above the ground with the robot at rest, joints at zero [m].
+double scannerHeight(const RobotModel& robot, const ScannerSpec& spec);
+
 /// One line for the start-up echo: link, beams, angles, range, noise, update, and sources.
 std::string describeScanner(const ScannerSpec& spec);
 

@@ -26,4 +26,8 @@ std::string resolveMeshUri(const std::string& uri, const MeshResolver& resolver)
  */
 std::vector<Eigen::Vector3d> loadMeshHull(const std::string& path);
 
+/// The triangles of every mesh in the file (polygons triangulated), three corners each, read as
+/// loadMeshHull() reads the file [m]. Throws ModelError naming the path.
+std::vector<Eigen::Vector3d> loadMeshTriangles(const std::string& path);
+
 }  // namespace jetbot_rl

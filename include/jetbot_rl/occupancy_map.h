@@ -67,4 +67,9 @@ struct OccupancyMap {
   }
 };
 
+/// Writes `map` as map_saver does: `yaml_path` and its image beside it (the same name, .pgm;
+/// occupied black, free 254, unknown 205; trinary thresholds). Only the cells 0, 100 and -1 are
+/// kept. Throws ConfigError naming the file it cannot write.
+void writeMapYaml(const OccupancyMap& map, const std::string& yaml_path);
+
 }  // namespace jetbot_rl

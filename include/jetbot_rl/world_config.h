@@ -13,7 +13,11 @@ namespace jetbot_rl {
 
 /// The `world/...` parameters (a `world:` block in a parameter file).
 struct WorldConfig {
-  std::string map;                         ///< map_server map YAML; empty: none.
+  std::string map;           ///< map_server map YAML; empty: none.
+  std::string gazebo_world;  ///< Gazebo SDF world file; empty: none.
+  double cut_height = 0.0;   ///< Where the Gazebo world is cut for its grid [m]; 0: the scanner's.
+  double map_resolution = 0.05;            ///< Cell size of the Gazebo world's grid [m].
+  std::vector<double> spawn{0.0, 0.0};     ///< [x, y]: the fixed start, in the env frame [m].
   std::vector<double> arena_size;          ///< [x, y]: walls around each env origin [m]; []: none.
   double wall_thickness = 0.05;            ///< [m]
   double obstacle_height = 0.5;            ///< Of walls, obstacles and map cells [m].
@@ -41,8 +45,8 @@ struct WorldConfig {
 
   /// True when the env has any world: a map, walls or obstacles.
   bool enabled() const {
-    return !map.empty() || !arena_size.empty() || num_boxes > 0 || num_cylinders > 0 ||
-           !families.empty();
+    return !map.empty() || !gazebo_world.empty() || !arena_size.empty() || num_boxes > 0 ||
+           num_cylinders > 0 || !families.empty();
   }
   /// The obstacle slots of an env: the random ones and a generated layout's.
   int obstacleSlots() const {
@@ -57,6 +61,22 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
     "map_server map YAML (image, resolution, origin, negate, occupied_thresh, free_thresh, mode) "
     "placed in every env's frame as map_server places it; its image is read relative to the "
     "YAML.");
+  v("world/gazebo_world", c.gazebo_world, AnyValue{"", "empty: none"},
+    "Gazebo SDF world file (.world) read with sdformat: every model's collision geometry at its "
+    "initial pose, <include>s resolved through GAZEBO_MODEL_PATH and ROS_PACKAGE_PATH, shared by "
+    "every env with the world frame as the env frame. Its upright boxes and cylinders are exact; "
+    "other shapes (spheres, meshes, polylines, tilted shapes) enter as the cells of their cut at "
+    "cut_height. Not with world/map.");
+  v("world/cut_height", c.cut_height,
+    Range<double>{0.0, 100.0, false, false, "m", "0: the scanner's height"},
+    "Height at which the Gazebo world is cut: solids crossing it are in the world, and its grid "
+    "(/map) is their cross-section there. 0: the scanner's height above the ground at rest "
+    "(0.1 m for a robot without one).");
+  v("world/map_resolution", c.map_resolution, Range<double>{0.005, 1.0, false, false, "m"},
+    "Cell size of the Gazebo world's grid (/map, the planner, clearances).");
+  v("world/spawn", c.spawn, EachValue<double>{Range<double>{-1e4, 1e4, false, false, "m"}},
+    "[x, y]: the fixed start in the env frame when random_start is false (its heading: "
+    "initial_yaw), as a Gazebo launch file's x_pos and y_pos.");
   v("world/arena_size", c.arena_size, EachValue<double>{length},
     "[x, y]: walls of a rectangle this size centred on each env origin; []: none.");
   v("world/wall_thickness", c.wall_thickness, length, "Thickness of the arena walls.");

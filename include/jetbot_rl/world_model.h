@@ -13,6 +13,7 @@ namespace jetbot_rl {
 
 class WorldDrawing;
 class FootprintGrid;
+struct GazeboWorld;
 
 /// A box or a vertical cylinder standing on the ground, in an env's frame.
 struct Obstacle {
@@ -75,10 +76,20 @@ class WorldModel {
   const Eigen::Isometry2d& mapPose() const { return map_pose_; }
   /// The map's obstacle cells merged into rectangles, in the map frame [m].
   const std::vector<Eigen::AlignedBox2d>& mapRectangles() const { return rectangles_; }
-  /// Per map cell (OccupancyGrid order): 1 for an obstacle cell (OccupancyMap::isObstacle).
+  /// Per map cell (OccupancyGrid order): 1 for an obstacle cell (OccupancyMap::isObstacle); for
+  /// a Gazebo world's grid, the cells of its shapes that are not worldObstacles().
   const std::vector<std::uint8_t>& obstacleCells() const { return obstacle_cells_; }
+  /// True when some obstacleCells() is 1 (scans march through the grid only then).
+  bool hasObstacleCells() const { return !rectangles_.empty(); }
   /// The arena walls (boxes), in the env frame.
   const std::vector<Obstacle>& walls() const { return walls_; }
+  /// The Gazebo world's upright boxes and cylinders that cross the cut (exact; the other shapes
+  /// are obstacleCells()), in the env frame.
+  const std::vector<Obstacle>& worldObstacles() const { return world_obstacles_; }
+  /// The Gazebo world as read (world/gazebo_world), or null.
+  const GazeboWorld* gazebo() const { return gazebo_.get(); }
+  /// The height the Gazebo world is cut at: world/cut_height, or 0.1 m when it is 0 [m].
+  double cutHeight() const { return config_.cut_height > 0.0 ? config_.cut_height : 0.1; }
   /// Where starts and obstacles are drawn, in the env frame (an empty box when unbounded).
   const Eigen::AlignedBox2d& region() const { return region_; }
 
@@ -116,12 +127,19 @@ class WorldModel {
   WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap* loaded);
   void mergeObstacleCells();
   void computeDistanceField();
+  /// Reads world/gazebo_world: the grid cut from it (map_), its other shapes' cells and its
+  /// upright solids (world_obstacles_). ConfigError naming world/gazebo_world.
+  void readGazeboWorld();
+  /// "inside or near <the Gazebo solids within `reach` of p>", for a refused spawn.
+  std::string gazeboSolidNear(const Eigen::Vector2d& p, double reach) const;
 
   WorldConfig config_;
   std::optional<OccupancyMap> map_;
   Eigen::Isometry2d map_pose_ = Eigen::Isometry2d::Identity();
   std::vector<Eigen::AlignedBox2d> rectangles_;
   std::vector<Obstacle> walls_;
+  std::shared_ptr<const GazeboWorld> gazebo_;
+  std::vector<Obstacle> world_obstacles_;
   Eigen::AlignedBox2d region_;
   std::vector<std::uint8_t> obstacle_cells_;
   std::vector<float> distance_;   // per map cell: to the nearest obstacle cell's centre [cells]

@@ -40,12 +40,15 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   }
   actions_layout_ = std::make_unique<ActionLayout>(makeActionLayout(
       *robot_, config_, std::vector<double>(wheel_high_.begin(), wheel_high_.end())));
+  const std::optional<ScannerSpec> scanner =
+      resolveScanner(config_.scan, *robot_, config_.controlDt());
   if (config_.world.enabled()) {
+    if (config_.world.cut_height == 0.0 && scanner) {
+      config_.world.cut_height = scannerHeight(*robot_, *scanner);
+    }
     world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
     world_shapes_ = std::make_unique<WorldShapes>(*world_);
   }
-  const std::optional<ScannerSpec> scanner =
-      resolveScanner(config_.scan, *robot_, config_.controlDt());
   const int n = config_.num_envs;
   if (scanner) {
     scan_ = std::make_unique<ScanSensor>(*scanner, world_.get(), n, config_.seed);

@@ -18,15 +18,19 @@ void readEnvSetupFiles(const std::vector<std::string>& paths, EnvSetup& setup) {
     text << file.rdbuf();
     if (!file) throw ConfigError("cannot read the parameter file " + path);
     const std::string map_before = setup.env.world.map;
+    const std::string gazebo_before = setup.env.world.gazebo_world;
     try {
       fieldsFromYaml(text.str(), setup);
     } catch (const ConfigError& e) {
       throw ConfigError(path + ": " + e.what());
     }
-    // A map this file names by a relative path lies beside the file (as a map YAML's image).
-    std::string& map = setup.env.world.map;
-    if (map != map_before && !map.empty() && std::filesystem::path(map).is_relative()) {
-      map = (std::filesystem::path(path).parent_path() / map).string();
+    // A map or world this file names by a relative path lies beside the file (as a map YAML's
+    // image).
+    for (auto [file, before] : {std::pair{&setup.env.world.map, &map_before},
+                                std::pair{&setup.env.world.gazebo_world, &gazebo_before}}) {
+      if (*file != *before && !file->empty() && std::filesystem::path(*file).is_relative()) {
+        *file = (std::filesystem::path(path).parent_path() / *file).string();
+      }
     }
   }
 }

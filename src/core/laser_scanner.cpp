@@ -116,4 +116,12 @@ std::string describeScanner(const ScannerSpec& s) {
   return out.str();
 }
 
+double scannerHeight(const RobotModel& robot, const ScannerSpec& spec) {
+  Eigen::Isometry3d pose = spec.pose_in_body;
+  for (int b = spec.body; b > 0; b = robot.bodies()[b].parent) {
+    pose = robot.bodies()[b].joint_origin * pose;
+  }
+  return robot.restHeight() + pose.translation().z();
+}
+
 }  // namespace jetbot_rl

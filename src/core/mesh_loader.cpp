@@ -13,19 +13,52 @@
 namespace jetbot_rl {
 namespace {
 
+/// Every vertex of the scene's meshes (node transforms applied), or with `faces` the corners of
+/// every triangle, three per triangle.
 void collectVertices(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
-                     std::vector<Eigen::Vector3d>& out) {
+                     bool faces, std::vector<Eigen::Vector3d>& out) {
   const aiMatrix4x4 transform = parent * node.mTransformation;
+  const auto add = [&](const aiVector3D& v) {
+    const aiVector3D p = transform * v;
+    out.emplace_back(p.x, p.y, p.z);
+  };
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const aiVector3D p = transform * mesh.mVertices[v];
-      out.emplace_back(p.x, p.y, p.z);
+    if (!faces) {
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) add(mesh.mVertices[v]);
+      continue;
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines (triangulated otherwise)
+      for (unsigned k = 0; k < 3; ++k) add(mesh.mVertices[face.mIndices[k]]);
     }
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c) {
-    collectVertices(scene, *node.mChildren[c], transform, out);
+    collectVertices(scene, *node.mChildren[c], transform, faces, out);
   }
+}
+
+/// The vertices (or triangle corners) of the file at `path`; throws ModelError naming it.
+std::vector<Eigen::Vector3d> readMesh(const std::string& path, bool faces) {
+  Assimp::Importer importer;
+  // ROS tools (RViz, Gazebo) read COLLADA in its own axes; only its unit is applied.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  const unsigned flags = aiProcess_JoinIdenticalVertices | (faces ? aiProcess_Triangulate : 0u);
+  const aiScene* scene = importer.ReadFile(path, flags);
+  if (!scene || !scene->mRootNode) {
+    const std::string why = importer.GetErrorString();
+    throw ModelError("mesh file '" + path + "' cannot be read" + (why.empty() ? "" : ": " + why));
+  }
+  std::vector<Eigen::Vector3d> points;
+  collectVertices(*scene, *scene->mRootNode, aiMatrix4x4(), faces, points);
+  for (const auto& p : points) {
+    if (!p.allFinite()) throw ModelError("mesh file '" + path + "' has a non-finite vertex");
+  }
+  if (points.empty()) {
+    throw ModelError("mesh file '" + path + "' holds no " + (faces ? "triangles" : "vertices"));
+  }
+  return points;
 }
 
 /// The points among `points` that span their convex hull (all of them if the hull fails).
@@ -71,21 +104,11 @@ std::string resolveMeshUri(const std::string& uri, const MeshResolver& resolver)
 }
 
 std::vector<Eigen::Vector3d> loadMeshHull(const std::string& path) {
-  Assimp::Importer importer;
-  // ROS tools (RViz, Gazebo) read COLLADA in its own axes; only its unit is applied.
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
-  if (!scene || !scene->mRootNode) {
-    const std::string why = importer.GetErrorString();
-    throw ModelError("mesh file '" + path + "' cannot be read" + (why.empty() ? "" : ": " + why));
-  }
-  std::vector<Eigen::Vector3d> points;
-  collectVertices(*scene, *scene->mRootNode, aiMatrix4x4(), points);
-  for (const auto& p : points) {
-    if (!p.allFinite()) throw ModelError("mesh file '" + path + "' has a non-finite vertex");
-  }
-  if (points.empty()) throw ModelError("mesh file '" + path + "' holds no vertices");
-  return hullVertices(points);
+  return hullVertices(readMesh(path, false));
+}
+
+std::vector<Eigen::Vector3d> loadMeshTriangles(const std::string& path) {
+  return readMesh(path, true);
 }
 
 }  // namespace jetbot_rl

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "jetbot_rl/errors.h"
@@ -120,6 +121,27 @@ OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
     }
   }
   return map;
+}
+
+void writeMapYaml(const OccupancyMap& map, const std::string& yaml_path) {
+  namespace fs = std::filesystem;
+  const fs::path yaml(yaml_path);
+  const fs::path image = fs::path(yaml).replace_extension(".pgm");
+  std::ofstream pgm(image, std::ios::binary);
+  // map_saver's image: rows from the top, occupied 0 (black), free 254, unknown 205.
+  pgm << "P5\n# written by jetbot_rl\n" << map.width << " " << map.height << "\n255\n";
+  for (int y = map.height - 1; y >= 0; --y) {
+    for (int x = 0; x < map.width; ++x) {
+      const std::int8_t v = map.at(x, y);
+      pgm.put(static_cast<char>(v == 0 ? 254 : v == -1 ? 205 : 0));
+    }
+  }
+  std::ofstream out(yaml);
+  out.precision(15);  // as short as the value allows, within a double's last bit
+  out << "image: " << image.filename().string() << "\nresolution: " << map.resolution
+      << "\norigin: [" << map.origin_x << ", " << map.origin_y << ", " << map.origin_yaw
+      << "]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  if (!pgm || !out) throw ConfigError("cannot write the map " + yaml_path + " and its image");
 }
 
 }  // namespace jetbot_rl

@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "grid_walk.h"
 #include "jetbot_rl/laser_scanner.h"
 #include "scan_rays.h"
 
@@ -177,31 +178,16 @@ double rayMap(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const WorldMod
   }
   if (t > t_exit) return best;
   const Eigen::Vector2d start = p + t * v;
-  int x = std::min(w - 1, std::max(0, static_cast<int>(std::floor(start.x()))));
-  int y = std::min(h - 1, std::max(0, static_cast<int>(std::floor(start.y()))));
-  const int step_x = v.x() > 0 ? 1 : -1, step_y = v.y() > 0 ? 1 : -1;
-  const double inf = std::numeric_limits<double>::infinity();
-  const double delta_x = v.x() != 0.0 ? std::abs(1.0 / v.x()) : inf;
-  const double delta_y = v.y() != 0.0 ? std::abs(1.0 / v.y()) : inf;
-  double next_x = v.x() != 0.0 ? ((x + (step_x > 0 ? 1 : 0)) - p.x()) / v.x() : inf;
-  double next_y = v.y() != 0.0 ? ((y + (step_y > 0 ? 1 : 0)) - p.y()) / v.y() : inf;
+  GridWalk walk(p, v, std::min(w - 1, std::max(0, static_cast<int>(std::floor(start.x())))),
+                std::min(h - 1, std::max(0, static_cast<int>(std::floor(start.y())))));
   const std::vector<std::uint8_t>& cells = world.obstacleCells();
   while (t < best) {
-    if (cells[static_cast<std::size_t>(y) * w + x]) {
+    if (cells[static_cast<std::size_t>(walk.y) * w + walk.x]) {
       const double z = o.z() + t * d.z();
       if (z >= 0.0 && z <= height) return t;
     }
-    if (next_x < next_y) {
-      t = next_x;
-      next_x += delta_x;
-      x += step_x;
-      if (x < 0 || x >= w) return best;
-    } else {
-      t = next_y;
-      next_y += delta_y;
-      y += step_y;
-      if (y < 0 || y >= h) return best;
-    }
+    t = walk.advance();
+    if (walk.x < 0 || walk.x >= w || walk.y < 0 || walk.y >= h) return best;
   }
   return best;
 }
@@ -286,18 +272,22 @@ void castScan(const ScannerSpec& spec, const WorldModel* world,
   thread_local std::array<std::vector<const Obstacle*>, kRings> rings;
   std::array<std::vector<const Obstacle*>, kRings>& ring = rings;
   for (auto& r : ring) r.clear();
-  for (const Obstacle& ob : obstacles) {
-    const double near = (ob.center - o.head<2>()).norm() - ob.boundingRadius();
-    if (!ob.placed || near > reach) continue;
-    ring[std::clamp(static_cast<int>(near / reach * kRings), 0, kRings - 1)].push_back(&ob);
-  }
+  const auto sort = [&](const std::vector<Obstacle>& list) {
+    for (const Obstacle& ob : list) {
+      const double near = (ob.center - o.head<2>()).norm() - ob.boundingRadius();
+      if (!ob.placed || near > reach) continue;
+      ring[std::clamp(static_cast<int>(near / reach * kRings), 0, kRings - 1)].push_back(&ob);
+    }
+  };
+  sort(obstacles);
+  if (world) sort(world->worldObstacles());  // a Gazebo world's boxes and cylinders
   for (const auto& r : ring) {
     for (const Obstacle* ob : r) cast(*ob);
   }
   if (world) {
     for (const Obstacle& w : world->walls()) cast(w);
   }
-  const bool map = world && world->map();
+  const bool map = world && world->map() && world->hasObstacleCells();
   const double height = world ? world->config().obstacle_height : 0.0;
   for (int k = 0; k < n; ++k) {
     if (map) {

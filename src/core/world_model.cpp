@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/gazebo_world.h"
 #include "jetbot_rl/task_capabilities.h"
 #include "jetbot_rl/world_generation.h"
 
@@ -67,6 +68,12 @@ double Obstacle::distance(const Eigen::Vector2d& p) const {
 }
 
 void checkFieldRules(const WorldConfig& c) {
+  if (!c.gazebo_world.empty() && !c.map.empty()) {
+    throwInvalid("world/gazebo_world", c.gazebo_world,
+                 "must be empty with world/map (" + c.map +
+                     "): one static world per env; the Gazebo world makes its own grid");
+  }
+  if (c.spawn.size() != 2) throwInvalid("world/spawn", listText(c.spawn), "must be [x, y]");
   if (!c.arena_size.empty() && c.arena_size.size() != 2) {
     throwInvalid("world/arena_size", listText(c.arena_size), "must be [x, y] or []");
   }
@@ -127,12 +134,15 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
       throw ConfigError(std::string("world/map: ") + e.what());
     }
   }
+  if (!loaded && !config_.gazebo_world.empty()) readGazeboWorld();
   if (map_) {
     map_pose_ = map_->pose();
-    obstacle_cells_.resize(map_->data.size());
-    for (int y = 0; y < map_->height; ++y) {
-      for (int x = 0; x < map_->width; ++x) {
-        obstacle_cells_[static_cast<std::size_t>(y) * map_->width + x] = map_->isObstacle(x, y);
+    if (obstacle_cells_.empty()) {  // a Gazebo world has set them: its cells that are geometry
+      obstacle_cells_.resize(map_->data.size());
+      for (int y = 0; y < map_->height; ++y) {
+        for (int x = 0; x < map_->width; ++x) {
+          obstacle_cells_[static_cast<std::size_t>(y) * map_->width + x] = map_->isObstacle(x, y);
+        }
       }
     }
     mergeObstacleCells();
@@ -171,10 +181,17 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
   const double clearance = start_clearance_;
   if (!config_.families.empty()) checkGeneratedLayouts(*this);
   if (!config_.random_start) {
-    if (staticClearance(Eigen::Vector2d::Zero()) < clearance) {
-      throwInvalid("world/random_start", "false",
-                   "the env origin (the fixed start) is not free with " +
-                       std::to_string(clearance) +
+    const Eigen::Vector2d spawn(config_.spawn[0], config_.spawn[1]);
+    if (gazebo_ && staticClearance(spawn) < clearance) {
+      throwInvalid("world/spawn", listText(config_.spawn),
+                   "the fixed start is not free with " + std::to_string(clearance) +
+                       " m of clearance (world/start_clearance or the robot's footprint): " +
+                       gazeboSolidNear(spawn, clearance));
+    }
+    if (staticClearance(spawn) < clearance) {
+      throwInvalid(spawn.isZero() ? "world/random_start" : "world/spawn",
+                   spawn.isZero() ? "false" : listText(config_.spawn),
+                   "the fixed start (world/spawn) is not free with " + std::to_string(clearance) +
                        " m of clearance (world/start_clearance or the robot's footprint) in " +
                        (map_ ? "world/map" : "the arena"));
     }
@@ -200,15 +217,18 @@ void WorldModel::mergeObstacleCells() {
   // ended on the row below: a map is a few rectangles, not one box per cell.
   const double r = map_->resolution;
   std::map<std::pair<int, int>, int> open;  // [x0, x1) -> first row
+  const auto cell = [&](int x, int y) {
+    return obstacle_cells_[static_cast<std::size_t>(y) * map_->width + x] != 0;
+  };
   for (int y = 0; y <= map_->height; ++y) {
     std::map<std::pair<int, int>, int> next;
     for (int x = 0; y < map_->height && x < map_->width;) {
-      if (!map_->isObstacle(x, y)) {
+      if (!cell(x, y)) {
         ++x;
         continue;
       }
       int x1 = x;
-      while (x1 < map_->width && map_->isObstacle(x1, y)) ++x1;
+      while (x1 < map_->width && cell(x1, y)) ++x1;
       const auto run = std::make_pair(x, x1);
       const auto it = open.find(run);
       next[run] = it == open.end() ? y : it->second;
@@ -302,7 +322,7 @@ void WorldModel::drawLayout(Rng& rng, int env, double difficulty, WorldDrawing* 
 }
 
 void WorldModel::drawStart(Rng& rng, EnvLayout& layout) const {
-  layout.start = Eigen::Vector2d::Zero();
+  layout.start = Eigen::Vector2d(config_.spawn[0], config_.spawn[1]);
   if (!config_.random_start) return;
   // The constructor found a free point: when every draw fails (unlucky in a tight region), that
   // point stands in.
@@ -351,7 +371,15 @@ std::string describeWorld(const WorldModel& world) {
   const WorldConfig& c = world.config();
   std::ostringstream s;
   s << "world:";
-  if (const OccupancyMap* map = world.map()) {
+  if (const GazeboWorld* g = world.gazebo()) {
+    s << " Gazebo world " << g->path << " ('" << g->name << "': " << g->models << " models, "
+      << g->solids.size() << " collisions; cut at " << world.cutHeight()
+      << " m: " << world.worldObstacles().size()
+      << " upright boxes and cylinders, exact, the rest as " << world.mapRectangles().size()
+      << " rectangles of a grid of " << world.map()->width << " x " << world.map()->height
+      << " cells of " << world.map()->resolution << " m);";
+  }
+  if (const OccupancyMap* map = world.gazebo() ? nullptr : world.map()) {
     s << " map " << map->yaml_path << " (" << map->width << " x " << map->height << " cells of "
       << map->resolution << " m, " << enumName(map->mode) << ", " << world.mapRectangles().size()
       << " obstacle rectangles)";
@@ -363,7 +391,8 @@ std::string describeWorld(const WorldModel& world) {
     s << " in [" << world.region().min().x() << ", " << world.region().min().y() << "] to ["
       << world.region().max().x() << ", " << world.region().max().y() << "] m";
   }
-  s << "; start " << (c.random_start ? "drawn in free space" : "at the env origin")
+  s << "; start "
+    << (c.random_start ? "drawn in free space" : "at world/spawn " + listText(c.spawn))
     << ", clearance " << c.start_clearance << " m";
   return s.str();
 }

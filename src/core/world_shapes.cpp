@@ -49,6 +49,17 @@ WorldShapes::WorldShapes(const WorldModel& world) {
     statics_.push_back({compound.get(), planar(m.translation(), yaw, 0.0)});
     owned_.push_back(std::move(compound));
   }
+  if (!world.worldObstacles().empty()) {  // a Gazebo world's: one compound, as the map's cells
+    auto compound = std::make_unique<btCompoundShape>(
+        /*enableDynamicAabbTree=*/true, static_cast<int>(world.worldObstacles().size()));
+    for (const Obstacle& o : world.worldObstacles()) {
+      btTransform pose;
+      owned_.push_back(makeObstacleShape(o, pose));
+      compound->addChildShape(pose, owned_.back().get());
+    }
+    statics_.push_back({compound.get(), btTransform::getIdentity()});
+    owned_.push_back(std::move(compound));
+  }
   for (const Obstacle& w : world.walls()) {
     btTransform pose;
     owned_.push_back(makeObstacleShape(w, pose));

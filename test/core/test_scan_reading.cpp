@@ -8,6 +8,7 @@
 
 #include "jetbot_rl/laser_scanner.h"
 #include "jetbot_rl/scan_reading.h"
+#include "test_util.h"
 
 namespace jetbot_rl {
 namespace {
@@ -49,12 +50,7 @@ TEST(ReadBeams, ABeamOutsideAFanIsRefusedNamingTheAngles) {
 TEST(ReadBeams, APostBetweenTwoOfTwentyFourBeamsIsSeen) {
   // 360 samples read into 24 beams, 15 degrees apart; a 2 cm post 1 m away, 7 degrees past
   // beam 0: no beam's own sample meets it, its sector's samples do.
-  ScannerSpec spec;
-  spec.samples = 360;
-  spec.min_angle = -kPi;
-  spec.max_angle = kPi - 2 * kPi / 360;
-  spec.range_min = 0.12;
-  spec.range_max = 3.5;
+  const ScannerSpec spec = test::fullTurnScanner(0.12, 3.5);
   Obstacle post;
   post.shape = Obstacle::Shape::kCylinder;
   const double angle = -kPi + 7.0 * kPi / 180.0;

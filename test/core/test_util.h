@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/laser_scanner.h"
 #include "jetbot_rl/task_factory.h"
 
 namespace jetbot_rl {
@@ -59,6 +60,19 @@ inline std::string writeTempFile(const std::string& name, const std::string& tex
   const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
+}
+
+/// A scanner of 360 samples, one a degree over a full turn from -pi, reading `range_min` to
+/// `range_max` [m], no noise.
+inline ScannerSpec fullTurnScanner(double range_min, double range_max) {
+  constexpr double pi = 3.14159265358979323846;
+  ScannerSpec spec;
+  spec.samples = 360;
+  spec.min_angle = -pi;
+  spec.max_angle = pi - 2 * pi / 360;
+  spec.range_min = range_min;
+  spec.range_max = range_max;
+  return spec;
 }
 
 inline EnvConfig smallConfig(int num_envs, int threads = 1) {

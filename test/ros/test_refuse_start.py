@@ -81,6 +81,21 @@ class TestRefuseStart(unittest.TestCase):
     def test_world_without_a_free_start(self):
         self.refuses([], 'world/random_start = false', **{'world/arena_size': [0.3, 0.3]})
 
+    def test_gazebo_world_model_not_found(self):
+        folder = tempfile.mkdtemp()
+        path = os.path.join(folder, 'room.world')
+        with open(path, 'w') as f:
+            f.write('<sdf version="1.6"><world name="w"><include><uri>model://no_such_model</uri>'
+                    '</include></world></sdf>\n')
+        self.refuses([], 'world/gazebo_world', 'model://no_such_model',
+                     **{'world/gazebo_world': path})
+
+    def test_gazebo_world_spawn_inside_a_table_leg(self):
+        self.refuses([], 'world/spawn', 'table_1::body::leg_1',
+                     **{'world/gazebo_world': os.path.join(PACKAGE, 'worlds',
+                                                           'furnished_room.world'),
+                        'world/spawn': [-1.078, 1.697]})
+
     def test_scan_link_not_in_the_urdf(self):
         self.refuses([], "scan/link = 'laser'", **{'scan/link': 'laser'})
 

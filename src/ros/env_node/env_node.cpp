@@ -5,6 +5,7 @@
 #include <ros/transport_hints.h>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/gazebo_world.h"
 #include "jetbot_rl/ros/common/bounded_service.h"
 #include "jetbot_rl/ros/common/bounded_subscription.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
@@ -58,6 +59,9 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names));
   if (env_->world() && env_->world()->map()) {
     map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
+  }
+  if (env_->world() && env_->world()->gazebo()) {
+    geometry_publisher_ = std::make_unique<WorldGeometryPublisher>(nh_, *env_->world(), names);
   }
   outputs_.push_back(std::make_unique<EnvMarkerPublisher>(pnh_, *env_, params_.tf_envs,
                                                           params_.tf_rate, params_.markers));
@@ -229,7 +233,13 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   }
   for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
   if (const auto& scanner = env->scanner()) ROS_INFO("%s", describeScanner(*scanner).c_str());
-  if (const WorldModel* world = env->world()) ROS_INFO("%s", describeWorld(*world).c_str());
+  if (const WorldModel* world = env->world()) {
+    ROS_INFO("%s", describeWorld(*world).c_str());
+    if (world->gazebo() && !world->gazebo()->skipped.empty()) {
+      ROS_INFO("world/gazebo_world %s: not read: %s", world->gazebo()->path.c_str(),
+               world->gazebo()->skipped.c_str());
+    }
+  }
   // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
   std::optional<DiffDrive> drive;
   try {

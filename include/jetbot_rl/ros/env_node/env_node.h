@@ -20,6 +20,7 @@
 #include "jetbot_rl/ros/env_node/map_publisher.h"
 #include "jetbot_rl/ros/env_node/node_params.h"
 #include "jetbot_rl/ros/env_node/state_output.h"
+#include "jetbot_rl/ros/env_node/world_geometry_publisher.h"
 
 namespace jetbot_rl {
 
@@ -75,7 +76,8 @@ class EnvNode {
   ros::ServiceServer step_srv_, reset_srv_, set_command_srv_;
   ros::ServiceServer get_randomization_srv_;  // domain randomisation (randomization_service.h)
   ros::WallTimer realtime_timer_, diagnostics_timer_;
-  std::unique_ptr<MapPublisher> map_publisher_;  // /map, when the world has a map
+  std::unique_ptr<MapPublisher> map_publisher_;                 // /map, when the world has a map
+  std::unique_ptr<WorldGeometryPublisher> geometry_publisher_;  // a Gazebo world's shapes
   EnvDiagnostics diagnostics_;
 };
 

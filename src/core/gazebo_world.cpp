@@ -1,0 +1,545 @@
+// loadGazeboWorld(): an SDF world's collision geometry through sdformat (its parser, its frame
+// semantics, its <include> handling); only the shapes' surfaces are made here.
+#include "jetbot_rl/gazebo_world.h"
+
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <sdf/sdf.hh>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+#include "sdf_prepass.h"
+
+namespace jetbot_rl {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// An axis this close to z counts as upright (cos of about 0.01 degrees).
+constexpr double kUprightCos = 1.0 - 1e-8;
+// Facets of round surfaces (cylinders, spheres) that are not upright.
+constexpr int kRoundFacets = 32;
+
+bool isDirectory(const std::string& path) {
+  struct stat s {};
+  return ::stat(path.c_str(), &s) == 0 && S_ISDIR(s.st_mode);
+}
+
+std::vector<std::string> splitPath(const char* value) {
+  std::vector<std::string> out;
+  if (!value) return out;
+  std::stringstream s(value);
+  for (std::string item; std::getline(s, item, ':');) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+std::vector<std::string> subfolders(const std::string& dir) {
+  std::vector<std::string> out;
+  if (DIR* d = ::opendir(dir.c_str())) {
+    while (const dirent* e = ::readdir(d)) {
+      const std::string name = e->d_name;
+      if (name != "." && name != ".." && isDirectory(dir + "/" + name)) out.push_back(name);
+    }
+    ::closedir(d);
+  }
+  std::sort(out.begin(), out.end());  // the same choice on every machine
+  return out;
+}
+
+std::string findRosPackageFile(const std::string& uri);
+
+Eigen::Isometry3d toEigen(const ignition::math::Pose3d& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = Eigen::Vector3d(p.Pos().X(), p.Pos().Y(), p.Pos().Z());
+  t.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z())
+                   .normalized()
+                   .toRotationMatrix();
+  return t;
+}
+
+std::string errorText(const sdf::Errors& errors, const std::string& path) {
+  std::ostringstream s;
+  int shown = 0;
+  for (const sdf::Error& e : errors) {
+    if (shown++ == 3) {
+      s << " (and " << errors.size() - 3 << " more)";
+      break;
+    }
+    s << (shown > 1 ? "; " : "") << e.FilePath().value_or(path);
+    if (e.LineNumber()) s << ":" << *e.LineNumber();
+    s << ": " << e.Message();
+  }
+  return s.str();
+}
+
+bool deprecationOnly(const sdf::Error& e) {
+  return e.Code() == sdf::ErrorCode::VERSION_DEPRECATED ||
+         e.Code() == sdf::ErrorCode::ELEMENT_DEPRECATED ||
+         e.Code() == sdf::ErrorCode::ATTRIBUTE_DEPRECATED;
+}
+
+/// Appends the triangles of a unit-free surface given by its rings: `rings[i][j]` around, rings
+/// stacked, closed at both ends by fans to `bottom` and `top` when given.
+void addRings(const std::vector<std::vector<Eigen::Vector3d>>& rings,
+              std::vector<Eigen::Vector3d>& out) {
+  for (std::size_t i = 0; i + 1 < rings.size(); ++i) {
+    const auto& a = rings[i];
+    const auto& b = rings[i + 1];
+    for (std::size_t j = 0; j < a.size(); ++j) {
+      const std::size_t k = (j + 1) % a.size();
+      out.insert(out.end(), {a[j], a[k], b[k], a[j], b[k], b[j]});
+    }
+  }
+}
+
+void addCap(const std::vector<Eigen::Vector3d>& ring, std::vector<Eigen::Vector3d>& out) {
+  for (std::size_t j = 1; j + 1 < ring.size(); ++j)
+    out.insert(out.end(), {ring[0], ring[j], ring[j + 1]});
+}
+
+/// A box of `size` centred on the origin.
+std::vector<Eigen::Vector3d> boxSurface(const Eigen::Vector3d& size) {
+  const Eigen::Vector3d h = 0.5 * size;
+  std::vector<Eigen::Vector3d> bottom, top;
+  for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    bottom.emplace_back(x * h.x(), y * h.y(), -h.z());
+    top.emplace_back(x * h.x(), y * h.y(), h.z());
+  }
+  std::vector<Eigen::Vector3d> out;
+  addRings({bottom, top}, out);
+  addCap(bottom, out);
+  addCap(top, out);
+  return out;
+}
+
+/// A cylinder along z of `radius` and `length`, centred on the origin, its facets outside the
+/// round surface (a cut holds the true cross-section).
+std::vector<Eigen::Vector3d> cylinderSurface(double radius, double length) {
+  const double r = radius / std::cos(kPi / kRoundFacets);
+  std::vector<Eigen::Vector3d> bottom, top;
+  for (int j = 0; j < kRoundFacets; ++j) {
+    const double a = 2.0 * kPi * j / kRoundFacets;
+    bottom.emplace_back(r * std::cos(a), r * std::sin(a), -0.5 * length);
+    top.emplace_back(r * std::cos(a), r * std::sin(a), 0.5 * length);
+  }
+  std::vector<Eigen::Vector3d> out;
+  addRings({bottom, top}, out);
+  addCap(bottom, out);
+  addCap(top, out);
+  return out;
+}
+
+/// An ellipsoid of semi-axes `radii` centred on `centre`, its facets outside the surface.
+std::vector<Eigen::Vector3d> ellipsoidSurface(
+    const Eigen::Vector3d& radii, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  const int stacks = kRoundFacets / 2;
+  const double grow = 1.0 / (std::cos(kPi / kRoundFacets) * std::cos(kPi / (2 * stacks)));
+  std::vector<std::vector<Eigen::Vector3d>> rings;
+  for (int i = 0; i <= stacks; ++i) {
+    const double polar = kPi * i / stacks;
+    std::vector<Eigen::Vector3d> ring;
+    for (int j = 0; j < kRoundFacets; ++j) {
+      const double a = 2.0 * kPi * j / kRoundFacets;
+      const Eigen::Vector3d unit(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a),
+                                 -std::cos(polar));
+      ring.push_back(centre + grow * radii.cwiseProduct(unit));
+    }
+    rings.push_back(ring);
+  }
+  std::vector<Eigen::Vector3d> out;
+  addRings(rings, out);
+  return out;
+}
+
+/// The side walls of a `<polyline>`: its points extruded from z = 0 to `height`.
+std::vector<Eigen::Vector3d> polylineSurface(const std::vector<Eigen::Vector2d>& points,
+                                             double height) {
+  std::vector<Eigen::Vector3d> bottom, top;
+  for (const Eigen::Vector2d& p : points) {
+    bottom.emplace_back(p.x(), p.y(), 0.0);
+    top.emplace_back(p.x(), p.y(), height);
+  }
+  std::vector<Eigen::Vector3d> out;
+  addRings({bottom, top}, out);
+  return out;
+}
+
+/// Makes `solid` the upright `o` from `bottom` to `top` [m], with its bounds.
+void setUpright(WorldSolid& solid, Obstacle o, double bottom, double top) {
+  o.height = std::max(0.0, top);
+  solid.bottom = bottom;
+  solid.top = top;
+  solid.bounds.setEmpty();
+  if (o.shape == Obstacle::Shape::kCylinder) {
+    const Eigen::Vector2d r = Eigen::Vector2d::Constant(o.radius);
+    solid.bounds.extend(o.center - r).extend(o.center + r);
+  } else {  // the box's corners
+    const double c = std::cos(o.yaw), s = std::sin(o.yaw);
+    for (double sx : {-1.0, 1.0}) {
+      for (double sy : {-1.0, 1.0}) {
+        const Eigen::Vector2d corner(sx * o.half_extents.x(), sy * o.half_extents.y());
+        solid.bounds.extend(o.center + Eigen::Vector2d(c * corner.x() - s * corner.y(),
+                                                       s * corner.x() + c * corner.y()));
+      }
+    }
+  }
+  solid.upright = o;
+  solid.triangles.clear();
+}
+
+/// Makes `solid` the surface `local` (triangle corners) placed by `pose`, with its extent.
+void setSurface(WorldSolid& solid, const std::vector<Eigen::Vector3d>& local,
+                const Eigen::Isometry3d& pose) {
+  solid.upright.reset();
+  solid.triangles.clear();
+  solid.bounds.setEmpty();
+  solid.bottom = std::numeric_limits<double>::infinity();
+  solid.top = -solid.bottom;
+  for (const Eigen::Vector3d& p : local) {
+    solid.triangles.push_back(pose * p);
+    solid.bottom = std::min(solid.bottom, solid.triangles.back().z());
+    solid.top = std::max(solid.top, solid.triangles.back().z());
+    solid.bounds.extend(solid.triangles.back().head<2>());
+  }
+}
+
+/// `solid` moved by `move` (in the world frame): an upright one stays exact while `move` keeps
+/// its axis vertical, else it becomes its surface.
+WorldSolid moved(const WorldSolid& solid, const Eigen::Isometry3d& move) {
+  WorldSolid out;
+  out.name = solid.name;
+  if (!solid.upright) {
+    setSurface(out, solid.triangles, move);
+    return out;
+  }
+  const Obstacle& o = *solid.upright;
+  const double length = solid.top - solid.bottom;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(o.center.x(), o.center.y(), solid.bottom + 0.5 * length);
+  pose.linear() = Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Isometry3d now = move * pose;
+  if (std::abs(now.linear()(2, 2)) >= kUprightCos) {
+    Obstacle u = o;
+    u.center = now.translation().head<2>();
+    if (u.shape == Obstacle::Shape::kBox)
+      u.yaw = std::atan2(now.linear()(1, 0), now.linear()(0, 0));
+    const double mid = now.translation().z();
+    setUpright(out, u, mid - 0.5 * length, mid + 0.5 * length);
+    return out;
+  }
+  const bool box = o.shape == Obstacle::Shape::kBox;
+  setSurface(
+      out,
+      box ? boxSurface(Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), length))
+          : cylinderSurface(o.radius, length),
+      now);
+  return out;
+}
+
+class Reader {
+ public:
+  Reader(GazeboWorld& world, const MeshResolver& resolver) : world_(world), resolver_(resolver) {}
+
+  void model(const sdf::Model& m, const Eigen::Isometry3d& pose, const std::string& scope) {
+    ++world_.models;
+    const std::string name = scope.empty() ? m.Name() : scope + "::" + m.Name();
+    for (uint64_t i = 0; i < m.LinkCount(); ++i) {
+      const sdf::Link& link = *m.LinkByIndex(i);
+      for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
+        const sdf::Collision& collision = *link.CollisionByIndex(c);
+        ignition::math::Pose3d p;
+        const sdf::Errors errors = collision.SemanticPose().Resolve(p, "__model__");
+        const std::string scoped = name + "::" + link.Name() + "::" + collision.Name();
+        if (!errors.empty()) {
+          throw ConfigError(world_.path + ": the pose of collision '" + scoped +
+                            "' cannot be resolved: " + errorText(errors, world_.path));
+        }
+        shape(collision, pose * toEigen(p), scoped);
+      }
+    }
+    for (uint64_t i = 0; i < m.ModelCount(); ++i) {
+      const sdf::Model& child = *m.ModelByIndex(i);
+      ignition::math::Pose3d p;
+      const sdf::Errors errors = child.SemanticPose().Resolve(p, "__model__");
+      if (!errors.empty()) {
+        throw ConfigError(world_.path + ": the pose of model '" + name + "::" + child.Name() +
+                          "' cannot be resolved: " + errorText(errors, world_.path));
+      }
+      model(child, pose * toEigen(p), name);
+    }
+  }
+
+  void skip(const std::string& what) { skipped_.push_back(what); }
+  std::string skipped() const {
+    std::string s;
+    for (const std::string& w : skipped_) s += (s.empty() ? "" : ", ") + w;
+    return s;
+  }
+
+ private:
+  void shape(const sdf::Collision& collision, const Eigen::Isometry3d& pose,
+             const std::string& name) {
+    const sdf::Geometry& g = *collision.Geom();
+    const Eigen::Matrix3d& r = pose.linear();
+    WorldSolid solid;
+    solid.name = name;
+    std::vector<Eigen::Vector3d> local;
+    switch (g.Type()) {
+      case sdf::GeometryType::BOX: {
+        const auto s = g.BoxShape()->Size();
+        const Eigen::Vector3d size(s.X(), s.Y(), s.Z());
+        for (int k = 0; k < 3 && !solid.upright; ++k) {
+          if (std::abs(r(2, k)) < kUprightCos) continue;
+          const int i = (k + 1) % 3, j = (k + 2) % 3;
+          Obstacle o;
+          o.shape = Obstacle::Shape::kBox;
+          o.center = pose.translation().head<2>();
+          o.yaw = std::atan2(r(1, i), r(0, i));
+          o.half_extents = 0.5 * Eigen::Vector2d(size[i], size[j]);
+          solid.upright = o;
+          solid.bottom = pose.translation().z() - 0.5 * size[k];
+          solid.top = pose.translation().z() + 0.5 * size[k];
+        }
+        if (!solid.upright) local = boxSurface(size);
+        break;
+      }
+      case sdf::GeometryType::CYLINDER: {
+        const double radius = g.CylinderShape()->Radius(), length = g.CylinderShape()->Length();
+        if (std::abs(r(2, 2)) >= kUprightCos) {
+          Obstacle o;
+          o.shape = Obstacle::Shape::kCylinder;
+          o.center = pose.translation().head<2>();
+          o.radius = radius;
+          solid.upright = o;
+          solid.bottom = pose.translation().z() - 0.5 * length;
+          solid.top = pose.translation().z() + 0.5 * length;
+        } else {
+          local = cylinderSurface(radius, length);
+        }
+        break;
+      }
+      case sdf::GeometryType::SPHERE:
+        local = ellipsoidSurface(Eigen::Vector3d::Constant(g.SphereShape()->Radius()));
+        break;
+      case sdf::GeometryType::ELLIPSOID: {
+        const auto a = g.EllipsoidShape()->Radii();
+        local = ellipsoidSurface(Eigen::Vector3d(a.X(), a.Y(), a.Z()));
+        break;
+      }
+      case sdf::GeometryType::CAPSULE: {
+        const double radius = g.CapsuleShape()->Radius(), length = g.CapsuleShape()->Length();
+        local = cylinderSurface(radius, length);
+        for (double end : {-0.5 * length, 0.5 * length}) {
+          const auto cap =
+              ellipsoidSurface(Eigen::Vector3d::Constant(radius), Eigen::Vector3d(0, 0, end));
+          local.insert(local.end(), cap.begin(), cap.end());
+        }
+        break;
+      }
+      case sdf::GeometryType::MESH:
+        local = mesh(*g.MeshShape(), name);
+        break;
+      case sdf::GeometryType::PLANE:
+        skip("plane '" + name + "' (the ground is the simulator's own)");
+        return;
+      case sdf::GeometryType::HEIGHTMAP:
+        skip("heightmap '" + name + "'");
+        return;
+      default:
+        if (!polyline(g, local)) {
+          skip("empty geometry '" + name + "'");
+          return;
+        }
+    }
+    if (solid.upright) {
+      setUpright(solid, *solid.upright, solid.bottom, solid.top);
+    } else {
+      setSurface(solid, local, pose);
+    }
+    world_.solids.push_back(std::move(solid));
+  }
+
+  std::vector<Eigen::Vector3d> mesh(const sdf::Mesh& m, const std::string& name) {
+    std::string path;
+    const std::string& uri = m.Uri();
+    try {
+      path = resolveMeshUri(uri, [&](const std::string& u) {
+        if (u.rfind("model://", 0) == 0) {
+          const std::string found = findGazeboModel(u);
+          if (found.empty()) throw ConfigError("no model folder of that name");
+          return found;
+        }
+        if (resolver_) return resolver_(u);
+        const std::string found = findRosPackageFile(u);
+        if (found.empty()) throw ConfigError("no such package on ROS_PACKAGE_PATH");
+        return found;
+      });
+      if (!path.empty() && path[0] != '/') {  // relative to the SDF file that names it
+        // Read from a string (sdf_prepass.h), the world's own models have no file path.
+        const std::string& from = m.FilePath().rfind('/', 0) == 0 ? m.FilePath() : world_.path;
+        const auto slash = from.rfind('/');
+        if (slash != std::string::npos) path = from.substr(0, slash + 1) + path;
+      }
+      std::vector<Eigen::Vector3d> triangles = loadMeshTriangles(path);
+      const auto s = m.Scale();
+      const Eigen::Vector3d scale(s.X(), s.Y(), s.Z());
+      for (Eigen::Vector3d& p : triangles) p = p.cwiseProduct(scale);
+      if (!m.Submesh().empty()) skip("submesh choice of '" + name + "' (the whole mesh is used)");
+      return triangles;
+    } catch (const Error& e) {
+      throw ConfigError(world_.path + ": collision '" + name + "': " + e.what());
+    }
+  }
+
+  /// A `<polyline>` (sdformat 12 has no class for it: read from its element). False if none.
+  static bool polyline(const sdf::Geometry& g, std::vector<Eigen::Vector3d>& out) {
+    const sdf::ElementPtr geometry = g.Element();
+    if (!geometry || !geometry->HasElement("polyline")) return false;
+    for (sdf::ElementPtr p = geometry->GetElement("polyline"); p;
+         p = p->GetNextElement("polyline")) {
+      std::vector<Eigen::Vector2d> points;
+      for (sdf::ElementPtr q = p->HasElement("point") ? p->GetElement("point") : nullptr; q;
+           q = q->GetNextElement("point")) {
+        const auto v = q->Get<ignition::math::Vector2d>();
+        points.emplace_back(v.X(), v.Y());
+      }
+      const auto surface = polylineSurface(points, p->Get<double>("height"));
+      out.insert(out.end(), surface.begin(), surface.end());
+    }
+    return !out.empty();
+  }
+
+  GazeboWorld& world_;
+  const MeshResolver& resolver_;
+  std::vector<std::string> skipped_;
+};
+
+/// The file of a `package://PKG/...` URI: PKG as a folder of ROS_PACKAGE_PATH (or one of its
+/// folders, as catkin workspaces hold them); "" when not found.
+std::string findRosPackageFile(const std::string& uri) {
+  static const std::string kScheme = "package://";
+  if (uri.rfind(kScheme, 0) != 0) return "";
+  const std::string rest = uri.substr(kScheme.size());
+  const std::string package = rest.substr(0, rest.find('/'));
+  if (package.empty()) return "";
+  for (const std::string& dir : splitPath(std::getenv("ROS_PACKAGE_PATH"))) {
+    const auto slash = dir.find_last_of('/');
+    if (dir.substr(slash == std::string::npos ? 0 : slash + 1) == package) {
+      return dir + rest.substr(package.size());
+    }
+    if (isDirectory(dir + "/" + package)) return dir + "/" + rest;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string findGazeboModel(const std::string& uri) {
+  static const std::string kScheme = "model://";
+  if (uri.rfind(kScheme, 0) != 0) return "";
+  const std::string rest = uri.substr(kScheme.size());
+  const std::string name = rest.substr(0, rest.find('/'));
+  const std::string tail = rest.substr(name.size());
+  if (name.empty()) return "";
+  for (const std::string& dir : splitPath(std::getenv("GAZEBO_MODEL_PATH"))) {
+    if (isDirectory(dir + "/" + name)) return dir + "/" + name + tail;
+  }
+  for (const std::string& dir : splitPath(std::getenv("ROS_PACKAGE_PATH"))) {
+    if (isDirectory(dir + "/" + name)) return dir + "/" + name + tail;
+    if (isDirectory(dir + "/models/" + name)) return dir + "/models/" + name + tail;
+    for (const std::string& package : subfolders(dir)) {
+      const std::string models = dir + "/" + package + "/models/" + name;
+      if (isDirectory(models)) return models + tail;
+    }
+  }
+  return "";
+}
+
+GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver) {
+  GazeboWorld world;
+  world.path = path;
+  sdf::ParserConfig config;
+  config.SetFindCallback([](const std::string& uri) { return findGazeboModel(uri); });
+  config.SetWarningsPolicy(sdf::EnforcementPolicy::LOG);
+  const auto load = [&](sdf::Root& root, const std::string& text) {
+    sdf::Errors errors = text.empty() ? root.Load(path, config) : root.LoadSdfString(text, config);
+    errors.erase(std::remove_if(errors.begin(), errors.end(), deprecationOnly), errors.end());
+    return errors;
+  };
+  if (const std::string problem = sdfFileProblem(path, sdf::SDF::Version()); !problem.empty()) {
+    throw ConfigError(problem);
+  }
+  // Repeated models parsed once; on any error the file itself is read again, for sdformat's
+  // report with the file's own lines.
+  std::vector<RepeatedModel> repeats;
+  auto root = std::make_unique<sdf::Root>();
+  sdf::Errors errors = load(*root, foldRepeatedModels(path, repeats));
+  if (!errors.empty() && !repeats.empty()) {
+    repeats.clear();
+    root = std::make_unique<sdf::Root>();
+    errors = load(*root, "");
+  }
+  if (!errors.empty()) throw ConfigError(errorText(errors, path));
+  if (root->WorldCount() == 0) {
+    throw ConfigError(path + ": holds no <world> (a Gazebo world file has one)");
+  }
+  const sdf::World& w = *root->WorldByIndex(0);
+  world.name = w.Name();
+  Reader reader(world, resolver);
+  const auto worldPose = [&](const sdf::SemanticPose& pose, const std::string& what) {
+    ignition::math::Pose3d p;
+    const sdf::Errors e = pose.Resolve(p, "world");
+    if (!e.empty()) {
+      throw ConfigError(path + ": the pose of " + what +
+                        " cannot be resolved: " + errorText(e, path));
+    }
+    return toEigen(p);
+  };
+  std::map<std::string, std::pair<std::size_t, std::size_t>> solids_of;  // model -> [from, to)
+  std::map<std::string, int> models_in;
+  for (uint64_t i = 0; i < w.ModelCount(); ++i) {
+    const sdf::Model& m = *w.ModelByIndex(i);
+    const std::size_t from = world.solids.size();
+    const int models = world.models;
+    reader.model(m, worldPose(m.SemanticPose(), "model '" + m.Name() + "'"), "");
+    solids_of[m.Name()] = {from, world.solids.size()};
+    models_in[m.Name()] = world.models - models;
+  }
+  for (const RepeatedModel& r : repeats) {
+    const sdf::Model& like = *w.ModelByName(r.like);
+    const Eigen::Isometry3d move =
+        worldPose(w.FrameByName(r.name)->SemanticPose(), "model '" + r.name + "'") *
+        worldPose(like.SemanticPose(), "model '" + r.like + "'").inverse();
+    const auto [from, to] = solids_of.at(r.like);
+    for (std::size_t k = from; k < to; ++k) {
+      WorldSolid solid = moved(world.solids[k], move);
+      solid.name = r.name + solid.name.substr(r.like.size());
+      world.solids.push_back(std::move(solid));
+    }
+    world.models += models_in.at(r.like);
+  }
+  if (root->WorldCount() > 1) reader.skip(std::to_string(root->WorldCount() - 1) + " more worlds");
+  if (w.LightCount() > 0) reader.skip(std::to_string(w.LightCount()) + " lights");
+  if (w.ActorCount() > 0) reader.skip(std::to_string(w.ActorCount()) + " actors");
+  if (const sdf::ElementPtr e = w.Element()) {
+    for (const char* tag : {"plugin", "physics", "gui", "scene", "spherical_coordinates", "state",
+                            "population", "road"}) {
+      int n = 0;
+      for (sdf::ElementPtr c = e->HasElement(tag) ? e->GetElement(tag) : nullptr; c;
+           c = c->GetNextElement(tag)) {
+        n += c->GetExplicitlySetInFile() ? 1 : 0;  // not the defaults sdformat adds
+      }
+      if (n > 0) reader.skip(std::to_string(n) + " <" + tag + ">");
+    }
+  }
+  world.skipped = reader.skipped();
+  return world;
+}
+
+}  // namespace jetbot_rl

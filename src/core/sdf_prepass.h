@@ -1,0 +1,32 @@
+#pragma once
+
+// What is done to a Gazebo world file before sdformat reads it: the XML checked (tinyxml2 names the
+// line sdformat only prints) and repeated models folded into frames.
+
+#include <string>
+#include <vector>
+
+namespace jetbot_rl {
+
+/// A world-level model that repeats an earlier one but for its name and pose.
+struct RepeatedModel {
+  std::string name;  ///< Its name: a <frame> of that name holds its pose.
+  std::string like;  ///< The model it repeats.
+};
+
+/**
+ * The SDF world file's text with every top-level `<model>` (or named `<include>`) that equals an
+ * earlier one but for its name and `<pose>` replaced by a `<frame>` of its name and pose, and
+ * relative include URIs made absolute. sdformat copies a model's whole description per model
+ * (about 13 ms each): a world of hundreds of like posts (BARN's) parses as one post and frames.
+ * Models with a placement frame are kept. "" with no repeats or when tinyxml2 cannot read the
+ * file (sdformat then reads it and reports why).
+ */
+std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats);
+
+/// "" when the file at `path` is XML with an <sdf> root whose version is 1.0 up to `newest`
+/// (sdformat's), else what is wrong: "PATH:LINE: ..." for XML that does not parse, "PATH: ..."
+/// otherwise.
+std::string sdfFileProblem(const std::string& path, const std::string& newest);
+
+}  // namespace jetbot_rl
