@@ -222,6 +222,37 @@ TEST_F(GazeboWorldTest, AScanOfTheWorldEqualsTheScanOfItsShapesGivenAsObstacles)
   EXPECT_GT(hits, 100);
 }
 
+TEST_F(GazeboWorldTest, TheShippedWorldScansAsItsBoxesAndCylindersOverAMapOfTheRest) {
+  // The same layout drawn without Gazebo: its upright shapes as obstacles, the cells of its
+  // other shapes as a map_server map (written and read back), placed where the grid lies.
+  WorldConfig config;
+  config.gazebo_world = shippedWorld();
+  const WorldModel room(config, 0.1);
+  OccupancyMap others = *room.map();
+  for (std::size_t i = 0; i < others.data.size(); ++i) {
+    others.data[i] = room.obstacleCells()[i] ? 100 : 0;
+  }
+  const std::string path = ::testing::TempDir() + "room_others.yaml";
+  writeMapYaml(others, path);
+  WorldConfig drawn;
+  drawn.map = path;
+  const WorldModel map_world(drawn, 0.1);
+  const ScannerSpec spec = test::fullTurnScanner(0.05, 8.0);
+  int hits = 0;
+  for (const Eigen::Vector2d& at :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(-1.5, -1.9), Eigen::Vector2d(2.0, 0.8)}) {
+    Eigen::Isometry3d sensor = Eigen::Isometry3d::Identity();
+    sensor.translation() = Eigen::Vector3d(at.x(), at.y(), room.cutHeight());
+    std::vector<float> in_room(360), as_drawn(360);
+    Rng a(1), b(1);
+    castScan(spec, &room, {}, sensor, a, in_room.data());
+    castScan(spec, &map_world, room.worldObstacles(), sensor, b, as_drawn.data());
+    EXPECT_EQ(std::memcmp(in_room.data(), as_drawn.data(), 360 * sizeof(float)), 0) << at;
+    for (float r : in_room) hits += std::isfinite(r) ? 1 : 0;
+  }
+  EXPECT_EQ(hits, 3 * 360);  // a closed room
+}
+
 TEST_F(GazeboWorldTest, RepeatedModelsGiveTheSolidsEachWouldGive) {
   // Posts alike but for name and pose (folded: parsed once), one turned upside down and one
   // rolled (then its surface), one placed relative to another; the same posts each made unique
