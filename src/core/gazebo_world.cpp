@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <sdf/sdf.hh>
@@ -465,7 +466,16 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   GazeboWorld world;
   world.path = path;
   sdf::ParserConfig config;
-  config.SetFindCallback([](const std::string& uri) { return findGazeboModel(uri); });
+  // model:// as Gazebo finds it; a relative path from the world file's folder (sdformat would
+  // look in the working directory).
+  const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+  config.SetFindCallback([folder](const std::string& uri) {
+    if (uri.find("://") == std::string::npos && !uri.empty() && uri[0] != '/') {
+      const std::filesystem::path local = (folder / uri).lexically_normal();
+      return std::filesystem::exists(local) ? local.string() : std::string();
+    }
+    return findGazeboModel(uri);
+  });
   config.SetWarningsPolicy(sdf::EnforcementPolicy::LOG);
   const auto load = [&](sdf::Root& root, const std::string& text) {
     sdf::Errors errors = text.empty() ? root.Load(path, config) : root.LoadSdfString(text, config);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/errors.h"
@@ -301,6 +302,26 @@ TEST_F(GazeboWorldTest, RepeatedModelsGiveTheSolidsEachWouldGive) {
     }
   }
   EXPECT_EQ(surfaces, 2);  // p3's two shapes, rolled 0.4 rad
+}
+
+TEST_F(GazeboWorldTest, IncludesRelativeToTheWorldFileAreFound) {
+  // A model folder named by a path relative to the world file, included once and three times
+  // (then read once, the repeats as frames: their URIs must still resolve from the file).
+  const std::string table = std::filesystem::relative(
+      std::string(JETBOT_RL_SOURCE_DIR) + "/models/jetbot_rl_table", ::testing::TempDir());
+  const auto include = [&](const std::string& name, const std::string& pose) {
+    return "<include><uri>" + table + "</uri><name>" + name + "</name><pose>" + pose +
+           "</pose></include>\n";
+  };
+  const GazeboWorld one = loadGazeboWorld(sdfWorld("one.world", include("t0", "1 2 0 0 0 0")));
+  EXPECT_EQ(one.solids.size(), 5u);
+  const GazeboWorld three = loadGazeboWorld(
+      sdfWorld("three.world", include("t0", "1 2 0 0 0 0") + include("t1", "-1 0 0 0 0 0") +
+                                  include("t2", "0 -2 0 0 0 1.57")));
+  ASSERT_EQ(three.solids.size(), 15u);
+  const WorldSolid& leg = solid(three, "t1::body::leg_1");
+  ASSERT_TRUE(leg.upright);
+  EXPECT_NEAR((leg.upright->center - Eigen::Vector2d(-1.0 + 0.55, 0.35)).norm(), 0.0, 1e-12);
 }
 
 TEST_F(GazeboWorldTest, TheGridWrittenAsAMapReadsBackAsTheSameCells) {
