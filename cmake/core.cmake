@@ -25,6 +25,8 @@ add_library(jetbot_rl_core
   src/core/former_names.cpp
   src/core/gazebo_blocks.cpp
   src/core/gazebo_world.cpp
+  src/core/package_path.cpp
+  src/core/solid_surfaces.cpp
   src/core/sdf_prepass.cpp
   src/core/laser_scanner.cpp
   src/core/lean_dispatcher.cpp

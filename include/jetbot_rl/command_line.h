@@ -13,6 +13,7 @@
 
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/former_names.h"
+#include "jetbot_rl/package_path.h"
 
 namespace jetbot_rl {
 
@@ -132,27 +133,9 @@ struct EnvProgramOptions {
   std::unique_ptr<BatchedEnv> makeEnv() const {
     return jetbot_rl::makeEnv(RobotModel::fromUrdfFile(urdf, packagePathResolver()), setup());
   }
-  /// package://PKG/rest as <dir>/PKG/rest for the first directory of ROS_PACKAGE_PATH that holds
-  /// PKG/package.xml (a catkin workspace's src/, an install's share/): the programs need no ROS
-  /// to read a URDF with package:// meshes. "" (unresolved) otherwise.
-  static MeshResolver packagePathResolver() {
-    return [](const std::string& uri) -> std::string {
-      const std::string scheme = "package://";
-      if (uri.compare(0, scheme.size(), scheme) != 0) return "";
-      const std::string rest = uri.substr(scheme.size());
-      const std::string package = rest.substr(0, rest.find('/'));
-      const char* path = std::getenv("ROS_PACKAGE_PATH");
-      std::string dirs = path ? path : "";
-      for (std::size_t start = 0; start <= dirs.size();) {
-        const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-        const std::string dir = dirs.substr(start, end - start);
-        start = end + 1;
-        if (dir.empty()) continue;
-        if (std::ifstream(dir + "/" + package + "/package.xml")) return dir + "/" + rest;
-      }
-      return "";
-    };
-  }
+  /// package:// URIs found through ROS_PACKAGE_PATH (findPackageUri()): the programs need no ROS
+  /// to read a URDF with package:// meshes.
+  static MeshResolver packagePathResolver() { return &findPackageUri; }
 };
 
 /// The options of the programs that play a checkpoint on a batch in this process

@@ -37,13 +37,6 @@ struct GazeboWorld {
 };
 
 /**
- * The file path of a `model://NAME/...` URI as Gazebo finds it: NAME under each folder of
- * GAZEBO_MODEL_PATH, then under each ROS_PACKAGE_PATH folder and its packages' `models/`
- * folders. "" when it is not found.
- */
-std::string findGazeboModel(const std::string& uri);
-
-/**
  * Reads the SDF world file at `path` with sdformat: every model's (static or not, nested or
  * included) collision shapes, posed through models, links and collisions as SDF defines
  * (`relative_to`, frames). Boxes, cylinders, spheres, ellipsoids, capsules, meshes (assimp, with

@@ -2,9 +2,6 @@
 // semantics, its <include> handling); only the shapes' surfaces are made here.
 #include "jetbot_rl/gazebo_world.h"
 
-#include <dirent.h>
-#include <sys/stat.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,46 +11,12 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/package_path.h"
 #include "sdf_prepass.h"
+#include "solid_surfaces.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-// An axis this close to z counts as upright (cos of about 0.01 degrees).
-constexpr double kUprightCos = 1.0 - 1e-8;
-// Facets of round surfaces (cylinders, spheres) that are not upright.
-constexpr int kRoundFacets = 32;
-
-bool isDirectory(const std::string& path) {
-  struct stat s {};
-  return ::stat(path.c_str(), &s) == 0 && S_ISDIR(s.st_mode);
-}
-
-std::vector<std::string> splitPath(const char* value) {
-  std::vector<std::string> out;
-  if (!value) return out;
-  std::stringstream s(value);
-  for (std::string item; std::getline(s, item, ':');) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
-std::vector<std::string> subfolders(const std::string& dir) {
-  std::vector<std::string> out;
-  if (DIR* d = ::opendir(dir.c_str())) {
-    while (const dirent* e = ::readdir(d)) {
-      const std::string name = e->d_name;
-      if (name != "." && name != ".." && isDirectory(dir + "/" + name)) out.push_back(name);
-    }
-    ::closedir(d);
-  }
-  std::sort(out.begin(), out.end());  // the same choice on every machine
-  return out;
-}
-
-std::string findRosPackageFile(const std::string& uri);
 
 Eigen::Isometry3d toEigen(const ignition::math::Pose3d& p) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
@@ -83,164 +46,6 @@ bool deprecationOnly(const sdf::Error& e) {
   return e.Code() == sdf::ErrorCode::VERSION_DEPRECATED ||
          e.Code() == sdf::ErrorCode::ELEMENT_DEPRECATED ||
          e.Code() == sdf::ErrorCode::ATTRIBUTE_DEPRECATED;
-}
-
-/// Appends the triangles of a unit-free surface given by its rings: `rings[i][j]` around, rings
-/// stacked, closed at both ends by fans to `bottom` and `top` when given.
-void addRings(const std::vector<std::vector<Eigen::Vector3d>>& rings,
-              std::vector<Eigen::Vector3d>& out) {
-  for (std::size_t i = 0; i + 1 < rings.size(); ++i) {
-    const auto& a = rings[i];
-    const auto& b = rings[i + 1];
-    for (std::size_t j = 0; j < a.size(); ++j) {
-      const std::size_t k = (j + 1) % a.size();
-      out.insert(out.end(), {a[j], a[k], b[k], a[j], b[k], b[j]});
-    }
-  }
-}
-
-void addCap(const std::vector<Eigen::Vector3d>& ring, std::vector<Eigen::Vector3d>& out) {
-  for (std::size_t j = 1; j + 1 < ring.size(); ++j)
-    out.insert(out.end(), {ring[0], ring[j], ring[j + 1]});
-}
-
-/// A box of `size` centred on the origin.
-std::vector<Eigen::Vector3d> boxSurface(const Eigen::Vector3d& size) {
-  const Eigen::Vector3d h = 0.5 * size;
-  std::vector<Eigen::Vector3d> bottom, top;
-  for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
-    bottom.emplace_back(x * h.x(), y * h.y(), -h.z());
-    top.emplace_back(x * h.x(), y * h.y(), h.z());
-  }
-  std::vector<Eigen::Vector3d> out;
-  addRings({bottom, top}, out);
-  addCap(bottom, out);
-  addCap(top, out);
-  return out;
-}
-
-/// A cylinder along z of `radius` and `length`, centred on the origin, its facets outside the
-/// round surface (a cut holds the true cross-section).
-std::vector<Eigen::Vector3d> cylinderSurface(double radius, double length) {
-  const double r = radius / std::cos(kPi / kRoundFacets);
-  std::vector<Eigen::Vector3d> bottom, top;
-  for (int j = 0; j < kRoundFacets; ++j) {
-    const double a = 2.0 * kPi * j / kRoundFacets;
-    bottom.emplace_back(r * std::cos(a), r * std::sin(a), -0.5 * length);
-    top.emplace_back(r * std::cos(a), r * std::sin(a), 0.5 * length);
-  }
-  std::vector<Eigen::Vector3d> out;
-  addRings({bottom, top}, out);
-  addCap(bottom, out);
-  addCap(top, out);
-  return out;
-}
-
-/// An ellipsoid of semi-axes `radii` centred on `centre`, its facets outside the surface.
-std::vector<Eigen::Vector3d> ellipsoidSurface(
-    const Eigen::Vector3d& radii, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
-  const int stacks = kRoundFacets / 2;
-  const double grow = 1.0 / (std::cos(kPi / kRoundFacets) * std::cos(kPi / (2 * stacks)));
-  std::vector<std::vector<Eigen::Vector3d>> rings;
-  for (int i = 0; i <= stacks; ++i) {
-    const double polar = kPi * i / stacks;
-    std::vector<Eigen::Vector3d> ring;
-    for (int j = 0; j < kRoundFacets; ++j) {
-      const double a = 2.0 * kPi * j / kRoundFacets;
-      const Eigen::Vector3d unit(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a),
-                                 -std::cos(polar));
-      ring.push_back(centre + grow * radii.cwiseProduct(unit));
-    }
-    rings.push_back(ring);
-  }
-  std::vector<Eigen::Vector3d> out;
-  addRings(rings, out);
-  return out;
-}
-
-/// The side walls of a `<polyline>`: its points extruded from z = 0 to `height`.
-std::vector<Eigen::Vector3d> polylineSurface(const std::vector<Eigen::Vector2d>& points,
-                                             double height) {
-  std::vector<Eigen::Vector3d> bottom, top;
-  for (const Eigen::Vector2d& p : points) {
-    bottom.emplace_back(p.x(), p.y(), 0.0);
-    top.emplace_back(p.x(), p.y(), height);
-  }
-  std::vector<Eigen::Vector3d> out;
-  addRings({bottom, top}, out);
-  return out;
-}
-
-/// Makes `solid` the upright `o` from `bottom` to `top` [m], with its bounds.
-void setUpright(WorldSolid& solid, Obstacle o, double bottom, double top) {
-  o.height = std::max(0.0, top);
-  solid.bottom = bottom;
-  solid.top = top;
-  solid.bounds.setEmpty();
-  if (o.shape == Obstacle::Shape::kCylinder) {
-    const Eigen::Vector2d r = Eigen::Vector2d::Constant(o.radius);
-    solid.bounds.extend(o.center - r).extend(o.center + r);
-  } else {  // the box's corners
-    const double c = std::cos(o.yaw), s = std::sin(o.yaw);
-    for (double sx : {-1.0, 1.0}) {
-      for (double sy : {-1.0, 1.0}) {
-        const Eigen::Vector2d corner(sx * o.half_extents.x(), sy * o.half_extents.y());
-        solid.bounds.extend(o.center + Eigen::Vector2d(c * corner.x() - s * corner.y(),
-                                                       s * corner.x() + c * corner.y()));
-      }
-    }
-  }
-  solid.upright = o;
-  solid.triangles.clear();
-}
-
-/// Makes `solid` the surface `local` (triangle corners) placed by `pose`, with its extent.
-void setSurface(WorldSolid& solid, const std::vector<Eigen::Vector3d>& local,
-                const Eigen::Isometry3d& pose) {
-  solid.upright.reset();
-  solid.triangles.clear();
-  solid.bounds.setEmpty();
-  solid.bottom = std::numeric_limits<double>::infinity();
-  solid.top = -solid.bottom;
-  for (const Eigen::Vector3d& p : local) {
-    solid.triangles.push_back(pose * p);
-    solid.bottom = std::min(solid.bottom, solid.triangles.back().z());
-    solid.top = std::max(solid.top, solid.triangles.back().z());
-    solid.bounds.extend(solid.triangles.back().head<2>());
-  }
-}
-
-/// `solid` moved by `move` (in the world frame): an upright one stays exact while `move` keeps
-/// its axis vertical, else it becomes its surface.
-WorldSolid moved(const WorldSolid& solid, const Eigen::Isometry3d& move) {
-  WorldSolid out;
-  out.name = solid.name;
-  if (!solid.upright) {
-    setSurface(out, solid.triangles, move);
-    return out;
-  }
-  const Obstacle& o = *solid.upright;
-  const double length = solid.top - solid.bottom;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = Eigen::Vector3d(o.center.x(), o.center.y(), solid.bottom + 0.5 * length);
-  pose.linear() = Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Isometry3d now = move * pose;
-  if (std::abs(now.linear()(2, 2)) >= kUprightCos) {
-    Obstacle u = o;
-    u.center = now.translation().head<2>();
-    if (u.shape == Obstacle::Shape::kBox)
-      u.yaw = std::atan2(now.linear()(1, 0), now.linear()(0, 0));
-    const double mid = now.translation().z();
-    setUpright(out, u, mid - 0.5 * length, mid + 0.5 * length);
-    return out;
-  }
-  const bool box = o.shape == Obstacle::Shape::kBox;
-  setSurface(
-      out,
-      box ? boxSurface(Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), length))
-          : cylinderSurface(o.radius, length),
-      now);
-  return out;
 }
 
 class Reader {
@@ -377,7 +182,7 @@ class Reader {
           return found;
         }
         if (resolver_) return resolver_(u);
-        const std::string found = findRosPackageFile(u);
+        const std::string found = findPackageUri(u);
         if (found.empty()) throw ConfigError("no such package on ROS_PACKAGE_PATH");
         return found;
       });
@@ -421,46 +226,7 @@ class Reader {
   std::vector<std::string> skipped_;
 };
 
-/// The file of a `package://PKG/...` URI: PKG as a folder of ROS_PACKAGE_PATH (or one of its
-/// folders, as catkin workspaces hold them); "" when not found.
-std::string findRosPackageFile(const std::string& uri) {
-  static const std::string kScheme = "package://";
-  if (uri.rfind(kScheme, 0) != 0) return "";
-  const std::string rest = uri.substr(kScheme.size());
-  const std::string package = rest.substr(0, rest.find('/'));
-  if (package.empty()) return "";
-  for (const std::string& dir : splitPath(std::getenv("ROS_PACKAGE_PATH"))) {
-    const auto slash = dir.find_last_of('/');
-    if (dir.substr(slash == std::string::npos ? 0 : slash + 1) == package) {
-      return dir + rest.substr(package.size());
-    }
-    if (isDirectory(dir + "/" + package)) return dir + "/" + rest;
-  }
-  return "";
-}
-
 }  // namespace
-
-std::string findGazeboModel(const std::string& uri) {
-  static const std::string kScheme = "model://";
-  if (uri.rfind(kScheme, 0) != 0) return "";
-  const std::string rest = uri.substr(kScheme.size());
-  const std::string name = rest.substr(0, rest.find('/'));
-  const std::string tail = rest.substr(name.size());
-  if (name.empty()) return "";
-  for (const std::string& dir : splitPath(std::getenv("GAZEBO_MODEL_PATH"))) {
-    if (isDirectory(dir + "/" + name)) return dir + "/" + name + tail;
-  }
-  for (const std::string& dir : splitPath(std::getenv("ROS_PACKAGE_PATH"))) {
-    if (isDirectory(dir + "/" + name)) return dir + "/" + name + tail;
-    if (isDirectory(dir + "/models/" + name)) return dir + "/models/" + name + tail;
-    for (const std::string& package : subfolders(dir)) {
-      const std::string models = dir + "/" + package + "/models/" + name;
-      if (isDirectory(models)) return models + tail;
-    }
-  }
-  return "";
-}
 
 GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver) {
   GazeboWorld world;
