@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The world and the laser scanner's cost (docs/performance.md): jetbot_rl_bench env steps/s per
-# thread for an empty world, random obstacles (a 4 x 4 m arena, 3 boxes, 2 cylinders), the office
+# thread for an empty world, random obstacles (a 4 x 4 m arena, 3 boxes, 2 cylinders), the same
+# with 10 walking people (world_people.yaml), the office
 # map, clutter (a 10 x 10 m arena, 200 obstacles) and a Gazebo world of 500 cylinder models
 # (world_gazebo.yaml), each with no scanner, 24 beams every step,
 # 360 beams every 6th step and 360 beams every step, as a markdown table with each row's ratio to
@@ -32,7 +33,7 @@ echo "| threads | world | scanner | env steps/s | per thread | / empty, no scann
 echo "|---|---|---|---|---|---|"
 for t in "${threads[@]}"; do
   base=""
-  for world in none obstacles map clutter gazebo; do
+  for world in none obstacles people map clutter gazebo; do
     for scan in none 24 360 360_every_step; do
       rate=$(run "$t" "$world" "$scan" | field env_steps_per_s)
       [ -n "$base" ] || base=$rate
@@ -47,7 +48,7 @@ for t in "${threads[@]}"; do
   done
 done
 echo
-for world in none obstacles map clutter gazebo; do
+for world in none obstacles people map clutter gazebo; do
   small=$(steps=20 run 2 "$world" 24 1000 | field rss_kib)
   large=$(steps=20 run 2 "$world" 24 10000 | field rss_kib)
   [ "$world" != gazebo ] || echo "start-up, world gazebo: $( { /usr/bin/time -f %e $bench --num-envs 1 --steps 1 --config "$here/world_gazebo.yaml" >/dev/null; } 2>&1 | tail -1) s (1 env, 1 step)"

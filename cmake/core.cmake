@@ -18,6 +18,7 @@ add_library(jetbot_rl_core
   src/core/dof_limits.cpp
   src/core/env_config.cpp
   src/core/env_physics.cpp
+  src/core/env_movers.cpp
   src/core/env_obstacles.cpp
   src/core/env_randomizer.cpp
   src/core/env_setup.cpp
@@ -32,6 +33,7 @@ add_library(jetbot_rl_core
   src/core/lean_dispatcher.cpp
   src/core/local_vec_env.cpp
   src/core/mesh_loader.cpp
+  src/core/movers.cpp
   src/core/multi_vec_env.cpp
   src/core/navigation_task.cpp
   src/core/occupancy_map.cpp

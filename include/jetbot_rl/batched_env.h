@@ -26,6 +26,8 @@ struct ActionLayout;
 class EnvPhysics;
 class EnvRandomizer;
 class EnvSensor;
+struct SensedEnv;
+class MoverSet;
 class PhysicsModel;
 class ScanSensor;
 class ThreadPool;
@@ -104,6 +106,10 @@ class BatchedEnv {
   std::uint64_t obstaclesGivenUp() const { return given_up_; }
   /// Resets since construction whose generated layout could not be made (EnvLayout::unmade).
   std::uint64_t layoutsUnmade() const { return unmade_; }
+  /// The movers of every env (movers/...), or nullptr when there are none.
+  const MoverSet* movers() const { return movers_.get(); }
+  /// Movers left out since construction because they did not fit (world/placement_tries).
+  std::uint64_t moversGivenUp() const { return movers_given_up_; }
   /// The difficulty env `env`'s next generated layout is drawn at (world/curriculum).
   double difficulty(int env) const;
   /// The scanner in use, or nullptr.
@@ -118,6 +124,8 @@ class BatchedEnv {
   void resetEnv(int env);
   /// Gives the task env `env`'s senses (scan, contact, last action).
   void senseEnv(int env);
+  /// What env `env`'s sensors read: its physics, layout and movers.
+  SensedEnv sensedEnv(int env) const;
 
   RobotModelConstPtr robot_;
   EnvConfig config_;
@@ -146,11 +154,14 @@ class BatchedEnv {
   // The world (when configured) and the sensors (the scanner, when the robot has one).
   std::shared_ptr<const WorldModel> world_;
   std::unique_ptr<WorldShapes> world_shapes_;
-  std::vector<EnvLayout> layouts_;          // per env
-  std::vector<std::uint8_t> collided_;      // per env: in the last step
+  std::vector<EnvLayout> layouts_;      // per env
+  std::vector<std::uint8_t> collided_;  // per env: in the last step, kHitWorld or kHitMover
+  static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2;
   std::atomic<std::uint64_t> given_up_{0};  // obstacles left out
   std::atomic<std::uint64_t> unmade_{0};    // generated layouts not made
-  Curriculum curriculum_;                   // per env difficulty of generated layouts
+  std::unique_ptr<MoverSet> movers_;        // none without movers
+  std::atomic<std::uint64_t> movers_given_up_{0};
+  Curriculum curriculum_;  // per env difficulty of generated layouts
   std::unique_ptr<ScanSensor> scan_;
   std::vector<EnvSensor*> sensors_;  // every sensor, in stepping order
 };

@@ -6,6 +6,7 @@
 
 #include "jetbot_rl/config_fields.h"
 #include "jetbot_rl/motor_model.h"
+#include "jetbot_rl/mover_config.h"
 #include "jetbot_rl/randomization.h"
 #include "jetbot_rl/scanner_config.h"
 #include "jetbot_rl/world_config.h"
@@ -73,6 +74,8 @@ struct EnvConfig {
   MotorModelConfig motor;
   /// Each env's world: map, walls, random obstacles (none by default).
   WorldConfig world;
+  /// Moving obstacles in each env's world (none by default).
+  MoverConfig movers;
   /// The laser scanner (the robot description's Gazebo ray sensor, if it has one).
   ScannerConfig scan;
 
@@ -138,6 +141,7 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   visitFields(c.randomization, v);
   visitFields(c.motor, v);
   visitFields(c.world, v);
+  visitFields(c.movers, v);
   visitFields(c.scan, v);
 }
 

@@ -60,8 +60,10 @@ class EnvView {
   RandomizationDraw randomization() const;
   /// The layout of its current episode: start and obstacles.
   const EnvLayout& layout() const;
-  /// True when the robot touched the map, a wall or an obstacle during the last step.
+  /// True when the robot touched the map, a wall, an obstacle or a mover during the last step.
   bool collided() const;
+  /// Its movers where they stand (movers/...): the people, then the carts; empty without.
+  const std::vector<Obstacle>& movers() const;
   /// The latest scan: BatchedEnv::scanner()->samples ranges [m] (REP 117: +inf beyond
   /// range_max, -inf below range_min); nullptr without a scanner.
   const float* scan() const;

@@ -53,14 +53,15 @@ constexpr float kTooClose = -std::numeric_limits<float>::infinity();
 
 /**
  * Casts one scan from `sensor` (the beams' frame in the env frame: beam k along angle min_angle +
- * k x increment in its x-y plane) against the static world (map cells, walls) and `obstacles`:
- * the ground and the robot are never tested. Writes `spec.samples` ranges to `ranges`: the
+ * k x increment in its x-y plane) against the static world (map cells, walls), `obstacles` and
+ * `movers` (an env's moving obstacles where they stand, or none): the ground and the robot are
+ * never tested. Writes `spec.samples` ranges to `ranges`: the
  * distance to the first surface plus Gaussian noise (mean, std) from `noise`, +inf (kNoReturn)
  * beyond range_max, -inf (kTooClose) below range_min (REP 117).
  */
 void castScan(const ScannerSpec& spec, const WorldModel* world,
               const std::vector<Obstacle>& obstacles, const Eigen::Isometry3d& sensor, Rng& noise,
-              float* ranges);
+              float* ranges, const std::vector<Obstacle>* movers = nullptr);
 
 /// A reading as a task sees it: +inf as range_max, -inf as range_min (finite, in [min, max]).
 inline float finiteRange(float range, const ScannerSpec& spec) {

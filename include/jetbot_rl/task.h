@@ -29,13 +29,15 @@ struct EnvSenses {
   bool collided = false;        ///< The robot touched the world during the last step.
   const float* action =
       nullptr;  ///< The action of the last step (action_dim), zeros after a reset.
+  bool collided_with_mover = false;  ///< A mover (movers/...) was among what it touched.
 };
 
 /// How an ended episode ended, as a task judges it (for success, collision and time-out rates).
 enum class Outcome : std::uint8_t {
-  kTimeOut = 0,    ///< Truncated (or a task without goals).
-  kSuccess = 1,    ///< The task's goal was reached.
-  kCollision = 2,  ///< The robot hit the world (navigation).
+  kTimeOut = 0,         ///< Truncated (or a task without goals).
+  kSuccess = 1,         ///< The task's goal was reached.
+  kCollision = 2,       ///< The robot hit the world: a wall, the map, an obstacle (navigation).
+  kCollisionMover = 3,  ///< The robot hit a mover, a person or a cart (navigation, movers/...).
 };
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).

@@ -10,6 +10,7 @@
 #include "env_randomizer.h"
 #include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/movers.h"
 #include "jetbot_rl/task_capabilities.h"
 #include "jetbot_rl/task_observer.h"
 #include "physics_model.h"
@@ -48,6 +49,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     }
     world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
     world_shapes_ = std::make_unique<WorldShapes>(*world_);
+    if (config_.movers.count() > 0) {
+      movers_ = std::make_unique<MoverSet>(config_.movers, *world_, config_.num_envs, config_.seed);
+    }
   }
   const int n = config_.num_envs;
   if (scanner) {
@@ -63,6 +67,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   obs_dim_ = static_cast<int>(task_->observationNames().size());
   randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
   const int num_obstacles = config_.world.obstacleSlots();
+  const int num_movers = config_.movers.count();
 
   const int workers = std::min(config_.resolvedThreads(), n);
   pool_ = std::make_unique<ThreadPool>(workers);
@@ -70,11 +75,11 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   envs_.resize(n);
   // Each thread builds its scratch and its block's envs, in parallel, so that their memory comes
   // from its own allocator arena and is first touched by the thread that steps it.
-  pool_->run(workers, [this, n, num_obstacles](int w) {
+  pool_->run(workers, [this, n, num_obstacles, num_movers](int w) {
     contexts_[w] = std::make_unique<WorkerContext>();
     for (int e = pool_->firstItemOf(w, n); e < pool_->firstItemOf(w + 1, n); ++e) {
       envs_[e] = std::make_unique<EnvPhysics>(*physics_, *contexts_[w], world_shapes_.get(),
-                                              num_obstacles);
+                                              num_obstacles, num_movers);
     }
   });
   for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
@@ -154,10 +159,21 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
   if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
   physics.setTargets(targets);
   physics.clearCollided();
-  for (int k = 0; k < config_.decimation; ++k) physics.step(config_.physics_dt);
+  if (movers_) {
+    // The movers walk on with the robot: their velocities for the control step, then each
+    // physics step takes them to where they are at its end.
+    movers_->plan(e, layouts_[e], physics.rootState().position.head<2>(), config_.controlDt());
+    for (int k = 0; k < config_.decimation; ++k) {
+      movers_->advance(e, config_.physics_dt);
+      physics.moveMovers(movers_->bodies(e), movers_->nearRobot(e));
+      physics.step(config_.physics_dt);
+    }
+  } else {
+    for (int k = 0; k < config_.decimation; ++k) physics.step(config_.physics_dt);
+  }
   ++result_.episode_steps[e];
-  collided_[e] = physics.collided();
-  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, {physics, layouts_[e]});
+  collided_[e] = physics.collidedWithMover() ? kHitMover : physics.collided() ? kHitWorld : 0;
+  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, sensedEnv(e));
 
   // Isaac Lab order: dones, then rewards, then reset, then observations.
   RootState state = physics.rootState();
@@ -203,18 +219,27 @@ void BatchedEnv::resetEnv(int env) {
     physics.setObstacles(layout.obstacles);
     given_up_ += static_cast<std::uint64_t>(layout.given_up);
     if (layout.unmade) ++unmade_;
+    if (movers_) {
+      movers_given_up_ += static_cast<std::uint64_t>(movers_->reset(env, layout));
+      physics.setMovers(movers_->bodies(env));
+    }
   }
   result_.episode_steps[env] = 0;
   task_->resetEnv(env, rngs_[env]);
   collided_[env] = 0;
   std::fill_n(actions_.begin() + static_cast<std::ptrdiff_t>(env) * actionDim(), actionDim(), 0.0f);
-  for (EnvSensor* sensor : sensors_) sensor->afterReset(env, {physics, layouts_[env]});
+  for (EnvSensor* sensor : sensors_) sensor->afterReset(env, sensedEnv(env));
+}
+
+SensedEnv BatchedEnv::sensedEnv(int env) const {
+  return {*envs_[env], layouts_[env], movers_ ? &movers_->bodies(env) : nullptr};
 }
 
 void BatchedEnv::senseEnv(int env) {
   EnvSenses senses;
   senses.scan = scan_ ? scan_->ranges(env) : nullptr;
   senses.collided = collided_[env] != 0;
+  senses.collided_with_mover = collided_[env] == kHitMover;
   senses.action = &actions_[static_cast<std::size_t>(env) * actionDim()];
   task_->sense(env, senses);
 }
@@ -257,6 +282,7 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
       rngs_[e] = Rng(*seed, e);
       randomizer_->reseed(e, *seed);
       for (EnvSensor* sensor : sensors_) sensor->reseed(e, *seed);
+      if (movers_) movers_->reseed(e, *seed);
     }
     resetEnv(e);
   }

@@ -11,6 +11,11 @@ namespace jetbot_rl {
 void checkFieldRules(const EnvConfig& config) {
   checkFieldRules(config.world);
   checkFieldRules(config.scan);
+  if (config.movers.count() > 0 && !config.world.enabled()) {
+    throwInvalid(config.movers.num_people > 0 ? "movers/num_people" : "movers/num_carts",
+                 config.movers.count(),
+                 "movers walk in a world: give world/arena_size, world/map or world/gazebo_world");
+  }
   if (config.twist_reverse_speed < 0.0 && config.twist_reverse_speed != -1.0) {
     throwInvalid("twist_reverse_speed", config.twist_reverse_speed,
                  "must be -1 (as fast as forwards) or >= 0 m/s");

@@ -3,26 +3,20 @@
 #include "env_physics.h"
 
 namespace jetbot_rl {
-namespace {
-
-// Where an obstacle left out of an episode waits, far below the ground (it touches nothing).
-constexpr btScalar kParked = -1000;
-
-}  // namespace
-
-btCollisionShape* EnvPhysics::parkedShape(btTransform& pose) {
+btCollisionShape* EnvPhysics::parkedShape(btTransform& pose,
+                                          std::vector<std::unique_ptr<btCollisionShape>>& owner) {
   Obstacle parked;
   parked.half_extents = {0.1, 0.1};
   parked.height = 0.1;
-  obstacle_shapes_.push_back(makeObstacleShape(parked, pose));
+  owner.push_back(makeObstacleShape(parked, pose));
   pose.getOrigin().setZ(kParked);
-  return obstacle_shapes_.back().get();
+  return owner.back().get();
 }
 
 void EnvPhysics::parkObstacles(btCompoundShape& compound) {
   // An empty compound has no AABB: a placeholder far below the ground stands in.
   btTransform pose;
-  btCollisionShape* shape = parkedShape(pose);
+  btCollisionShape* shape = parkedShape(pose, obstacle_shapes_);
   compound.addChildShape(pose, shape);
 }
 

@@ -9,12 +9,6 @@
 namespace jetbot_rl {
 namespace {
 
-// Robots collide with the ground and the world (map, walls, obstacles): never with each other's
-// parts; the world's parts never with each other.
-constexpr int kRobotGroup = btBroadphaseProxy::CharacterFilter;
-constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
-constexpr int kWorldGroup = 64;
-constexpr int kWorldUserIndex = 1;  // marks the world's collision objects
 // A contact point this close or closer counts as a collision [m] (Bullet keeps points up to its
 // breaking threshold apart).
 constexpr btScalar kTouching = 1e-3f;
@@ -43,13 +37,15 @@ constexpr int kObstacleObjects = 32;
 }  // namespace
 
 EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
-                       int num_obstacles)
+                       int num_obstacles, int num_movers)
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1 +
-                                         (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
-                                         (num_obstacles > kObstacleObjects ? 1 : num_obstacles))),
+      broadphase_(num_movers > 0 ? static_cast<btBroadphaseInterface*>(new btDbvtBroadphase())
+                                 : new btSimpleBroadphase(
+                                       static_cast<int>(model.bodies().size()) + 1 +
+                                       (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
+                                       (num_obstacles > kObstacleObjects ? 1 : num_obstacles))),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           model.collisionConfiguration())),
       ground_(new btCollisionObject()),
@@ -96,10 +92,11 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     // Obstacle slots: a placeholder shape until the first layout.
     for (int i = 0; i < (obstacle_compound_ ? 0 : num_obstacles); ++i) {
       btTransform pose;
-      btCollisionShape* shape = parkedShape(pose);
+      btCollisionShape* shape = parkedShape(pose, obstacle_shapes_);
       obstacles_.push_back(addStatic(shape, pose));
     }
   }
+  addMovers(num_movers);
 
   const auto& bodies = model.bodies();
   const int links = static_cast<int>(bodies.size()) - 1;
@@ -169,11 +166,11 @@ void EnvPhysics::moveRobot(const Eigen::Vector2d& offset) {
   syncColliders();
 }
 
-bool EnvPhysics::touchesWorld() const {
+bool EnvPhysics::touches(int user_index) const {
   for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
     const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
-    if (m->getBody0()->getUserIndex() != kWorldUserIndex &&
-        m->getBody1()->getUserIndex() != kWorldUserIndex) {
+    if (m->getBody0()->getUserIndex() != user_index &&
+        m->getBody1()->getUserIndex() != user_index) {
       continue;
     }
     for (int c = 0; c < m->getNumContacts(); ++c) {
@@ -212,7 +209,7 @@ void EnvPhysics::reset() {
   }
   std::fill(targets_.begin(), targets_.end(), 0.0f);
   std::fill(integral_.begin(), integral_.end(), 0.0);
-  collided_ = false;
+  collided_ = hit_mover_ = false;
 }
 
 void EnvPhysics::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
@@ -286,7 +283,8 @@ void EnvPhysics::step(double dt) {
           -limit, limit);
     }
   }
-  if (!statics_.empty() || !obstacles_.empty()) collided_ = collided_ || touchesWorld();
+  if (!statics_.empty() || !obstacles_.empty()) collided_ = collided_ || touches(kWorldUserIndex);
+  if (!movers_.empty()) hit_mover_ = hit_mover_ || touches(kMoverUserIndex);
 }
 
 btTransform EnvPhysics::comPose(int body) const {

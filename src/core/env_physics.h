@@ -20,6 +20,16 @@
 
 namespace jetbot_rl {
 
+// Robots collide with the ground and the world (map, walls, obstacles, movers): never with each
+// other's parts; the world's parts never with each other.
+constexpr int kRobotGroup = btBroadphaseProxy::CharacterFilter;
+constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
+constexpr int kWorldGroup = 64;
+constexpr int kWorldUserIndex = 1;  // marks the world's static collision objects
+constexpr int kMoverUserIndex = 2;  // marks the movers' kinematic bodies
+// Where an obstacle or a mover left out of an episode waits, far below the ground.
+constexpr btScalar kParked = -1000;
+
 /// Scratch of one stepping thread, lent to whichever world it steps (EnvPhysics::useContext): the
 /// solver is not thread-safe and carries no state from one world's step to the next. Aligned so
 /// that two threads' solvers, written on every iteration, never share a cache line.
@@ -47,10 +57,10 @@ struct PhysicalDraw {
  */
 class EnvPhysics {
  public:
-  /// With `shapes`, the world's static geometry (map, walls) is added, and `num_obstacles`
-  /// obstacle slots for setObstacles().
+  /// With `shapes`, the world's static geometry (map, walls) is added, `num_obstacles`
+  /// obstacle slots for setObstacles() and `num_movers` kinematic bodies for setMovers().
   EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes = nullptr,
-             int num_obstacles = 0);
+             int num_obstacles = 0, int num_movers = 0);
   ~EnvPhysics();
   EnvPhysics(const EnvPhysics&) = delete;
   EnvPhysics& operator=(const EnvPhysics&) = delete;
@@ -66,10 +76,19 @@ class EnvPhysics {
   void moveRobot(const Eigen::Vector2d& offset);
   /// Places the obstacles of a layout (as many as the slots; one not placed is left out).
   void setObstacles(const std::vector<Obstacle>& obstacles);
-  /// True when the robot touched the map, a wall or an obstacle in a physics step since the last
-  /// clearCollided() (reset() clears it too).
-  bool collided() const { return collided_; }
-  void clearCollided() { collided_ = false; }
+  /// Gives the movers their shapes and poses for an episode (as many as num_movers; one not
+  /// placed is left out); they start at rest.
+  void setMovers(const std::vector<Obstacle>& movers);
+  /// Moves the movers marked in `near` to their poses at the end of the next physics step: it
+  /// pushes the robot with the velocity that takes them there. The others stand still in
+  /// Bullet, asleep (no work at a physics step), until they are near again.
+  void moveMovers(const std::vector<Obstacle>& movers, const std::vector<std::uint8_t>& near);
+  /// True when the robot touched the map, a wall, an obstacle or a mover in a physics step since
+  /// the last clearCollided() (reset() clears it too).
+  bool collided() const { return collided_ || hit_mover_; }
+  /// True when one of those touches was with a mover.
+  bool collidedWithMover() const { return hit_mover_; }
+  void clearCollided() { collided_ = hit_mover_ = false; }
   /// Makes the next step()s use `context`'s solver (the stepping thread's own).
   void useContext(WorkerContext& context);
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
@@ -104,12 +123,16 @@ class EnvPhysics {
   /// World transform of body `body`'s principal COM frame.
   btTransform comPose(int body) const;
   void syncColliders();
-  /// A placeholder obstacle shape (kept in obstacle_shapes_) and its `pose` far below the ground.
-  btCollisionShape* parkedShape(btTransform& pose);
+  /// A placeholder obstacle shape (kept in `owner`) and its `pose` far below the ground.
+  static btCollisionShape* parkedShape(btTransform& pose,
+                                       std::vector<std::unique_ptr<btCollisionShape>>& owner);
+  /// Adds `count` kinematic mover bodies, parked until setMovers().
+  void addMovers(int count);
   /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
   void parkObstacles(btCompoundShape& compound);
-  /// True when a contact of the last collision detection joins the robot and the world.
-  bool touchesWorld() const;
+  /// True when a contact of the last collision detection joins the robot and an object marked
+  /// `user_index` (the world's or a mover's).
+  bool touches(int user_index) const;
 
   const PhysicsModel& model_;
   WorkerContext* context_;
@@ -133,7 +156,11 @@ class EnvPhysics {
   std::vector<std::unique_ptr<btCollisionShape>> obstacle_shapes_;
   // With many obstacle slots: one compound of the placed obstacles (obstacles_ holds its object).
   std::unique_ptr<btCompoundShape> obstacle_compound_;
-  bool collided_ = false;
+  // Kinematic bodies (env_movers.cpp) and their shapes, remade at each episode.
+  std::vector<std::unique_ptr<btRigidBody>> movers_;
+  std::vector<std::unique_ptr<btCollisionShape>> mover_shapes_;
+  std::vector<std::uint8_t> mover_awake_;  // per mover: moved in the physics steps
+  bool collided_ = false, hit_mover_ = false;
 };
 
 }  // namespace jetbot_rl

@@ -1,16 +1,20 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace jetbot_rl {
 
 class EnvPhysics;
 struct EnvLayout;
+struct Obstacle;
 
-/// What a sensor reads an env from: its physics and its layout of the current episode.
+/// What a sensor reads an env from: its physics, its layout of the current episode and its
+/// movers where they stand (or none).
 struct SensedEnv {
   const EnvPhysics& physics;
   const EnvLayout& layout;
+  const std::vector<Obstacle>* movers = nullptr;
 };
 
 /**

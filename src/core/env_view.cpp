@@ -7,6 +7,7 @@
 #include "env_physics.h"
 #include "env_randomizer.h"
 #include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/movers.h"
 #include "scan_sensor.h"
 
 namespace jetbot_rl {
@@ -75,6 +76,11 @@ RandomizationDraw EnvView::randomization() const { return batch_->randomizer_->v
 const EnvLayout& EnvView::layout() const { return batch_->layouts_[env_]; }
 
 bool EnvView::collided() const { return batch_->collided_[env_] != 0; }
+
+const std::vector<Obstacle>& EnvView::movers() const {
+  static const std::vector<Obstacle> kNone;
+  return batch_->movers_ ? batch_->movers_->bodies(env_) : kNone;
+}
 
 const float* EnvView::scan() const { return batch_->scan_ ? batch_->scan_->ranges(env_) : nullptr; }
 

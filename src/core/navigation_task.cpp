@@ -272,7 +272,7 @@ bool NavigationTask::terminated(int env, const RootState& state) const {
   measured.root = state;
   measured.goal = goals_[env];
   if (senses_[env].collided) {
-    o = Outcome::kCollision;
+    o = senses_[env].collided_with_mover ? Outcome::kCollisionMover : Outcome::kCollision;
   } else if (observer_.reached(measured)) {
     o = Outcome::kSuccess;
   }
@@ -297,7 +297,7 @@ float NavigationTask::reward(int env, const RootState& state) const {
   last_distance_[env] = d;
   const auto o = static_cast<Outcome>(outcome_[env]);
   if (o == Outcome::kSuccess) r += config_.goal_reward;
-  if (o == Outcome::kCollision) r -= config_.collision_penalty;
+  if (o == Outcome::kCollision || o == Outcome::kCollisionMover) r -= config_.collision_penalty;
   return static_cast<float>(r);
 }
 

@@ -194,7 +194,7 @@ double rayMap(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const WorldMod
 
 void castScan(const ScannerSpec& spec, const WorldModel* world,
               const std::vector<Obstacle>& obstacles, const Eigen::Isometry3d& sensor, Rng& noise,
-              float* ranges) {
+              float* ranges, const std::vector<Obstacle>* movers) {
   const Eigen::Vector3d o = sensor.translation();
   const Eigen::Matrix3d basis = sensor.linear();
   const double reach = spec.range_max;
@@ -280,6 +280,7 @@ void castScan(const ScannerSpec& spec, const WorldModel* world,
     }
   };
   sort(obstacles);
+  if (movers) sort(*movers);
   if (world) sort(world->worldObstacles());  // a Gazebo world's boxes and cylinders
   for (const auto& r : ring) {
     for (const Obstacle* ob : r) cast(*ob);

@@ -38,7 +38,7 @@ void ScanSensor::scan(int env, const SensedEnv& sensed) {
   const Eigen::Isometry3d sensor =
       toEigen(sensed.physics.linkPose(spec_.body)) * spec_.pose_in_body;
   castScan(spec_, world_, sensed.layout.obstacles, sensor, noise_[env],
-           &ranges_[static_cast<std::size_t>(env) * spec_.samples]);
+           &ranges_[static_cast<std::size_t>(env) * spec_.samples], sensed.movers);
   age_[env] = 0;
   new_[env] = 1;
 }

@@ -6,13 +6,13 @@ namespace {
 // Kept inside the geometry's size, as the robot's boxes.
 constexpr btScalar kMargin = 0.001;
 
+}  // namespace
+
 btTransform planar(const Eigen::Vector2d& center, double yaw, double z) {
   return btTransform(btQuaternion(btVector3(0, 0, 1), static_cast<btScalar>(yaw)),
                      btVector3(static_cast<btScalar>(center.x()), static_cast<btScalar>(center.y()),
                                static_cast<btScalar>(z)));
 }
-
-}  // namespace
 
 std::unique_ptr<btCollisionShape> makeObstacleShape(const Obstacle& o, btTransform& pose) {
   const auto half_height = static_cast<btScalar>(0.5 * o.height);

@@ -34,6 +34,9 @@ class WorldShapes {
   std::vector<PlacedShape> statics_;
 };
 
+/// The pose at `center` [m], turned `yaw` [rad] about z, at height `z` [m].
+btTransform planar(const Eigen::Vector2d& center, double yaw, double z);
+
 /// A new Bullet shape for obstacle `o` (a box or a vertical cylinder from the ground up), and
 /// its pose in the env frame.
 std::unique_ptr<btCollisionShape> makeObstacleShape(const Obstacle& o, btTransform& pose);

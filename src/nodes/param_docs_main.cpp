@@ -84,6 +84,7 @@ std::vector<Row> rowsWithout(std::vector<Row> all, const C& without) {
 std::vector<Row> envRows() {
   std::vector<Row> rows = rowsWithout(rowsOf(EnvConfig{}), RandomizationConfig{});
   rows = rowsWithout(std::move(rows), MotorModelConfig{});
+  rows = rowsWithout(std::move(rows), MoverConfig{});
   return rowsWithout(rowsWithout(std::move(rows), WorldConfig{}), ScannerConfig{});
 }
 
@@ -95,6 +96,7 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"randomization", [] { return rowsOf(RandomizationConfig{}); }},
       {"motor", [] { return rowsOf(MotorModelConfig{}); }},
       {"world", [] { return rowsOf(WorldConfig{}); }},
+      {"movers", [] { return rowsOf(MoverConfig{}); }},
       {"scan", [] { return rowsOf(ScannerConfig{}); }},
       {"env_node", [] { return rowsWithout(rowsOf(NodeParams{}), EnvSetup{}); }},
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},

@@ -9,6 +9,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
 #include "jetbot_rl/ros/common/msg_fields.h"
+#include "jetbot_rl/task.h"
 
 namespace jetbot_rl {
 namespace {
@@ -109,6 +110,33 @@ TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
   EXPECT_EQ(msgFieldNames("# a comment\nuint8 A=2  # a constant\nfloat32[] x  # [m]\n\nstring y"),
             (std::vector<std::string>{"x", "y"}));
   EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
+}
+
+TEST(StepConversion, AMoverCollisionCrossesAndAnUnknownOutcomeIsRefused) {
+  const BatchSpec spec = sampleSpec();
+  StepResult r;
+  r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
+  r.rewards.assign(spec.num_envs, 0.0f);
+  r.terminated.assign(spec.num_envs, 0);
+  r.truncated.assign(spec.num_envs, 0);
+  r.episode_steps.assign(spec.num_envs, 0);
+  r.reset_env_ids = {2, 5};
+  r.final_observations.assign(2 * spec.obs_dim, 0.0f);
+  r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
+                static_cast<std::uint8_t>(Outcome::kCollision)};
+  EnvStep msg;
+  toMsg(r, spec.num_envs, spec.obs_dim, ros::Time(1.0), msg);
+  EXPECT_EQ(msg.outcomes[0], EnvStep::OUTCOME_COLLISION_MOVER);
+  StepResult back;
+  fromMsg(msg, spec, back);
+  EXPECT_EQ(back.outcomes, r.outcomes);
+  msg.outcomes[1] = EnvStep::OUTCOME_COLLISION_MOVER + 1;
+  try {
+    fromMsg(msg, spec, back);
+    ADD_FAILURE() << "outcome 4 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("outcomes holds 4"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -66,6 +66,7 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("last cmd_vel rejection reason", c.last_cmd_vel_rejection));
   s.values.push_back(keyValue("obstacles left out", std::to_string(c.obstacles_left_out)));
   s.values.push_back(keyValue("generated layouts unmade", std::to_string(c.layouts_unmade)));
+  s.values.push_back(keyValue("movers left out", std::to_string(c.movers_left_out)));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

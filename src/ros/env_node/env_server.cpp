@@ -30,6 +30,7 @@ void EnvServer::updateState() {
   state_ = msg;
   counters_.obstacles_left_out = env_.obstaclesGivenUp();
   counters_.layouts_unmade = env_.layoutsUnmade();
+  counters_.movers_left_out = env_.moversGivenUp();
 }
 
 bool EnvServer::onWheelTargets(const WheelTargets& msg, SteadyTime received) {

@@ -128,6 +128,19 @@ EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& e
             marker("world", e * per_env + k, visualization_msgs::Marker::CUBE, grey));
       }
     }
+    // The movers, per env: moved at every capture (orange, to tell them from the still world).
+    std_msgs::ColorRGBA orange;
+    orange.r = 1.0f;
+    orange.g = 0.55f;
+    orange.b = 0.1f;
+    orange.a = 0.9f;
+    const int movers = static_cast<int>(env.view(0).movers().size());
+    for (int e = 0; e < envs_; ++e) {
+      for (int k = 0; k < movers; ++k) {
+        array_.markers.push_back(
+            marker("movers", e * movers + k, visualization_msgs::Marker::CYLINDER, orange));
+      }
+    }
   }
 }
 
@@ -171,23 +184,26 @@ void EnvMarkerPublisher::capture(const BatchedEnv& env, const EnvStep::ConstPtr&
     }
   }
   if (const WorldModel* world = env.world()) {
+    const auto place = [&](int e, const Obstacle& o) {
+      auto& m = array_.markers[k++];
+      m.header.stamp = stamp;
+      m.type = o.shape == Obstacle::Shape::kBox ? visualization_msgs::Marker::CUBE
+                                                : visualization_msgs::Marker::CYLINDER;
+      const bool box = o.shape == Obstacle::Shape::kBox;
+      m.scale.x = box ? 2 * o.half_extents.x() : 2 * o.radius;
+      m.scale.y = box ? 2 * o.half_extents.y() : 2 * o.radius;
+      m.scale.z = o.height;
+      m.action = o.placed ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+      const Eigen::Vector3d c =
+          env.view(e).origin() + Eigen::Vector3d(o.center.x(), o.center.y(), 0.5 * o.height);
+      setPose(m.pose, c, yawQuaternion(o.yaw));
+    };
     for (int e = 0; e < envs_; ++e) {
-      const auto place = [&](const Obstacle& o) {
-        auto& m = array_.markers[k++];
-        m.header.stamp = stamp;
-        m.type = o.shape == Obstacle::Shape::kBox ? visualization_msgs::Marker::CUBE
-                                                  : visualization_msgs::Marker::CYLINDER;
-        const bool box = o.shape == Obstacle::Shape::kBox;
-        m.scale.x = box ? 2 * o.half_extents.x() : 2 * o.radius;
-        m.scale.y = box ? 2 * o.half_extents.y() : 2 * o.radius;
-        m.scale.z = o.height;
-        m.action = o.placed ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
-        const Eigen::Vector3d c =
-            env.view(e).origin() + Eigen::Vector3d(o.center.x(), o.center.y(), 0.5 * o.height);
-        setPose(m.pose, c, yawQuaternion(o.yaw));
-      };
-      for (const Obstacle& w : world->walls()) place(w);
-      for (const Obstacle& o : env.view(e).layout().obstacles) place(o);
+      for (const Obstacle& w : world->walls()) place(e, w);
+      for (const Obstacle& o : env.view(e).layout().obstacles) place(e, o);
+    }
+    for (int e = 0; e < envs_; ++e) {
+      for (const Obstacle& o : env.view(e).movers()) place(e, o);
     }
   }
   due_ = true;

@@ -34,6 +34,7 @@ struct EnvCounters {
 
   std::uint64_t obstacles_left_out = 0;  ///< Obstacles that did not fit (BatchedEnv).
   std::uint64_t layouts_unmade = 0;      ///< Generated layouts not made (BatchedEnv).
+  std::uint64_t movers_left_out = 0;     ///< Movers that did not fit (BatchedEnv).
 };
 
 /**

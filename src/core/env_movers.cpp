@@ -1,0 +1,79 @@
+// An env's movers in its Bullet world (EnvPhysics): kinematic rigid bodies. Bullet derives a
+// kinematic body's velocity from its last two poses, so that a mover pushes the robot as it
+// walks; nothing pushes a mover.
+#include "env_physics.h"
+#include "world_shapes.h"
+
+namespace jetbot_rl {
+
+void EnvPhysics::addMovers(int count) {
+  for (int k = 0; k < count; ++k) {
+    // A placeholder shape of its own (the obstacles' are remade with their layouts).
+    btTransform pose;
+    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, parkedShape(pose, mover_shapes_));
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body->forceActivationState(ISLAND_SLEEPING);
+    body->setUserIndex(kMoverUserIndex);
+    body->setWorldTransform(pose);
+    body->setInterpolationWorldTransform(pose);
+    world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
+    movers_.push_back(std::move(body));
+    mover_awake_.push_back(0);
+  }
+}
+
+void EnvPhysics::setMovers(const std::vector<Obstacle>& movers) {
+  for (std::size_t k = 0; k < movers_.size(); ++k) {
+    btRigidBody& body = *movers_[k];
+    btTransform pose;
+    if (k < movers.size() && movers[k].placed) {
+      mover_shapes_[k] = makeObstacleShape(movers[k], pose);
+      body.setCollisionShape(mover_shapes_[k].get());
+    } else {
+      pose = body.getWorldTransform();
+      pose.getOrigin().setZ(kParked);
+    }
+    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
+        body.getBroadphaseHandle(), dispatcher_.get());
+    // At rest: the pose Bullet takes the velocity from is this one.
+    body.setWorldTransform(pose);
+    body.setInterpolationWorldTransform(pose);
+    body.setLinearVelocity(btVector3(0, 0, 0));
+    body.setAngularVelocity(btVector3(0, 0, 0));
+    body.forceActivationState(ISLAND_SLEEPING);  // until it is near the robot
+    mover_awake_[k] = 0;
+    world_->updateSingleAabb(&body);
+  }
+}
+
+void EnvPhysics::moveMovers(const std::vector<Obstacle>& movers,
+                            const std::vector<std::uint8_t>& near) {
+  for (std::size_t k = 0; k < movers_.size() && k < movers.size(); ++k) {
+    btRigidBody& body = *movers_[k];
+    if (!movers[k].placed || !near[k]) {
+      if (mover_awake_[k]) body.forceActivationState(ISLAND_SLEEPING);
+      mover_awake_[k] = 0;
+      continue;
+    }
+    const Obstacle& m = movers[k];
+    btTransform& pose = body.getWorldTransform();
+    if (!mover_awake_[k]) {
+      // Where it is now, at rest: the jump from where it slept is no velocity.
+      pose = planar(m.center, m.yaw, 0.5 * m.height);
+      body.setInterpolationWorldTransform(pose);
+      body.forceActivationState(DISABLE_DEACTIVATION);
+      mover_awake_[k] = 1;
+      continue;
+    }
+    // A person's rotation never changes; a cart's with its heading.
+    pose.setOrigin(btVector3(static_cast<btScalar>(m.center.x()),
+                             static_cast<btScalar>(m.center.y()),
+                             static_cast<btScalar>(0.5 * m.height)));
+    if (m.shape == Obstacle::Shape::kBox) {
+      pose.setRotation(btQuaternion(btVector3(0, 0, 1), static_cast<btScalar>(m.yaw)));
+    }
+  }
+}
+
+}  // namespace jetbot_rl
