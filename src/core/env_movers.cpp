@@ -23,27 +23,30 @@ void EnvPhysics::addMovers(int count) {
   }
 }
 
+void EnvPhysics::park(btRigidBody& body) {
+  btTransform pose = body.getWorldTransform();
+  pose.getOrigin().setZ(kParked);
+  body.setWorldTransform(pose);
+  body.setInterpolationWorldTransform(pose);
+  body.forceActivationState(ISLAND_SLEEPING);  // asleep, Bullet keeps its AABB: set it here
+  world_->updateSingleAabb(&body);
+}
+
 void EnvPhysics::setMovers(const std::vector<Obstacle>& movers) {
   for (std::size_t k = 0; k < movers_.size(); ++k) {
     btRigidBody& body = *movers_[k];
-    btTransform pose;
     if (k < movers.size() && movers[k].placed) {
+      btTransform pose;
       mover_shapes_[k] = makeObstacleShape(movers[k], pose);
       body.setCollisionShape(mover_shapes_[k].get());
-    } else {
-      pose = body.getWorldTransform();
-      pose.getOrigin().setZ(kParked);
     }
     world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
         body.getBroadphaseHandle(), dispatcher_.get());
-    // At rest: the pose Bullet takes the velocity from is this one.
-    body.setWorldTransform(pose);
-    body.setInterpolationWorldTransform(pose);
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
-    body.forceActivationState(ISLAND_SLEEPING);  // until it is near the robot
+    // Parked until it comes near the robot (moveMovers()).
+    park(body);
     mover_awake_[k] = 0;
-    world_->updateSingleAabb(&body);
   }
 }
 
@@ -52,14 +55,15 @@ void EnvPhysics::moveMovers(const std::vector<Obstacle>& movers,
   for (std::size_t k = 0; k < movers_.size() && k < movers.size(); ++k) {
     btRigidBody& body = *movers_[k];
     if (!movers[k].placed || !near[k]) {
-      if (mover_awake_[k]) body.forceActivationState(ISLAND_SLEEPING);
+      // Out of the robot's reach: parked, so that no body stays where it walked away from.
+      if (mover_awake_[k]) park(body);
       mover_awake_[k] = 0;
       continue;
     }
     const Obstacle& m = movers[k];
     btTransform& pose = body.getWorldTransform();
     if (!mover_awake_[k]) {
-      // Where it is now, at rest: the jump from where it slept is no velocity.
+      // Where it is now, at rest: the jump from where it was parked is no velocity.
       pose = planar(m.center, m.yaw, 0.5 * m.height);
       body.setInterpolationWorldTransform(pose);
       body.forceActivationState(DISABLE_DEACTIVATION);

@@ -76,12 +76,12 @@ class EnvPhysics {
   void moveRobot(const Eigen::Vector2d& offset);
   /// Places the obstacles of a layout (as many as the slots; one not placed is left out).
   void setObstacles(const std::vector<Obstacle>& obstacles);
-  /// Gives the movers their shapes and poses for an episode (as many as num_movers; one not
-  /// placed is left out); they start at rest.
+  /// Gives the movers their shapes for an episode (as many as num_movers; one not placed is
+  /// left out); they wait parked until moveMovers() finds them near the robot.
   void setMovers(const std::vector<Obstacle>& movers);
   /// Moves the movers marked in `near` to their poses at the end of the next physics step: it
-  /// pushes the robot with the velocity that takes them there. The others stand still in
-  /// Bullet, asleep (no work at a physics step), until they are near again.
+  /// pushes the robot with the velocity that takes them there. The others are parked below the
+  /// ground, asleep (no work at a physics step), until they are near again.
   void moveMovers(const std::vector<Obstacle>& movers, const std::vector<std::uint8_t>& near);
   /// True when the robot touched the map, a wall, an obstacle or a mover in a physics step since
   /// the last clearCollided() (reset() clears it too).
@@ -128,6 +128,8 @@ class EnvPhysics {
                                        std::vector<std::unique_ptr<btCollisionShape>>& owner);
   /// Adds `count` kinematic mover bodies, parked until setMovers().
   void addMovers(int count);
+  /// Puts a mover far below the ground, asleep: it touches nothing and costs nothing.
+  void park(btRigidBody& body);
   /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
   void parkObstacles(btCompoundShape& compound);
   /// True when a contact of the last collision detection joins the robot and an object marked

@@ -222,6 +222,37 @@ TEST(Movers, AMoverPushesTheRobotAndIsNotPushed) {
   EXPECT_GT(moved.dot(way), 0.15);
 }
 
+TEST(Movers, AMoverFarFromTheRobotLeavesNoBodyBehindInThePhysics) {
+  // Far from the robot a mover is not moved in Bullet: where it was must not stay solid there.
+  EnvConfig c = test::scanningArenaConfig(1);
+  c.world.arena_size = {6.0, 6.0};
+  c.movers.num_people = 1;
+  c.movers.person_radius = {0.2, 0.2};
+  c.movers.speed = {1.0, 1.0};
+  c.movers.rule = MoverRule::kStraight;
+  c.movers.start_clearance = 2.0;
+  TaskConfig velocity;  // ends no episode on a contact
+  BatchedEnv env(lidar(), c, makeTask(velocity));
+  const std::vector<float> stop(env.actionDim(), 0.0f);
+  const Eigen::Vector2d start = env.view(0).movers()[0].center;
+  const auto robot = [&] { return env.view(0).rootState().position.head<2>(); };
+  const auto far = [&] {
+    const Eigen::Vector2d now = env.view(0).movers()[0].center;
+    return (now - start).norm() > 1.5 && (now - robot()).norm() > 2.5;
+  };
+  int steps = 0;
+  for (; steps < 2000 && !far(); ++steps) env.step(stop.data(), stop.size());
+  ASSERT_TRUE(far()) << "the person never walked away";
+  // The robot where the person stood at the reset: nothing is there now.
+  RootState s = env.view(0).rootState();
+  s.position.head<2>() = start;
+  s.com_linear_velocity.setZero();
+  s.angular_velocity.setZero();
+  env.setRootState(0, s);
+  env.step(stop.data(), stop.size());
+  EXPECT_FALSE(env.view(0).collided()) << "a contact with a person 1.5 m away";
+}
+
 TEST(Movers, TheSameOnAnyThreadCountAndAfterAReseed) {
   const auto run = [](int threads) {
     BatchedEnv env(lidar(), peopleConfig(6, 10, MoverRule::kSocialForce, threads),
