@@ -57,9 +57,9 @@ class MoverSet {
     double speed = 0.0;                                  // [m/s]
     bool has_waypoint = false;
   };
-  /// A point of the region `radius` clear of the world and `layout`, from `env`'s stream.
-  bool drawClearPoint(int env, double radius, const EnvLayout& layout, int tries,
-                      Eigen::Vector2d& p);
+  /// Draws `p` in the region from `env`'s stream; true when it is `radius` clear of the world
+  /// and `layout`.
+  bool drawClearPoint(int env, double radius, const EnvLayout& layout, Eigen::Vector2d& p);
   /// True when a disc of `radius` moves from `a` to `b` without touching the world or `layout`.
   bool segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius,
                     const EnvLayout& layout) const;

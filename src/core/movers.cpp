@@ -33,6 +33,12 @@ constexpr double kNearPerSecond = 5.0;  // [m/s]
 // Points sampled at start-up to estimate the free part of the region.
 constexpr int kAreaSamples = 4000;
 
+/// A point drawn uniformly in `box`.
+Eigen::Vector2d pointIn(const Eigen::AlignedBox2d& box, Rng& rng) {
+  const double x = box.min().x() + box.sizes().x() * rng.uniform();
+  return {x, box.min().y() + box.sizes().y() * rng.uniform()};
+}
+
 double uniformIn(Rng& rng, const std::vector<double>& range) {
   return range[0] + (range[1] - range[0]) * rng.uniform();
 }
@@ -99,9 +105,7 @@ MoverSet::MoverSet(const MoverConfig& config, const WorldModel& world, int num_e
   Rng probe(seed, kMoverStream - 1);
   int free = 0;
   for (int i = 0; i < kAreaSamples; ++i) {
-    const Eigen::Vector2d p(region.min().x() + region.sizes().x() * probe.uniform(),
-                            region.min().y() + region.sizes().y() * probe.uniform());
-    if (world_.staticClearance(p) > 0.0) ++free;
+    if (world_.staticClearance(pointIn(region, probe)) > 0.0) ++free;
   }
   const double free_area = region.volume() * free / kAreaSamples;
   const double person = config_.person_radius[1] + kMargin;
@@ -134,16 +138,9 @@ MoverSet::MoverSet(const MoverConfig& config, const WorldModel& world, int num_e
 
 void MoverSet::reseed(int env, std::uint64_t seed) { rngs_[env] = Rng(seed, env + kMoverStream); }
 
-bool MoverSet::drawClearPoint(int env, double radius, const EnvLayout& layout, int tries,
-                              Eigen::Vector2d& p) {
-  const Eigen::AlignedBox2d& region = region_;
-  Rng& rng = rngs_[env];
-  for (int t = 0; t < tries; ++t) {
-    p = Eigen::Vector2d(region.min().x() + region.sizes().x() * rng.uniform(),
-                        region.min().y() + region.sizes().y() * rng.uniform());
-    if (world_.isClear(p, radius, layout.obstacles)) return true;
-  }
-  return false;
+bool MoverSet::drawClearPoint(int env, double radius, const EnvLayout& layout, Eigen::Vector2d& p) {
+  p = pointIn(region_, rngs_[env]);
+  return world_.isClear(p, radius, layout.obstacles);
 }
 
 bool MoverSet::segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius,
@@ -163,7 +160,7 @@ void MoverSet::drawWaypoint(int env, int k, const EnvLayout& layout, int tries) 
   const double r = b.boundingRadius() + kMargin;
   Eigen::Vector2d w;
   for (int t = 0; t < tries; ++t) {
-    if (drawClearPoint(env, r, layout, 1, w) && segmentClear(b.center, w, r, layout)) {
+    if (drawClearPoint(env, r, layout, w) && segmentClear(b.center, w, r, layout)) {
       s.waypoint = w;
       s.has_waypoint = true;
       return;
@@ -192,7 +189,7 @@ int MoverSet::reset(int env, const EnvLayout& layout) {
     const double r = b.boundingRadius();
     b.placed = false;
     for (int t = 0; t < tries && !b.placed; ++t) {
-      if (!drawClearPoint(env, r + kMargin, layout, 1, b.center)) continue;
+      if (!drawClearPoint(env, r + kMargin, layout, b.center)) continue;
       if ((b.center - layout.start).norm() < config_.start_clearance + r) continue;
       b.placed = std::none_of(bodies.begin(), bodies.begin() + k, [&](const Obstacle& o) {
         return o.placed && (o.center - b.center).norm() < o.boundingRadius() + r + kMargin;
