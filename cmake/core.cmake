@@ -12,6 +12,7 @@ add_library(jetbot_rl_core
   src/core/action_layout.cpp
   src/core/batch_spec.cpp
   src/core/batched_env.cpp
+  src/core/batched_env_team.cpp
   src/core/command_task.cpp
   src/core/config_fields.cpp
   src/core/diff_drive.cpp
@@ -23,6 +24,7 @@ add_library(jetbot_rl_core
   src/core/env_randomizer.cpp
   src/core/env_setup.cpp
   src/core/env_view.cpp
+  src/core/robot_team.cpp
   src/core/former_names.cpp
   src/core/gazebo_blocks.cpp
   src/core/gazebo_world.cpp

@@ -35,6 +35,7 @@ catkin_add_gtest(test_core
   test/core/test_world.cpp
   test/core/test_gazebo_world.cpp
   test/core/test_movers.cpp
+  test/core/test_team.cpp
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
@@ -139,3 +140,4 @@ endforeach()
 add_rostest(test/docs/param_docs.test DEPENDENCIES jetbot_rl_param_docs)
 add_rostest(test/launch/task_defaults.test)
 add_rostest(test/python/python_navigation.test)
+add_rostest(test/python/python_team.test)

@@ -29,6 +29,7 @@ class EnvSensor;
 struct SensedEnv;
 class MoverSet;
 class PhysicsModel;
+class RobotTeam;
 class ScanSensor;
 class ThreadPool;
 class WorldDrawing;
@@ -71,7 +72,8 @@ class BatchedEnv {
   /// The batch after the last step() or reset().
   const StepResult& state() const { return result_; }
 
-  int numEnvs() const { return config_.num_envs; }
+  /// Rows of the batch: num_envs x robots_per_env (each robot an agent; docs/world.md).
+  int numEnvs() const { return config_.numRows(); }
   int obsDim() const { return obs_dim_; }
   int actionDim() const;
   int numThreads() const;
@@ -119,8 +121,19 @@ class BatchedEnv {
   friend class EnvView;
 
   void checkEnv(int env) const;
-  /// Steps env `env` with the stepping thread's scratch.
+  /// Steps env `env` with the stepping thread's scratch: stepPhysics, sensePhysics, finishStep.
   void stepEnv(int env, WorkerContext& context);
+  /// Steps the robots of env `group` (robots_per_env): all their physics, then all their
+  /// sensors, then each one's end of step (batched_env_team.cpp).
+  void stepTeam(int group, WorkerContext& context);
+  /// The control step's physics of row `env` and what it touched.
+  void stepPhysics(int env, WorkerContext& context);
+  /// Its sensors after the physics.
+  void sensePhysics(int env);
+  /// Dones, rewards, the reset of an ended episode, observations (Isaac Lab's order).
+  void finishStep(int env);
+  /// The start (and a circle swap's goal) of row `env`, clear of the other robots of its world.
+  void placeTeamRobot(int env);
   void resetEnv(int env);
   /// Gives the task env `env`'s senses (scan, contact, last action).
   void senseEnv(int env);
@@ -156,10 +169,11 @@ class BatchedEnv {
   std::unique_ptr<WorldShapes> world_shapes_;
   std::vector<EnvLayout> layouts_;      // per env
   std::vector<std::uint8_t> collided_;  // per env: in the last step, kHitWorld or kHitMover
-  static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2;
+  static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2, kHitRobot = 3;
   std::atomic<std::uint64_t> given_up_{0};  // obstacles left out
   std::atomic<std::uint64_t> unmade_{0};    // generated layouts not made
   std::unique_ptr<MoverSet> movers_;        // none without movers
+  std::unique_ptr<RobotTeam> team_;         // with robots_per_env > 1 or a circle swap
   std::atomic<std::uint64_t> movers_given_up_{0};
   Curriculum curriculum_;  // per env difficulty of generated layouts
   std::unique_ptr<ScanSensor> scan_;

@@ -9,6 +9,7 @@
 #include "jetbot_rl/mover_config.h"
 #include "jetbot_rl/randomization.h"
 #include "jetbot_rl/scanner_config.h"
+#include "jetbot_rl/team_config.h"
 #include "jetbot_rl/world_config.h"
 
 namespace jetbot_rl {
@@ -78,6 +79,8 @@ struct EnvConfig {
   MoverConfig movers;
   /// The laser scanner (the robot description's Gazebo ray sensor, if it has one).
   ScannerConfig scan;
+  /// Robots per env (one by default).
+  TeamConfig team;
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;
@@ -87,6 +90,8 @@ struct EnvConfig {
   int maxEpisodeLength() const;
   /// Thread count after resolving 0 to the number of cores.
   int resolvedThreads() const;
+  /// Rows of the batch: num_envs x robots_per_env.
+  int numRows() const { return num_envs * team.robots_per_env; }
 };
 
 class RobotModel;
@@ -143,6 +148,7 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   visitFields(c.world, v);
   visitFields(c.movers, v);
   visitFields(c.scan, v);
+  visitFields(c.team, v);
 }
 
 /// The rules between EnvConfig's fields: an episode lasts 2 to 1e9 control steps; the world's and

@@ -38,8 +38,9 @@ struct BodyTwist {
  */
 class EnvView {
  public:
+  /// Its row of the batch (with robots_per_env K: robot env() % K of env env() / K).
   int env() const { return env_; }
-  /// Origin of the env on the square grid, Isaac Lab's layout [m].
+  /// Origin of the env on the square grid, Isaac Lab's layout [m] (every robot of an env: its).
   Eigen::Vector3d origin() const;
   /// Root state in the env's own frame.
   RootState rootState() const;

@@ -30,6 +30,7 @@ struct EnvSenses {
   const float* action =
       nullptr;  ///< The action of the last step (action_dim), zeros after a reset.
   bool collided_with_mover = false;  ///< A mover (movers/...) was among what it touched.
+  bool collided_with_robot = false;  ///< Another robot of its world (robots_per_env) was too.
 };
 
 /// How an ended episode ended, as a task judges it (for success, collision and time-out rates).
@@ -38,6 +39,7 @@ enum class Outcome : std::uint8_t {
   kSuccess = 1,         ///< The task's goal was reached.
   kCollision = 2,       ///< The robot hit the world: a wall, the map, an obstacle (navigation).
   kCollisionMover = 3,  ///< The robot hit a mover, a person or a cart (navigation, movers/...).
+  kCollisionRobot = 4,  ///< The robot hit another robot of its world (navigation, robots_per_env).
 };
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).

@@ -52,6 +52,7 @@ struct WorldDraft {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();   ///< [m]
   const std::vector<Obstacle>* obstacles = nullptr;  ///< null: none yet.
   const FootprintGrid* reach = nullptr;              ///< null: no path check.
+  std::optional<Eigen::Vector2d> goal;  ///< A goal the world gives (a circle swap's) [m].
 };
 
 /**

@@ -14,6 +14,7 @@
 #include "jetbot_rl/task_capabilities.h"
 #include "jetbot_rl/task_observer.h"
 #include "physics_model.h"
+#include "robot_team.h"
 #include "scan_sensor.h"
 #include "thread_pool.h"
 #include "world_shapes.h"
@@ -53,7 +54,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
       movers_ = std::make_unique<MoverSet>(config_.movers, *world_, config_.num_envs, config_.seed);
     }
   }
-  const int n = config_.num_envs;
+  const int n = config_.numRows();
   if (scanner) {
     scan_ = std::make_unique<ScanSensor>(*scanner, world_.get(), n, config_.seed);
     sensors_.push_back(scan_.get());
@@ -68,6 +69,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
   const int num_obstacles = config_.world.obstacleSlots();
   const int num_movers = config_.movers.count();
+  const int num_peers = config_.team.robots_per_env - 1;
 
   const int workers = std::min(config_.resolvedThreads(), n);
   pool_ = std::make_unique<ThreadPool>(workers);
@@ -75,13 +77,18 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   envs_.resize(n);
   // Each thread builds its scratch and its block's envs, in parallel, so that their memory comes
   // from its own allocator arena and is first touched by the thread that steps it.
-  pool_->run(workers, [this, n, num_obstacles, num_movers](int w) {
+  pool_->run(workers, [this, n, num_obstacles, num_movers, num_peers](int w) {
     contexts_[w] = std::make_unique<WorkerContext>();
     for (int e = pool_->firstItemOf(w, n); e < pool_->firstItemOf(w + 1, n); ++e) {
       envs_[e] = std::make_unique<EnvPhysics>(*physics_, *contexts_[w], world_shapes_.get(),
-                                              num_obstacles, num_movers);
+                                              num_obstacles, num_movers, num_peers);
     }
   });
+  if (world_ && (num_peers > 0 || config_.team.swap_radius > 0.0)) {
+    team_ = std::make_unique<RobotTeam>(config_.team, *world_, config_.num_envs,
+                                        robot_->footprintRadius(), envs_[0]->robotTop());
+    for (auto& env : envs_) env->setPeers(team_->footprints());
+  }
   for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
     joint_names_.push_back(robot_->bodies()[b].joint_name);
     dof_of_joint_.push_back(-1);
@@ -124,13 +131,18 @@ const std::vector<float>& BatchedEnv::actionHigh() const { return actions_layout
 const ScannerSpec* BatchedEnv::scanner() const { return scan_ ? &scan_->spec() : nullptr; }
 
 const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
-  const int n = config_.num_envs;
+  const int n = config_.numRows();
   checkActions(*actions_layout_, n, actions, count);
   actionsToTargets(*actions_layout_, n, wheel_low_.size(), actions, randomizer_->noisesActions(),
                    actions_.data(), targets_.data());
   // An env's result does not depend on the thread that steps it: the thread lends it its
   // solver, which keeps nothing between envs.
-  pool_->runStealing(n, [this](int e, int w) { stepEnv(e, *contexts_[w]); });
+  // The robots of one env are stepped by one thread (stepTeam()).
+  if (team_) {
+    pool_->runStealing(config_.num_envs, [this](int g, int w) { stepTeam(g, *contexts_[w]); });
+  } else {
+    pool_->runStealing(n, [this](int e, int w) { stepEnv(e, *contexts_[w]); });
+  }
   ++result_.step;
 
   result_.reset_env_ids.clear();
@@ -152,7 +164,12 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
 }
 
 void BatchedEnv::stepEnv(int e, WorkerContext& context) {
-  const int last_step = config_.maxEpisodeLength() - 1;
+  stepPhysics(e, context);
+  sensePhysics(e);
+  finishStep(e);
+}
+
+void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
   EnvPhysics& physics = *envs_[e];
   physics.useContext(context);
   float* targets = &targets_[static_cast<std::size_t>(e) * wheel_low_.size()];
@@ -168,13 +185,30 @@ void BatchedEnv::stepEnv(int e, WorkerContext& context) {
       physics.moveMovers(movers_->bodies(e), movers_->nearRobot(e));
       physics.step(config_.physics_dt);
     }
+  } else if (team_) {
+    // The other robots drive on from where they were when the step began (stepTeam()).
+    for (int k = 0; k < config_.decimation; ++k) {
+      physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt, config_.controlDt(), true),
+                        team_->near(e));
+      physics.step(config_.physics_dt);
+    }
   } else {
     for (int k = 0; k < config_.decimation; ++k) physics.step(config_.physics_dt);
   }
   ++result_.episode_steps[e];
-  collided_[e] = physics.collidedWithMover() ? kHitMover : physics.collided() ? kHitWorld : 0;
-  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, sensedEnv(e));
+  collided_[e] = physics.collidedWithPeer()    ? kHitRobot
+                 : physics.collidedWithMover() ? kHitMover
+                 : physics.collided()          ? kHitWorld
+                                               : 0;
+}
 
+void BatchedEnv::sensePhysics(int e) {
+  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, sensedEnv(e));
+}
+
+void BatchedEnv::finishStep(int e) {
+  const int last_step = config_.maxEpisodeLength() - 1;
+  EnvPhysics& physics = *envs_[e];
   // Isaac Lab order: dones, then rewards, then reset, then observations.
   RootState state = physics.rootState();
   diverged_[e] = physics.divergence();
@@ -211,7 +245,9 @@ void BatchedEnv::resetEnv(int env) {
   EnvPhysics& physics = *envs_[env];
   physics.reset();
   if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], physics);
-  if (world_) {
+  if (team_) {
+    placeTeamRobot(env);
+  } else if (world_) {
     // The layout from the env's own stream: its start, the task's goal, the obstacles.
     EnvLayout& layout = layouts_[env];
     world_->drawLayout(rngs_[env], env, curriculum_.difficulty(env), drawer_, layout);
@@ -232,7 +268,11 @@ void BatchedEnv::resetEnv(int env) {
 }
 
 SensedEnv BatchedEnv::sensedEnv(int env) const {
-  return {*envs_[env], layouts_[env], movers_ ? &movers_->bodies(env) : nullptr};
+  // The other robots of its world are seen as movers are, where they are now.
+  const std::vector<Obstacle>* moving = movers_ ? &movers_->bodies(env)
+                                        : team_ ? &team_->peers(env, 0.0, 0.0, false)
+                                                : nullptr;
+  return {*envs_[env], layouts_[env], moving};
 }
 
 void BatchedEnv::senseEnv(int env) {
@@ -240,6 +280,7 @@ void BatchedEnv::senseEnv(int env) {
   senses.scan = scan_ ? scan_->ranges(env) : nullptr;
   senses.collided = collided_[env] != 0;
   senses.collided_with_mover = collided_[env] == kHitMover;
+  senses.collided_with_robot = collided_[env] == kHitRobot;
   senses.action = &actions_[static_cast<std::size_t>(env) * actionDim()];
   task_->sense(env, senses);
 }
@@ -247,7 +288,7 @@ void BatchedEnv::senseEnv(int env) {
 const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
                                     std::optional<std::uint64_t> seed,
                                     const std::vector<std::uint32_t>& episode_steps) {
-  const int n = config_.num_envs;
+  const int n = config_.numRows();
   std::vector<std::uint8_t> selected(n, env_ids.empty() ? 1 : 0);
   for (std::uint32_t id : env_ids) {
     std::ostringstream s;
@@ -276,6 +317,10 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
     }
   }
   for (EnvSensor* sensor : sensors_) sensor->forgetNewReadings();
+  // Robots reset together start free of each other, whatever they did before.
+  for (int e = 0; team_ && e < n; ++e) {
+    if (selected[e]) team_->forget(e);
+  }
   for (int e = 0; e < n; ++e) {
     if (!selected[e]) continue;
     if (seed) {
@@ -285,6 +330,11 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
       if (movers_) movers_->reseed(e, *seed);
     }
     resetEnv(e);
+  }
+  // Each sees the others where they started (the first ones placed saw the later ones not yet).
+  for (int e = 0; team_ && e < n; ++e) {
+    if (!selected[e]) continue;
+    for (EnvSensor* sensor : sensors_) sensor->afterReset(e, sensedEnv(e));
   }
   // Starting steps are given in env_ids order, which need not be ascending.
   for (std::size_t i = 0; i < episode_steps.size(); ++i) {
@@ -347,9 +397,9 @@ BatchSpec BatchedEnv::spec() const {
 }
 
 void BatchedEnv::checkEnv(int env) const {
-  if (env < 0 || env >= config_.num_envs) {
+  if (env < 0 || env >= numEnvs()) {
     std::ostringstream s;
-    s << "env " << env << " is out of range [0, " << config_.num_envs << ")";
+    s << "env " << env << " is out of range [0, " << numEnvs() << ")";
     throw InputError(s.str());
   }
 }
@@ -373,6 +423,7 @@ void BatchedEnv::setRootState(int env, const RootState& state) {
                      ": values must be finite and the orientation a non-zero quaternion");
   }
   envs_[env]->setRootState(state);
+  if (team_) team_->capture(env, *envs_[env]);  // the others see it there
 }
 
 }  // namespace jetbot_rl

@@ -8,6 +8,41 @@
 
 namespace jetbot_rl {
 
+namespace {
+
+/// Several robots share one world: its obstacles and movers must be the same for all of them,
+/// and each needs a start of its own.
+void checkTeamRules(const EnvConfig& config) {
+  const int k = config.team.robots_per_env;
+  const bool swap = config.team.swap_radius > 0.0;
+  if (k == 1 && !swap) return;
+  // Name the field that asked for it.
+  const auto refuse = [&](const std::string& why) {
+    if (k > 1) throwInvalid("robots_per_env", k, why);
+    throwInvalid("swap_radius", config.team.swap_radius, why);
+  };
+  const long long rows = static_cast<long long>(config.num_envs) * k;
+  if (rows > 1000000)
+    refuse("num_envs x robots_per_env = " + std::to_string(rows) + ": must be <= 1000000");
+  const WorldConfig& w = config.world;
+  if (!w.enabled()) refuse("needs a world: give world/arena_size, world/map or world/gazebo_world");
+  if (w.num_boxes + w.num_cylinders > 0) {
+    refuse(
+        "needs world/num_boxes and world/num_cylinders 0: each robot would draw its own obstacles");
+  }
+  if (!w.families.empty()) refuse("needs world/families []: each robot would draw its own layout");
+  if (config.movers.count() > 0) {
+    refuse("needs movers/num_people and movers/num_carts 0: movers walk per robot, not per world");
+  }
+  if (!w.random_start && !swap) {
+    refuse(
+        "needs world/random_start true or swap_radius > 0: K robots cannot all start at "
+        "world/spawn");
+  }
+}
+
+}  // namespace
+
 void checkFieldRules(const EnvConfig& config) {
   checkFieldRules(config.world);
   checkFieldRules(config.scan);
@@ -16,6 +51,7 @@ void checkFieldRules(const EnvConfig& config) {
                  config.movers.count(),
                  "movers walk in a world: give world/arena_size, world/map or world/gazebo_world");
   }
+  checkTeamRules(config);
   if (config.twist_reverse_speed < 0.0 && config.twist_reverse_speed != -1.0) {
     throwInvalid("twist_reverse_speed", config.twist_reverse_speed,
                  "must be -1 (as fast as forwards) or >= 0 m/s");

@@ -1,12 +1,12 @@
-// An env's movers in its Bullet world (EnvPhysics): kinematic rigid bodies. Bullet derives a
-// kinematic body's velocity from its last two poses, so that a mover pushes the robot as it
-// walks; nothing pushes a mover.
+// An env's movers and the other robots of its world in its Bullet world (EnvPhysics): kinematic
+// rigid bodies. Bullet derives a kinematic body's velocity from its last two poses, so that a
+// mover pushes the robot as it walks; nothing pushes a mover.
 #include "env_physics.h"
 #include "world_shapes.h"
 
 namespace jetbot_rl {
 
-void EnvPhysics::addMovers(int count) {
+void EnvPhysics::addKinematic(int count, int user_index) {
   for (int k = 0; k < count; ++k) {
     // A placeholder shape of its own (the obstacles' are remade with their layouts).
     btTransform pose;
@@ -14,7 +14,7 @@ void EnvPhysics::addMovers(int count) {
     auto body = std::make_unique<btRigidBody>(info);
     body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body->forceActivationState(ISLAND_SLEEPING);
-    body->setUserIndex(kMoverUserIndex);
+    body->setUserIndex(user_index);
     body->setWorldTransform(pose);
     body->setInterpolationWorldTransform(pose);
     world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
@@ -32,42 +32,45 @@ void EnvPhysics::park(btRigidBody& body) {
   world_->updateSingleAabb(&body);
 }
 
-void EnvPhysics::setMovers(const std::vector<Obstacle>& movers) {
-  for (std::size_t k = 0; k < movers_.size(); ++k) {
-    btRigidBody& body = *movers_[k];
-    if (k < movers.size() && movers[k].placed) {
+void EnvPhysics::setKinematic(std::size_t first, std::size_t count,
+                              const std::vector<Obstacle>& shapes) {
+  for (std::size_t k = 0; k < count; ++k) {
+    btRigidBody& body = *movers_[first + k];
+    if (k < shapes.size() && shapes[k].placed) {
       btTransform pose;
-      mover_shapes_[k] = makeObstacleShape(movers[k], pose);
-      body.setCollisionShape(mover_shapes_[k].get());
+      mover_shapes_[first + k] = makeObstacleShape(shapes[k], pose);
+      body.setCollisionShape(mover_shapes_[first + k].get());
     }
     world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
         body.getBroadphaseHandle(), dispatcher_.get());
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
-    // Parked until it comes near the robot (moveMovers()).
+    // Parked until it comes near the robot (moveKinematic()).
     park(body);
-    mover_awake_[k] = 0;
+    mover_awake_[first + k] = 0;
   }
 }
 
-void EnvPhysics::moveMovers(const std::vector<Obstacle>& movers,
-                            const std::vector<std::uint8_t>& near) {
-  for (std::size_t k = 0; k < movers_.size() && k < movers.size(); ++k) {
-    btRigidBody& body = *movers_[k];
-    if (!movers[k].placed || !near[k]) {
+void EnvPhysics::moveKinematic(std::size_t first, std::size_t count,
+                               const std::vector<Obstacle>& bodies,
+                               const std::vector<std::uint8_t>& near) {
+  for (std::size_t k = 0; k < count && k < bodies.size(); ++k) {
+    btRigidBody& body = *movers_[first + k];
+    std::uint8_t& awake = mover_awake_[first + k];
+    if (!bodies[k].placed || !near[k]) {
       // Out of the robot's reach: parked, so that no body stays where it walked away from.
-      if (mover_awake_[k]) park(body);
-      mover_awake_[k] = 0;
+      if (awake) park(body);
+      awake = 0;
       continue;
     }
-    const Obstacle& m = movers[k];
+    const Obstacle& m = bodies[k];
     btTransform& pose = body.getWorldTransform();
-    if (!mover_awake_[k]) {
+    if (!awake) {
       // Where it is now, at rest: the jump from where it was parked is no velocity.
       pose = planar(m.center, m.yaw, 0.5 * m.height);
       body.setInterpolationWorldTransform(pose);
       body.forceActivationState(DISABLE_DEACTIVATION);
-      mover_awake_[k] = 1;
+      awake = 1;
       continue;
     }
     // A person's rotation never changes; a cart's with its heading.

@@ -37,13 +37,14 @@ constexpr int kObstacleObjects = 32;
 }  // namespace
 
 EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes,
-                       int num_obstacles, int num_movers)
+                       int num_obstacles, int num_movers, int num_peers)
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(num_movers > 0 ? static_cast<btBroadphaseInterface*>(new btDbvtBroadphase())
-                                 : new btSimpleBroadphase(
-                                       static_cast<int>(model.bodies().size()) + 1 +
+      broadphase_(
+          num_movers + num_peers > 0
+              ? static_cast<btBroadphaseInterface*>(new btDbvtBroadphase())
+              : new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1 +
                                        (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
                                        (num_obstacles > kObstacleObjects ? 1 : num_obstacles))),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
@@ -96,7 +97,9 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
       obstacles_.push_back(addStatic(shape, pose));
     }
   }
-  addMovers(num_movers);
+  num_movers_ = static_cast<std::size_t>(num_movers);
+  addKinematic(num_movers, kMoverUserIndex);
+  addKinematic(num_peers, kPeerUserIndex);
 
   const auto& bodies = model.bodies();
   const int links = static_cast<int>(bodies.size()) - 1;
@@ -209,7 +212,7 @@ void EnvPhysics::reset() {
   }
   std::fill(targets_.begin(), targets_.end(), 0.0f);
   std::fill(integral_.begin(), integral_.end(), 0.0);
-  collided_ = hit_mover_ = false;
+  collided_ = hit_mover_ = hit_peer_ = false;
 }
 
 void EnvPhysics::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
@@ -284,7 +287,18 @@ void EnvPhysics::step(double dt) {
     }
   }
   if (!statics_.empty() || !obstacles_.empty()) collided_ = collided_ || touches(kWorldUserIndex);
-  if (!movers_.empty()) hit_mover_ = hit_mover_ || touches(kMoverUserIndex);
+  if (num_movers_ > 0) hit_mover_ = hit_mover_ || touches(kMoverUserIndex);
+  if (movers_.size() > num_movers_) hit_peer_ = hit_peer_ || touches(kPeerUserIndex);
+}
+
+double EnvPhysics::robotTop() const {
+  btScalar top = 0;
+  for (const auto& c : colliders_) {
+    btVector3 low, high;
+    c->getCollisionShape()->getAabb(c->getWorldTransform(), low, high);
+    top = std::max(top, high.z());
+  }
+  return static_cast<double>(top);
 }
 
 btTransform EnvPhysics::comPose(int body) const {

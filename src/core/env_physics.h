@@ -27,6 +27,7 @@ constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
 constexpr int kWorldGroup = 64;
 constexpr int kWorldUserIndex = 1;  // marks the world's static collision objects
 constexpr int kMoverUserIndex = 2;  // marks the movers' kinematic bodies
+constexpr int kPeerUserIndex = 3;   // marks the other robots' kinematic stand-ins
 // Where an obstacle or a mover left out of an episode waits, far below the ground.
 constexpr btScalar kParked = -1000;
 
@@ -58,9 +59,10 @@ struct PhysicalDraw {
 class EnvPhysics {
  public:
   /// With `shapes`, the world's static geometry (map, walls) is added, `num_obstacles`
-  /// obstacle slots for setObstacles() and `num_movers` kinematic bodies for setMovers().
+  /// obstacle slots for setObstacles(), `num_movers` kinematic bodies for setMovers() and
+  /// `num_peers` for setPeers() (the other robots of its world).
   EnvPhysics(const PhysicsModel& model, WorkerContext& context, const WorldShapes* shapes = nullptr,
-             int num_obstacles = 0, int num_movers = 0);
+             int num_obstacles = 0, int num_movers = 0, int num_peers = 0);
   ~EnvPhysics();
   EnvPhysics(const EnvPhysics&) = delete;
   EnvPhysics& operator=(const EnvPhysics&) = delete;
@@ -78,17 +80,30 @@ class EnvPhysics {
   void setObstacles(const std::vector<Obstacle>& obstacles);
   /// Gives the movers their shapes for an episode (as many as num_movers; one not placed is
   /// left out); they wait parked until moveMovers() finds them near the robot.
-  void setMovers(const std::vector<Obstacle>& movers);
+  void setMovers(const std::vector<Obstacle>& movers) { setKinematic(0, num_movers_, movers); }
   /// Moves the movers marked in `near` to their poses at the end of the next physics step: it
   /// pushes the robot with the velocity that takes them there. The others are parked below the
   /// ground, asleep (no work at a physics step), until they are near again.
-  void moveMovers(const std::vector<Obstacle>& movers, const std::vector<std::uint8_t>& near);
-  /// True when the robot touched the map, a wall, an obstacle or a mover in a physics step since
-  /// the last clearCollided() (reset() clears it too).
-  bool collided() const { return collided_ || hit_mover_; }
+  void moveMovers(const std::vector<Obstacle>& movers, const std::vector<std::uint8_t>& near) {
+    moveKinematic(0, num_movers_, movers, near);
+  }
+  /// The other robots of its world, as movers are: their footprints (as many as num_peers),
+  /// parked until movePeers() finds them near.
+  void setPeers(const std::vector<Obstacle>& peers) {
+    setKinematic(num_movers_, movers_.size() - num_movers_, peers);
+  }
+  /// Moves the other robots' stand-ins as moveMovers() moves the movers.
+  void movePeers(const std::vector<Obstacle>& peers, const std::vector<std::uint8_t>& near) {
+    moveKinematic(num_movers_, movers_.size() - num_movers_, peers, near);
+  }
+  /// True when the robot touched the map, a wall, an obstacle, a mover or another robot in a
+  /// physics step since the last clearCollided() (reset() clears it too).
+  bool collided() const { return collided_ || hit_mover_ || hit_peer_; }
   /// True when one of those touches was with a mover.
   bool collidedWithMover() const { return hit_mover_; }
-  void clearCollided() { collided_ = hit_mover_ = false; }
+  /// True when one of those touches was with another robot.
+  bool collidedWithPeer() const { return hit_peer_; }
+  void clearCollided() { collided_ = hit_mover_ = hit_peer_ = false; }
   /// Makes the next step()s use `context`'s solver (the stepping thread's own).
   void useContext(WorkerContext& context);
   /// Sets the dof velocity targets [rad/s], already clamped to the joint limits.
@@ -116,6 +131,8 @@ class EnvPhysics {
   /// Velocity of the root link frame's origin [m/s] and angular velocity [rad/s], both in the
   /// root link frame.
   void rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
+  /// Height of the robot's highest point above the ground (its colliders' bounding boxes) [m].
+  double robotTop() const;
   /// Contact points of the last collision detection, and the pairs they belong to.
   int contactPoints(int* pairs = nullptr) const;
 
@@ -126,8 +143,13 @@ class EnvPhysics {
   /// A placeholder obstacle shape (kept in `owner`) and its `pose` far below the ground.
   static btCollisionShape* parkedShape(btTransform& pose,
                                        std::vector<std::unique_ptr<btCollisionShape>>& owner);
-  /// Adds `count` kinematic mover bodies, parked until setMovers().
-  void addMovers(int count);
+  /// Adds `count` kinematic bodies marked `user_index`, parked until setKinematic().
+  void addKinematic(int count, int user_index);
+  /// Gives kinematic bodies first.. their `shapes` (one not placed keeps its last) and parks them.
+  void setKinematic(std::size_t first, std::size_t count, const std::vector<Obstacle>& shapes);
+  /// Moves kinematic bodies first.. to `bodies` where `near`, parks the others.
+  void moveKinematic(std::size_t first, std::size_t count, const std::vector<Obstacle>& bodies,
+                     const std::vector<std::uint8_t>& near);
   /// Puts a mover far below the ground, asleep: it touches nothing and costs nothing.
   void park(btRigidBody& body);
   /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
@@ -158,11 +180,13 @@ class EnvPhysics {
   std::vector<std::unique_ptr<btCollisionShape>> obstacle_shapes_;
   // With many obstacle slots: one compound of the placed obstacles (obstacles_ holds its object).
   std::unique_ptr<btCompoundShape> obstacle_compound_;
-  // Kinematic bodies (env_movers.cpp) and their shapes, remade at each episode.
+  // Kinematic bodies (env_movers.cpp): the movers, then the other robots; their shapes, remade
+  // at each episode.
+  std::size_t num_movers_ = 0;
   std::vector<std::unique_ptr<btRigidBody>> movers_;
   std::vector<std::unique_ptr<btCollisionShape>> mover_shapes_;
   std::vector<std::uint8_t> mover_awake_;  // per mover: moved in the physics steps
-  bool collided_ = false, hit_mover_ = false;
+  bool collided_ = false, hit_mover_ = false, hit_peer_ = false;
 };
 
 }  // namespace jetbot_rl

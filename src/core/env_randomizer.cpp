@@ -34,7 +34,7 @@ int drawIn(const std::vector<int>& range, Rng& rng) {
 }  // namespace
 
 EnvRandomizer::EnvRandomizer(const EnvConfig& config, const PhysicsModel& model, int obs_dim)
-    : num_envs_(config.num_envs),
+    : num_envs_(config.numRows()),
       num_dofs_(static_cast<int>(model.dofs().size())),
       config_(config.randomization),
       motor_(config.motor),

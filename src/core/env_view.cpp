@@ -19,8 +19,9 @@ Eigen::Vector3d EnvView::origin() const {
   const int rows = (n + per_row - 1) / per_row;
   const int cols = (n + rows - 1) / rows;
   const double spacing = batch_->config_.env_spacing;
-  const int row = env_ / cols;
-  const int col = env_ % cols;
+  const int env = env_ / batch_->config_.team.robots_per_env;  // the robots of an env share it
+  const int row = env / cols;
+  const int col = env % cols;
   return {0.5 * spacing * (rows - 1) - row * spacing, col * spacing - 0.5 * spacing * (cols - 1),
           0.0};
 }

@@ -212,7 +212,15 @@ void NavigationTask::layoutDrawn(int env, const WorldModel& world, const EnvLayo
 
 bool NavigationTask::drawInWorld(int env, Rng& rng, const WorldModel& world,
                                  const WorldDraft& draft, std::vector<Eigen::Vector2d>& keep_free) {
-  const bool found = drawGoalAround(env, rng, draft.start, &world, &draft);
+  bool found = true;
+  if (draft.goal) {  // the world's (a circle swap's): nothing drawn
+    goals_[env] = *draft.goal;
+    last_distance_[env] = (*draft.goal - draft.start).norm();
+    position_[env] = draft.start;
+    trackers_[env].reset({draft.start, *draft.goal});
+  } else {
+    found = drawGoalAround(env, rng, draft.start, &world, &draft);
+  }
   drawn_[env] = 1;
   keep_free.push_back(goals_[env]);
   return found;
@@ -272,7 +280,10 @@ bool NavigationTask::terminated(int env, const RootState& state) const {
   measured.root = state;
   measured.goal = goals_[env];
   if (senses_[env].collided) {
-    o = senses_[env].collided_with_mover ? Outcome::kCollisionMover : Outcome::kCollision;
+    // A robot or a mover among what it touched names the collision; else it was the world.
+    o = senses_[env].collided_with_robot   ? Outcome::kCollisionRobot
+        : senses_[env].collided_with_mover ? Outcome::kCollisionMover
+                                           : Outcome::kCollision;
   } else if (observer_.reached(measured)) {
     o = Outcome::kSuccess;
   }
@@ -297,7 +308,9 @@ float NavigationTask::reward(int env, const RootState& state) const {
   last_distance_[env] = d;
   const auto o = static_cast<Outcome>(outcome_[env]);
   if (o == Outcome::kSuccess) r += config_.goal_reward;
-  if (o == Outcome::kCollision || o == Outcome::kCollisionMover) r -= config_.collision_penalty;
+  if (o == Outcome::kCollision || o == Outcome::kCollisionMover || o == Outcome::kCollisionRobot) {
+    r -= config_.collision_penalty;
+  }
   return static_cast<float>(r);
 }
 

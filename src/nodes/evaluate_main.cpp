@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     const int quota = episodes > 0 ? (episodes + envs - 1) / envs : 0;
     std::vector<int> done(envs, 0);
     std::int64_t outcome_count[3] = {0, 0, 0}, episode_steps = 0, counted = 0, full = 0;
-    std::int64_t mover_hits = 0;
+    std::int64_t mover_hits = 0, robot_hits = 0;
     const int obs_dim = env.obsDim();
     std::vector<double> obs_sum(obs_dim, 0.0), obs_abs_sum(obs_dim, 0.0);
     std::int64_t obs_samples = 0;
@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
         if (quota == 0 || done[e] >= quota) continue;
         ++outcome_count[std::min<std::uint8_t>(r.outcomes[i], 2)];
         if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kCollisionMover)) ++mover_hits;
+        if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kCollisionRobot)) ++robot_hits;
         episode_steps += lengths[e] + 1;
         ++counted;
         if (++done[e] == quota) ++full;
@@ -112,6 +113,7 @@ int main(int argc, char** argv) {
       std::printf("success_rate=%.4f\ncollision_rate=%.4f\ntimeout_rate=%.4f\n",
                   outcome_count[1] / n, outcome_count[2] / n, outcome_count[0] / n);
       std::printf("mover_collision_rate=%.4f\n", mover_hits / n);  // of collision_rate
+      std::printf("robot_collision_rate=%.4f\n", robot_hits / n);  // of collision_rate
       std::printf("mean_episode_steps=%.1f\n", episode_steps / n);
     }
   } catch (const std::exception& e) {

@@ -85,6 +85,7 @@ std::vector<Row> envRows() {
   std::vector<Row> rows = rowsWithout(rowsOf(EnvConfig{}), RandomizationConfig{});
   rows = rowsWithout(std::move(rows), MotorModelConfig{});
   rows = rowsWithout(std::move(rows), MoverConfig{});
+  rows = rowsWithout(std::move(rows), TeamConfig{});
   return rowsWithout(rowsWithout(std::move(rows), WorldConfig{}), ScannerConfig{});
 }
 
@@ -97,6 +98,7 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"motor", [] { return rowsOf(MotorModelConfig{}); }},
       {"world", [] { return rowsOf(WorldConfig{}); }},
       {"movers", [] { return rowsOf(MoverConfig{}); }},
+      {"team", [] { return rowsOf(TeamConfig{}); }},
       {"scan", [] { return rowsOf(ScannerConfig{}); }},
       {"env_node", [] { return rowsWithout(rowsOf(NodeParams{}), EnvSetup{}); }},
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},

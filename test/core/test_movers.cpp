@@ -12,11 +12,7 @@
 namespace jetbot_rl {
 namespace {
 
-RobotModelConstPtr lidar() {
-  static const RobotModelConstPtr model =
-      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_lidar.urdf");
-  return model;
-}
+RobotModelConstPtr lidar() { return test::lidarJetbot(); }
 
 /// The navigation arena (4 x 4 m, three boxes, two cylinders) with `people` people.
 EnvConfig peopleConfig(int num_envs, int people, MoverRule rule, int threads = 1) {

@@ -47,6 +47,13 @@ inline RobotModelConstPtr tribot() {
   return model;
 }
 
+/// urdf/jetbot_lidar.urdf: the Jetbot with a 360-sample laser scanner, loaded once.
+inline RobotModelConstPtr lidarJetbot() {
+  static const RobotModelConstPtr model =
+      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_lidar.urdf");
+  return model;
+}
+
 /// `text` with its one occurrence of `from` replaced by `to` (a failure when absent).
 inline std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);

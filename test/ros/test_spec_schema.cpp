@@ -112,7 +112,7 @@ TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
   EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
 }
 
-TEST(StepConversion, AMoverCollisionCrossesAndAnUnknownOutcomeIsRefused) {
+TEST(StepConversion, MoverAndRobotCollisionsCrossAndAnUnknownOutcomeIsRefused) {
   const BatchSpec spec = sampleSpec();
   StepResult r;
   r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
@@ -120,22 +120,24 @@ TEST(StepConversion, AMoverCollisionCrossesAndAnUnknownOutcomeIsRefused) {
   r.terminated.assign(spec.num_envs, 0);
   r.truncated.assign(spec.num_envs, 0);
   r.episode_steps.assign(spec.num_envs, 0);
-  r.reset_env_ids = {2, 5};
-  r.final_observations.assign(2 * spec.obs_dim, 0.0f);
+  r.reset_env_ids = {2, 5, 6};
+  r.final_observations.assign(3 * spec.obs_dim, 0.0f);
   r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
-                static_cast<std::uint8_t>(Outcome::kCollision)};
+                static_cast<std::uint8_t>(Outcome::kCollision),
+                static_cast<std::uint8_t>(Outcome::kCollisionRobot)};
   EnvStep msg;
   toMsg(r, spec.num_envs, spec.obs_dim, ros::Time(1.0), msg);
   EXPECT_EQ(msg.outcomes[0], EnvStep::OUTCOME_COLLISION_MOVER);
+  EXPECT_EQ(msg.outcomes[2], EnvStep::OUTCOME_COLLISION_ROBOT);
   StepResult back;
   fromMsg(msg, spec, back);
   EXPECT_EQ(back.outcomes, r.outcomes);
-  msg.outcomes[1] = EnvStep::OUTCOME_COLLISION_MOVER + 1;
+  msg.outcomes[1] = EnvStep::OUTCOME_COLLISION_ROBOT + 1;
   try {
     fromMsg(msg, spec, back);
-    ADD_FAILURE() << "outcome 4 accepted";
+    ADD_FAILURE() << "outcome 5 accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("outcomes holds 4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outcomes holds 5"), std::string::npos) << e.what();
   }
 }
 

@@ -49,7 +49,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   const EnvSpec spec = toMsg(env_->spec());
   spec_pub_ = pnh_.advertise<EnvSpec>("spec", 1, /*latch=*/true);
   spec_pub_.publish(spec);
-  const RobotNames names(params_.env_prefix, params_.robot_prefix);
+  const RobotNames names(params_.env_prefix, params_.robot_prefix,
+                         params_.setup.env.team.robots_per_env);
   outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_));
   if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
   outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,

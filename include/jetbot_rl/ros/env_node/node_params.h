@@ -36,13 +36,13 @@ struct NodeParams {
   std::string robot_prefix;
 };
 
-/// Envs with the robot view: robot_view_envs clamped to num_envs.
+/// Rows with the robot view: robot_view_envs clamped to the rows (num_envs x robots_per_env).
 inline int robotViewEnvs(const NodeParams& p) {
-  return std::min(p.robot_view_envs, p.setup.env.num_envs);
+  return std::min(p.robot_view_envs, p.setup.env.numRows());
 }
-/// Envs with tf frames: the tf_envs and the robot envs, clamped to num_envs.
+/// Rows with tf frames: the tf_envs and the robot envs, clamped to the rows.
 inline int tfEnvs(const NodeParams& p) {
-  return std::min(std::max(p.tf_envs, p.robot_view_envs), p.setup.env.num_envs);
+  return std::min(std::max(p.tf_envs, p.robot_view_envs), p.setup.env.numRows());
 }
 
 template <typename C, typename V>
@@ -65,7 +65,8 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
     "Publish ~markers (body box, forward and command arrows) for the tf_envs envs.");
   v("robot_view_envs", c.robot_view_envs, atLeast(0, "", "0: no robot view"),
     "Envs 0..robot_view_envs-1 with the robot view: env_<i>/cmd_vel in, odom, joint_states and tf "
-    "out (clamped to num_envs).");
+    "out (clamped to num_envs); with robots_per_env K, rows (robots) 0..robot_view_envs-1 under "
+    "env_<i / K>/robot_<i % K>/.");
   v("env_prefix", c.env_prefix, AnyValue{},
     "false: env 0's robot view without the env_0/ prefix (cmd_vel, odom, frame odom, ...); "
     "robot_view_envs 1 only.");

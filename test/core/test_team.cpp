@@ -1,0 +1,177 @@
+// Several robots in one world (robots_per_env): the batch has num_envs x K rows, the robots of
+// an env start on its circle and see and hit each other, the same on any thread count; bad
+// parameters are refused naming the field.
+#include <cmath>
+
+#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/rng.h"
+#include "test_util.h"
+
+namespace jetbot_rl {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+RobotModelConstPtr lidar() { return test::lidarJetbot(); }
+
+/// `num_envs` 4 x 4 m arenas, `k` scanning robots each, on a circle of `radius` (0: random
+/// starts).
+EnvConfig teamConfig(int num_envs, int k, double radius, int threads = 1) {
+  EnvConfig c = test::scanningArenaConfig(num_envs, threads);
+  c.team.robots_per_env = k;
+  c.team.swap_radius = radius;
+  return c;
+}
+
+double yawOf(const RootState& s) {
+  const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+/// Puts row `row`'s robot at `p` [m] heading `yaw` [rad], at rest.
+void place(BatchedEnv& env, int row, const Eigen::Vector2d& p, double yaw) {
+  RootState s = env.view(row).rootState();
+  s.position.head<2>() = p;
+  s.orientation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  s.com_linear_velocity.setZero();
+  s.angular_velocity.setZero();
+  env.setRootState(row, s);
+}
+
+TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
+  const int n = 3, k = 5;
+  const double radius = 1.2;
+  BatchedEnv env(lidar(), teamConfig(n, k, radius), test::navigationTask());
+  ASSERT_EQ(env.numEnvs(), n * k);
+  EXPECT_EQ(env.spec().num_envs, n * k);
+  EXPECT_EQ(env.state().observations.size(), static_cast<std::size_t>(n * k * env.obsDim()));
+  const auto& task = dynamic_cast<const NavigationTask&>(env.task());
+  for (int e = 0; e < n; ++e) {
+    for (int r = 0; r < k; ++r) {
+      const int row = e * k + r;
+      // The robots of an env share its origin; envs keep theirs apart.
+      EXPECT_TRUE(env.view(row).origin().isApprox(env.view(e * k).origin())) << "row " << row;
+      if (e > 0) EXPECT_FALSE(env.view(row).origin().isApprox(env.view(0).origin()));
+      const RootState s = env.view(row).rootState();
+      const double a = 2.0 * kPi * r / k;
+      const Eigen::Vector2d own(radius * std::cos(a), radius * std::sin(a));
+      EXPECT_LT((s.position.head<2>() - own).norm(), 1e-6) << "row " << row;
+      EXPECT_LT((task.goal(row) + own).norm(), 1e-9) << "row " << row << ": the opposite point";
+      // Facing the centre (initial_yaw 0).
+      EXPECT_NEAR(std::remainder(yawOf(s) - (a + kPi), 2.0 * kPi), 0.0, 1e-6) << "row " << row;
+    }
+  }
+}
+
+TEST(Team, RobotsSeeEachOtherInTheirScans) {
+  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  const std::vector<float> stop(2 * env.actionDim(), 0.0f);
+  const ScannerSpec& scanner = *env.scanner();
+  const int ahead = static_cast<int>(std::lround(-scanner.min_angle / scanner.angleIncrement()));
+  ASSERT_NEAR(scanner.min_angle + ahead * scanner.angleIncrement(), 0.0, 1e-6);
+  const auto front = [&](int row) { return env.view(row).scan()[ahead]; };
+  place(env, 0, Eigen::Vector2d(-1.0, 0.0), 0.0);
+  place(env, 1, Eigen::Vector2d(0.0, 0.0), kPi);
+  env.step(stop);
+  // Robot 1 stands 1 m ahead of robot 0 (its footprint about 0.1 m), the wall 3 m ahead.
+  const double gap = 1.0 - env.robot().footprintRadius();
+  EXPECT_NEAR(front(0), gap, 0.1);
+  EXPECT_NEAR(front(1), gap, 0.1);
+  place(env, 1, Eigen::Vector2d(-1.0, 1.5), kPi);  // out of the way
+  env.step(stop);
+  EXPECT_GT(front(0), 2.5);
+}
+
+TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
+  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  auto& task = dynamic_cast<NavigationTask&>(env.task());
+  place(env, 0, Eigen::Vector2d(-0.6, 0.0), 0.0);
+  place(env, 1, Eigen::Vector2d(0.6, 0.0), kPi);
+  task.setGoal(0, Eigen::Vector2d(-0.6, 1.5));  // neither is reached on the way
+  task.setGoal(1, Eigen::Vector2d(0.6, -1.5));
+  std::vector<float> ahead(2 * env.actionDim(), 0.0f);
+  for (std::size_t i = 0; i < ahead.size(); ++i) ahead[i] = env.actionHigh()[i % env.actionDim()];
+  std::vector<int> outcome(2, -1);
+  for (int step = 0; step < 100 && (outcome[0] < 0 || outcome[1] < 0); ++step) {
+    const StepResult& r = env.step(ahead);
+    for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
+      if (outcome[r.reset_env_ids[i]] < 0) outcome[r.reset_env_ids[i]] = r.outcomes[i];
+    }
+  }
+  EXPECT_EQ(outcome[0], static_cast<int>(Outcome::kCollisionRobot));
+  EXPECT_EQ(outcome[1], static_cast<int>(Outcome::kCollisionRobot));
+}
+
+TEST(Team, ARobotStartsAnewClearOfTheOthersAndAloneWhenItsRowIsReset) {
+  BatchedEnv env(lidar(), teamConfig(2, 3, 1.0), test::navigationTask());
+  // Robot 1 of env 0 parked on robot 0's point: robot 0, reset, takes another point.
+  place(env, 1, Eigen::Vector2d(1.0, 0.0), 0.0);
+  const RootState other_env = env.view(4).rootState();
+  const RootState robot2 = env.view(2).rootState();
+  env.reset({0});
+  const Eigen::Vector2d p = env.view(0).rootState().position.head<2>();
+  EXPECT_NEAR(p.norm(), 1.0, 1e-6) << "on the circle";
+  EXPECT_GE((p - Eigen::Vector2d(1.0, 0.0)).norm(), 0.4) << "clear of robot 1";
+  EXPECT_GE((p - robot2.position.head<2>()).norm(), 0.4) << "clear of robot 2";
+  EXPECT_TRUE(env.view(4).rootState().position.isApprox(other_env.position));
+  EXPECT_TRUE(env.view(2).rootState().position.isApprox(robot2.position));
+}
+
+TEST(Team, TheSameOnAnyThreadCountAndAfterAReseed) {
+  const auto run = [](int threads) {
+    EnvConfig c = teamConfig(4, 5, 1.2, threads);
+    c.randomization.initial_yaw = {-0.5, 0.5};  // a draw at every reset
+    BatchedEnv env(lidar(), c, test::navigationTask());
+    Rng rng(3);
+    std::vector<float> out, actions(env.numEnvs() * env.actionDim());
+    for (int pass = 0; pass < 2; ++pass) {
+      env.reset({}, 11);
+      for (int step = 0; step < 150; ++step) {
+        for (std::size_t i = 0; i < actions.size(); ++i) {
+          actions[i] = static_cast<float>(env.actionHigh()[i % env.actionDim()] * rng.uniform());
+        }
+        const StepResult& r = env.step(actions);
+        out.insert(out.end(), r.observations.begin(), r.observations.end());
+        for (std::uint8_t o : r.outcomes) out.push_back(o);
+      }
+    }
+    return out;
+  };
+  const std::vector<float> one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin())) << "1 and 2 threads differ";
+}
+
+void expectRefused(const EnvConfig& c, const std::string& field) {
+  try {
+    BatchedEnv env(lidar(), c, test::navigationTask());
+    ADD_FAILURE() << "accepted; expected an error naming " << field;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+  }
+}
+
+TEST(Team, BadParametersAreRefusedNamingTheField) {
+  EnvConfig c = teamConfig(1, 3, 1.0);
+  c.movers.num_people = 2;
+  expectRefused(c, "robots_per_env");
+  c = teamConfig(1, 3, 1.0);
+  c.world.num_boxes = 2;
+  expectRefused(c, "robots_per_env");
+  c = teamConfig(1, 3, 0.0);
+  c.world.random_start = false;
+  expectRefused(c, "robots_per_env");
+  c = teamConfig(1, 3, 1.0);
+  c.world.arena_size.clear();
+  expectRefused(c, "robots_per_env");
+  expectRefused(teamConfig(1, 30, 1.0), "robots_per_env");  // 0.21 m apart: they do not fit
+  expectRefused(teamConfig(1, 3, 1.9), "swap_radius");      // the points touch the walls
+  c = teamConfig(1, 3, 0.0);
+  c.team.robots_per_env = 0;
+  expectRefused(c, "robots_per_env");
+}
+
+}  // namespace
+}  // namespace jetbot_rl
