@@ -72,7 +72,7 @@ class BatchedEnv {
   /// The batch after the last step() or reset().
   const StepResult& state() const { return result_; }
 
-  /// Rows of the batch: num_envs x robots_per_env (each robot an agent; docs/world.md).
+  /// Rows of the batch: num_envs x robots_per_env (each robot an agent; docs/team.md).
   int numEnvs() const { return config_.numRows(); }
   int obsDim() const { return obs_dim_; }
   int actionDim() const;

@@ -1,6 +1,6 @@
 #pragma once
 
-// Several robots in one world (docs/world.md, "Several robots in one world"): robots_per_env
+// Several robots in one world (docs/team.md): robots_per_env
 // robots share each env's world, each one row of the batch. One robot per env by default.
 
 #include "jetbot_rl/config_fields.h"
