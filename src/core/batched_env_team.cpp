@@ -11,9 +11,9 @@ namespace jetbot_rl {
 
 void BatchedEnv::stepTeam(int group, WorkerContext& context) {
   const int first = team_->firstRow(group), k = team_->robotsPerEnv();
-  // Every robot's physics from where the others were when the step began, then every scan
-  // where they all are after it; a robot that starts anew is seen there from the next step.
-  for (int e = first; e < first + k; ++e) team_->capture(e, *envs_[e]);
+  // Every robot's physics from where the others were when the step began (captured at the end
+  // of the last step, at a reset and by setRootState()), then every scan where they all are
+  // after it; a robot that starts anew is seen there from the next step.
   for (int e = first; e < first + k; ++e) stepPhysics(e, context);
   for (int e = first; e < first + k; ++e) team_->capture(e, *envs_[e]);
   for (int e = first; e < first + k; ++e) sensePhysics(e);
