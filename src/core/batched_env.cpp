@@ -187,9 +187,9 @@ void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
     }
   } else if (team_) {
     // The other robots drive on from where they were when the step began (stepTeam()).
+    team_->beginStep(e, config_.controlDt());
     for (int k = 0; k < config_.decimation; ++k) {
-      physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt, config_.controlDt(), true),
-                        team_->near(e));
+      physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt), team_->near(e, k));
       physics.step(config_.physics_dt);
     }
   } else {
@@ -270,7 +270,7 @@ void BatchedEnv::resetEnv(int env) {
 SensedEnv BatchedEnv::sensedEnv(int env) const {
   // The other robots of its world are seen as movers are, where they are now.
   const std::vector<Obstacle>* moving = movers_ ? &movers_->bodies(env)
-                                        : team_ ? &team_->peers(env, 0.0, 0.0, false)
+                                        : team_ ? &team_->peers(env, 0.0)
                                                 : nullptr;
   return {*envs_[env], layouts_[env], moving};
 }

@@ -17,13 +17,22 @@ void EnvPhysics::addKinematic(int count, int user_index) {
     body->setUserIndex(user_index);
     body->setWorldTransform(pose);
     body->setInterpolationWorldTransform(pose);
-    world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
+    // The other robots' stand-ins enter the world when near (moveKinematic()).
+    if (user_index != kPeerUserIndex) world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
     movers_.push_back(std::move(body));
     mover_awake_.push_back(0);
   }
 }
 
-void EnvPhysics::park(btRigidBody& body) {
+void EnvPhysics::park(std::size_t k) {
+  btRigidBody& body = *movers_[k];
+  if (k >= num_movers_) {
+    // The other robots' stand-ins are many and mostly far: each object of a Bullet world costs
+    // every pass over its objects (a cache miss each, at every physics step), so a parked
+    // stand-in leaves the world.
+    if (mover_awake_[k]) world_->removeRigidBody(&body);
+    return;
+  }
   btTransform pose = body.getWorldTransform();
   pose.getOrigin().setZ(kParked);
   body.setWorldTransform(pose);
@@ -41,12 +50,14 @@ void EnvPhysics::setKinematic(std::size_t first, std::size_t count,
       mover_shapes_[first + k] = makeObstacleShape(shapes[k], pose);
       body.setCollisionShape(mover_shapes_[first + k].get());
     }
-    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
-        body.getBroadphaseHandle(), dispatcher_.get());
+    if (body.getBroadphaseHandle()) {
+      world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(
+          body.getBroadphaseHandle(), dispatcher_.get());
+    }
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
     // Parked until it comes near the robot (moveKinematic()).
-    park(body);
+    park(first + k);
     mover_awake_[first + k] = 0;
   }
 }
@@ -59,7 +70,7 @@ void EnvPhysics::moveKinematic(std::size_t first, std::size_t count,
     std::uint8_t& awake = mover_awake_[first + k];
     if (!bodies[k].placed || !near[k]) {
       // Out of the robot's reach: parked, so that no body stays where it walked away from.
-      if (awake) park(body);
+      if (awake) park(first + k);
       awake = 0;
       continue;
     }
@@ -69,6 +80,7 @@ void EnvPhysics::moveKinematic(std::size_t first, std::size_t count,
       // Where it is now, at rest: the jump from where it was parked is no velocity.
       pose = planar(m.center, m.yaw, 0.5 * m.height);
       body.setInterpolationWorldTransform(pose);
+      if (first + k >= num_movers_) world_->addRigidBody(&body, kWorldGroup, kRobotGroup);
       body.forceActivationState(DISABLE_DEACTIVATION);
       awake = 1;
       continue;

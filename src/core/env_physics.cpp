@@ -41,12 +41,12 @@ EnvPhysics::EnvPhysics(const PhysicsModel& model, WorkerContext& context, const 
     : model_(model),
       context_(&context),
       dispatcher_(new LeanDispatcher(model.collisionConfiguration())),
-      broadphase_(
-          num_movers + num_peers > 0
-              ? static_cast<btBroadphaseInterface*>(new btDbvtBroadphase())
-              : new btSimpleBroadphase(static_cast<int>(model.bodies().size()) + 1 +
-                                       (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
-                                       (num_obstacles > kObstacleObjects ? 1 : num_obstacles))),
+      broadphase_(num_movers > 0
+                      ? static_cast<btBroadphaseInterface*>(new btDbvtBroadphase())
+                      : new btSimpleBroadphase(
+                            static_cast<int>(model.bodies().size()) + 1 +
+                            (shapes ? static_cast<int>(shapes->statics().size()) : 0) +
+                            (num_obstacles > kObstacleObjects ? 1 : num_obstacles) + num_peers)),
       world_(new btMultiBodyDynamicsWorld(dispatcher_.get(), broadphase_.get(), &context.solver,
                                           model.collisionConfiguration())),
       ground_(new btCollisionObject()),
@@ -159,6 +159,9 @@ EnvPhysics::~EnvPhysics() {
   world_->removeCollisionObject(ground_.get());
   for (auto& o : statics_) world_->removeCollisionObject(o.get());
   for (auto& o : obstacles_) world_->removeCollisionObject(o.get());
+  for (std::size_t k = 0; k < movers_.size(); ++k) {
+    if (k < num_movers_ || mover_awake_[k]) world_->removeRigidBody(movers_[k].get());
+  }
 }
 
 void EnvPhysics::moveRobot(const Eigen::Vector2d& offset) {

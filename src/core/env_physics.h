@@ -150,8 +150,9 @@ class EnvPhysics {
   /// Moves kinematic bodies first.. to `bodies` where `near`, parks the others.
   void moveKinematic(std::size_t first, std::size_t count, const std::vector<Obstacle>& bodies,
                      const std::vector<std::uint8_t>& near);
-  /// Puts a mover far below the ground, asleep: it touches nothing and costs nothing.
-  void park(btRigidBody& body);
+  /// Puts kinematic body `k` far below the ground, asleep (a mover) or out of the world (another
+  /// robot's stand-in): it touches nothing.
+  void park(std::size_t k);
   /// Adds a placeholder child far below the ground (a compound needs one for its AABB).
   void parkObstacles(btCompoundShape& compound);
   /// True when a contact of the last collision detection joins the robot and an object marked

@@ -12,9 +12,9 @@ namespace jetbot_rl {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// A stand-in is woken this far [m] beyond where the two robots could touch within a control step
-// (0.25 m measured no faster: the stand-ins are not what costs).
-constexpr double kNearMargin = 1.0;
+// A stand-in enters a robot's world this far [m] beyond where the two could touch within a
+// control step at the speeds of its start (what they gain within it is centimetres).
+constexpr double kNearMargin = 0.25;
 
 }  // namespace
 
@@ -33,6 +33,7 @@ RobotTeam::RobotTeam(const TeamConfig& config, const WorldModel& world, int num_
   epoch_.assign(rows, 0);
   peers_.assign(rows, footprints_);
   near_.assign(rows, std::vector<std::uint8_t>(k_ - 1, 0));
+  near_first_ = near_;
   seen_.assign(rows, std::vector<std::uint32_t>(k_ - 1, 0));
   if (config_.swap_radius <= 0.0) return;
   // Every robot's own point must be a start: free of the world, and of its neighbours.
@@ -63,26 +64,36 @@ void RobotTeam::capture(int row, const EnvPhysics& physics) {
   velocity_[row] = s.com_linear_velocity.head<2>();
 }
 
-const std::vector<Obstacle>& RobotTeam::peers(int row, double t, double dt, bool physics) const {
+void RobotTeam::beginStep(int row, double dt) {
   const int first = (row / k_) * k_;
-  std::vector<Obstacle>& peers = peers_[row];
   std::vector<std::uint8_t>& near = near_[row];
+  std::vector<std::uint8_t>& near_first = near_first_[row];
+  const double own_speed = velocity_[row].norm();
   int slot = 0;
   for (int m = first; m < first + k_; ++m) {
     if (m == row) continue;
-    Obstacle& o = peers[slot];
+    const double reach = 2.0 * radius_ + kNearMargin + (velocity_[m].norm() + own_speed) * dt;
+    near[slot] = placed_[m] && (position_[m] - position_[row]).squaredNorm() <= reach * reach;
+    const bool jump = jumped(row, slot, m);  // seen now, near or not
+    near_first[slot] = near[slot] && !jump;
+    ++slot;
+  }
+}
+
+const std::vector<Obstacle>& RobotTeam::peers(int row, double t) const {
+  const int first = (row / k_) * k_;
+  std::vector<Obstacle>& peers = peers_[row];
+  int slot = 0;
+  for (int m = first; m < first + k_; ++m) {
+    if (m == row) continue;
+    Obstacle& o = peers[slot++];
     o.center = position_[m] + t * velocity_[m];
     o.placed = placed_[m] != 0;
-    const double reach =
-        2.0 * radius_ + kNearMargin + (velocity_[m].norm() + velocity_[row].norm()) * dt;
-    near[slot] = (o.center - position_[row]).norm() <= reach;
-    if (physics && jumped(row, slot, m)) near[slot] = 0;
-    ++slot;
   }
   return peers;
 }
 
-bool RobotTeam::jumped(int row, int slot, int m) const {
+bool RobotTeam::jumped(int row, int slot, int m) {
   std::uint32_t& seen = seen_[row][slot];
   if (seen == epoch_[m]) return false;
   seen = epoch_[m];

@@ -42,13 +42,17 @@ class RobotTeam {
   }
   /// Marks `row` as not yet placed: a start drawn now ignores it (a reset of several rows).
   void forget(int row) { placed_[row] = 0; }
-  /// The other robots of `row`'s world, `t` [s] after their capture along their velocities,
-  /// and which of them are near enough to touch it within a control step of `dt` [s]; for
-  /// `physics`, one that started anew since `row`'s last physics step is not near for one
-  /// physics step (its stand-in parked, so that the jump is no velocity). Calls for rows of one
-  /// env come from one thread.
-  const std::vector<Obstacle>& peers(int row, double t, double dt, bool physics) const;
-  const std::vector<std::uint8_t>& near(int row) const { return near_[row]; }
+  /// Once per control step of `dt` [s], before its physics: which of the other robots of
+  /// `row`'s world are near enough to touch it within the step (from their captures), and which
+  /// started anew since `row`'s last step (parked for its first physics step, so that the jump is
+  /// no velocity). Calls for rows of one env come from one thread.
+  void beginStep(int row, double dt);
+  /// The other robots of `row`'s world, `t` [s] after their capture along their velocities.
+  const std::vector<Obstacle>& peers(int row, double t) const;
+  /// The near flags of beginStep() for physics step `substep` of the control step.
+  const std::vector<std::uint8_t>& near(int row, int substep) const {
+    return substep == 0 ? near_first_[row] : near_[row];
+  }
   /// Draws `row`'s start from its stream, clear of the others placed in its world by
   /// world/start_clearance: circle swap (its own point when free, else a free point of the
   /// circle) with `goal` the opposite point and `yaw` facing the centre [rad]; else a free
@@ -59,7 +63,7 @@ class RobotTeam {
  private:
   /// True (once) when the robot `m` in `row`'s peers() slot `slot` started anew since `row`
   /// last saw it.
-  bool jumped(int row, int slot, int m) const;
+  bool jumped(int row, int slot, int m);
   /// Least distance from `p` to the placed robots of `row`'s world other than it [m].
   double mateDistance(int row, const Eigen::Vector2d& p) const;
 
@@ -67,14 +71,15 @@ class RobotTeam {
   const WorldModel& world_;
   int k_;
   double radius_;
-  std::vector<Obstacle> footprints_;                      // K - 1 cylinders
-  std::vector<Eigen::Vector2d> position_;                 // per row [m]
-  std::vector<Eigen::Vector2d> velocity_;                 // per row [m/s]
-  std::vector<std::uint8_t> placed_;                      // per row: reset at least once
-  std::vector<std::uint32_t> epoch_;                      // per row: its starts
-  mutable std::vector<std::vector<Obstacle>> peers_;      // per row: its K - 1 others
-  mutable std::vector<std::vector<std::uint8_t>> near_;   // per row
-  mutable std::vector<std::vector<std::uint32_t>> seen_;  // per row: the others' epochs seen
+  std::vector<Obstacle> footprints_;                   // K - 1 cylinders
+  std::vector<Eigen::Vector2d> position_;              // per row [m]
+  std::vector<Eigen::Vector2d> velocity_;              // per row [m/s]
+  std::vector<std::uint8_t> placed_;                   // per row: reset at least once
+  std::vector<std::uint32_t> epoch_;                   // per row: its starts
+  mutable std::vector<std::vector<Obstacle>> peers_;   // per row: its K - 1 others
+  std::vector<std::vector<std::uint8_t>> near_;        // per row
+  std::vector<std::vector<std::uint8_t>> near_first_;  // per row: near_ less the jumped
+  std::vector<std::vector<std::uint32_t>> seen_;       // per row: the others' epochs seen
 };
 
 }  // namespace jetbot_rl
