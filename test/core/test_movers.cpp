@@ -231,7 +231,7 @@ TEST(Movers, AMoverFarFromTheRobotLeavesNoBodyBehindInThePhysics) {
   BatchedEnv env(lidar(), c, makeTask(velocity));
   const std::vector<float> stop(env.actionDim(), 0.0f);
   const Eigen::Vector2d start = env.view(0).movers()[0].center;
-  const auto robot = [&] { return env.view(0).rootState().position.head<2>(); };
+  const auto robot = [&] { return Eigen::Vector2d(env.view(0).rootState().position.head<2>()); };
   const auto far = [&] {
     const Eigen::Vector2d now = env.view(0).movers()[0].center;
     return (now - start).norm() > 1.5 && (now - robot()).norm() > 2.5;
