@@ -36,7 +36,7 @@ TEST(EnvTf, FramesOfTheFirstEnvs) {
   // Lockstep: tf goes out with steps (at most tf_rate Hz of simulation time), so step until the
   // listener has every frame of env_0 and env_3 (tf_envs = 4).
   auto all_frames = [&]() {
-    for (const std::string& env : {"env_0/", "env_3/"}) {
+    for (const std::string env : {"env_0/", "env_3/"}) {
       for (const std::string& link : kLinks) {
         if (!buffer.canTransform("world", env + link, ros::Time(0))) return false;
       }
