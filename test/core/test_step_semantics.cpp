@@ -90,7 +90,9 @@ TEST(StepSemantics, ResetOfOneEnvLeavesTheOthersBitIdentical) {
     b.step(randomActions(3, s));
     ASSERT_TRUE(bitEqual(envObs(a, 0), envObs(b, 0))) << "step " << s;
     ASSERT_TRUE(bitEqual(envObs(a, 2), envObs(b, 2))) << "step " << s;
-    if (s >= 50) ASSERT_EQ(a.state().episode_steps[1], uint32_t(s - 49));
+    if (s >= 50) {
+      ASSERT_EQ(a.state().episode_steps[1], uint32_t(s - 49));
+    }
   }
 }
 

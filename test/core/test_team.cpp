@@ -53,7 +53,9 @@ TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
       const int row = e * k + r;
       // The robots of an env share its origin; envs keep theirs apart.
       EXPECT_TRUE(env.view(row).origin().isApprox(env.view(e * k).origin())) << "row " << row;
-      if (e > 0) EXPECT_FALSE(env.view(row).origin().isApprox(env.view(0).origin()));
+      if (e > 0) {
+        EXPECT_FALSE(env.view(row).origin().isApprox(env.view(0).origin()));
+      }
       const RootState s = env.view(row).rootState();
       const double a = 2.0 * kPi * r / k;
       const Eigen::Vector2d own(radius * std::cos(a), radius * std::sin(a));
