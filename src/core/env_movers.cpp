@@ -18,7 +18,7 @@ void EnvPhysics::addKinematic(int count, int user_index) {
     body->setWorldTransform(pose);
     body->setInterpolationWorldTransform(pose);
     // The other robots' stand-ins enter the world when near (moveKinematic()).
-    if (user_index != kPeerUserIndex) world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
+    if (!isStandIn(movers_.size())) world_->addRigidBody(body.get(), kWorldGroup, kRobotGroup);
     movers_.push_back(std::move(body));
     mover_awake_.push_back(0);
   }
@@ -26,7 +26,7 @@ void EnvPhysics::addKinematic(int count, int user_index) {
 
 void EnvPhysics::park(std::size_t k) {
   btRigidBody& body = *movers_[k];
-  if (k >= num_movers_) {
+  if (isStandIn(k)) {
     // The other robots' stand-ins are many and mostly far: each object of a Bullet world costs
     // every pass over its objects (a cache miss each, at every physics step), so a parked
     // stand-in leaves the world.
@@ -80,7 +80,7 @@ void EnvPhysics::moveKinematic(std::size_t first, std::size_t count,
       // Where it is now, at rest: the jump from where it was parked is no velocity.
       pose = planar(m.center, m.yaw, 0.5 * m.height);
       body.setInterpolationWorldTransform(pose);
-      if (first + k >= num_movers_) world_->addRigidBody(&body, kWorldGroup, kRobotGroup);
+      if (isStandIn(first + k)) world_->addRigidBody(&body, kWorldGroup, kRobotGroup);
       body.forceActivationState(DISABLE_DEACTIVATION);
       awake = 1;
       continue;

@@ -160,7 +160,7 @@ EnvPhysics::~EnvPhysics() {
   for (auto& o : statics_) world_->removeCollisionObject(o.get());
   for (auto& o : obstacles_) world_->removeCollisionObject(o.get());
   for (std::size_t k = 0; k < movers_.size(); ++k) {
-    if (k < num_movers_ || mover_awake_[k]) world_->removeRigidBody(movers_[k].get());
+    if (!isStandIn(k) || mover_awake_[k]) world_->removeRigidBody(movers_[k].get());
   }
 }
 

@@ -150,6 +150,8 @@ class EnvPhysics {
   /// Moves kinematic bodies first.. to `bodies` where `near`, parks the others.
   void moveKinematic(std::size_t first, std::size_t count, const std::vector<Obstacle>& bodies,
                      const std::vector<std::uint8_t>& near);
+  /// True when kinematic body `k` is another robot's stand-in: in the world only while awake.
+  bool isStandIn(std::size_t k) const { return k >= num_movers_; }
   /// Puts kinematic body `k` far below the ground, asleep (a mover) or out of the world (another
   /// robot's stand-in): it touches nothing.
   void park(std::size_t k);
