@@ -273,7 +273,9 @@ def train(args):
             episode_steps = infos['episode_steps']
             buf_rew[t] = torch.from_numpy(reward)
             if 'outcome' in infos:  # EnvStep.OUTCOME_*, for the envs in _outcome
-                outcomes += np.bincount(infos['outcome'][infos['_outcome']], minlength=3)[:3]
+                counts = np.bincount(infos['outcome'][infos['_outcome']], minlength=6)
+                # 2-4: the world, a mover, a robot; 5: a round's wait (rounds), no episode
+                outcomes += [counts[0], counts[1], counts[2:5].sum()]
             boot = np.zeros(n, dtype=np.float32)
             timed_out = truncated & ~terminated
             cut = (cut_at == env_steps // n + t + 1) & ~terminated & ~truncated

@@ -132,6 +132,13 @@ class BatchedEnv {
   void sensePhysics(int env);
   /// Dones, rewards, the reset of an ended episode, observations (Isaac Lab's order).
   void finishStep(int env);
+  /// Observes row `env` where it is now (with observation noise when configured).
+  void observeRow(int env);
+  /// Rounds: a waiting row's step (reward 0, no end, its observation kept).
+  void holdRow(int env);
+  /// Rounds: ends the waiting rows' stand-in episodes (outcome kWaited) and starts all the
+  /// robots of env `group` anew, together.
+  void startRound(int group);
   /// The start (and a circle swap's goal) of row `env`, clear of the other robots of its world.
   void placeTeamRobot(int env);
   void resetEnv(int env);

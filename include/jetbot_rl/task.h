@@ -40,6 +40,7 @@ enum class Outcome : std::uint8_t {
   kCollision = 2,       ///< The robot hit the world: a wall, the map, an obstacle (navigation).
   kCollisionMover = 3,  ///< The robot hit a mover, a person or a cart (navigation, movers/...).
   kCollisionRobot = 4,  ///< The robot hit another robot of its world (navigation, robots_per_env).
+  kWaited = 5,  ///< Not an episode of the task: the row waited for its round to end (rounds).
 };
 
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).

@@ -11,6 +11,7 @@ namespace jetbot_rl {
 struct TeamConfig {
   int robots_per_env = 1;    ///< K: robots in each env's world, each a row of the batch.
   double swap_radius = 0.0;  ///< > 0: circle swap, the K robots on a circle of this radius [m].
+  bool rounds = false;       ///< The K robots start together; one that ended waits for the rest.
 };
 
 template <typename C, typename V>
@@ -27,6 +28,14 @@ IfConfig<C, TeamConfig> visitFields(C& c, V&& v) {
     "point. A robot whose episode ended starts again at its own point, or, while another robot "
     "is within world/start_clearance of it, at a free point of the circle drawn from its stream. "
     "0: off.");
+  v("rounds", c.rounds, AnyValue{},
+    "Rounds (K > 1): the K robots of an env start together and each runs one episode; a robot "
+    "whose episode ended waits where it stopped, out of the others' way (they no longer see or "
+    "touch it), its row observing what it saw last, with reward 0 and no end. When every robot "
+    "of the env has ended, each waiting row ends a stand-in episode with outcome 5 (waited: "
+    "counted by no rate) and all start the next round (a circle swap: each at its own point). "
+    "The literature's circle swap, where the middle empties as robots arrive; false: a robot "
+    "starts again as soon as its episode ends.");
 }
 
 }  // namespace jetbot_rl

@@ -210,7 +210,7 @@ void BatchedEnv::finishStep(int e) {
   const int last_step = config_.maxEpisodeLength() - 1;
   EnvPhysics& physics = *envs_[e];
   // Isaac Lab order: dones, then rewards, then reset, then observations.
-  RootState state = physics.rootState();
+  const RootState state = physics.rootState();
   diverged_[e] = physics.divergence();
   const bool diverged = !diverged_[e].empty();
   if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
@@ -232,12 +232,21 @@ void BatchedEnv::finishStep(int e) {
     } else if (randomizer_->noisesObservations()) {
       randomizer_->noiseObservation(e, final_obs);  // what the learner would have seen
     }
+    if (team_ && config_.team.rounds) {  // it waits for its round to end (stepTeam())
+      team_->wait(e);
+      std::copy(final_obs, final_obs + obs_dim_,
+                &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+      return;
+    }
     resetEnv(e);
-    state = physics.rootState();
     senseEnv(e);
   }
+  observeRow(e);
+}
+
+void BatchedEnv::observeRow(int e) {
   float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
-  task_->observe(e, state, obs);
+  task_->observe(e, envs_[e]->rootState(), obs);
   if (randomizer_->noisesObservations()) randomizer_->noiseObservation(e, obs);
 }
 

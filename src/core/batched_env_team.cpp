@@ -1,8 +1,10 @@
 // Several robots in one world (robots_per_env, robot_team.h): how BatchedEnv steps and places
 // the robots of one env.
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include "env_physics.h"
+#include "env_sensor.h"
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/task_capabilities.h"
 #include "robot_team.h"
@@ -14,10 +16,56 @@ void BatchedEnv::stepTeam(int group, WorkerContext& context) {
   // Every robot's physics from where the others were when the step began (captured at the end
   // of the last step, at a reset and by setRootState()), then every scan where they all are
   // after it; a robot that starts anew is seen there from the next step.
-  for (int e = first; e < first + k; ++e) stepPhysics(e, context);
-  for (int e = first; e < first + k; ++e) team_->capture(e, *envs_[e]);
-  for (int e = first; e < first + k; ++e) sensePhysics(e);
-  for (int e = first; e < first + k; ++e) finishStep(e);
+  // A robot waiting for its round to end (rounds) stands still, unseen by the others.
+  const auto active = [this](int e) { return !team_->waiting(e); };
+  for (int e = first; e < first + k; ++e) {
+    if (active(e)) stepPhysics(e, context);
+  }
+  for (int e = first; e < first + k; ++e) {
+    if (active(e)) team_->capture(e, *envs_[e]);
+  }
+  for (int e = first; e < first + k; ++e) {
+    if (active(e)) sensePhysics(e);
+  }
+  for (int e = first; e < first + k; ++e) {
+    if (active(e)) {
+      finishStep(e);
+    } else {
+      holdRow(e);
+    }
+  }
+  if (config_.team.rounds && team_->roundOver(group)) startRound(group);
+}
+
+void BatchedEnv::holdRow(int env) {
+  result_.rewards[env] = 0.0f;
+  result_.terminated[env] = 0;
+  result_.truncated[env] = 0;
+  ended_[env] = 0;
+  diverged_[env].clear();
+}
+
+void BatchedEnv::startRound(int group) {
+  const int first = team_->firstRow(group), k = team_->robotsPerEnv();
+  for (int e = first; e < first + k; ++e) {
+    if (ended_[e]) continue;  // its episode ended in this step: that is its end
+    // It waited since an earlier step: a stand-in episode ends, which no rate counts.
+    ended_[e] = 1;
+    outcome_[e] = static_cast<std::uint8_t>(Outcome::kWaited);
+    result_.truncated[e] = 1;
+    const float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+    std::copy(obs, obs + obs_dim_, &final_scratch_[static_cast<std::size_t>(e) * obs_dim_]);
+  }
+  for (int e = first; e < first + k; ++e) team_->forget(e);
+  for (int e = first; e < first + k; ++e) resetEnv(e);
+  // Each sees the others where they start (as reset() does).
+  for (int e = first; e < first + k; ++e) {
+    for (EnvSensor* sensor : sensors_) sensor->afterReset(e, sensedEnv(e));
+  }
+  for (int e = first; e < first + k; ++e) {
+    senseEnv(e);
+    observeRow(e);
+  }
 }
 
 void BatchedEnv::placeTeamRobot(int env) {

@@ -15,6 +15,10 @@ namespace {
 void checkTeamRules(const EnvConfig& config) {
   const int k = config.team.robots_per_env;
   const bool swap = config.team.swap_radius > 0.0;
+  if (k == 1 && config.team.rounds) {
+    throwInvalid("rounds", std::string("true"),
+                 "needs robots_per_env > 1: rounds are of several robots");
+  }
   if (k == 1 && !swap) return;
   // Name the field that asked for it.
   const auto refuse = [&](const std::string& why) {

@@ -31,6 +31,7 @@ RobotTeam::RobotTeam(const TeamConfig& config, const WorldModel& world, int num_
   velocity_.assign(rows, Eigen::Vector2d::Zero());
   placed_.assign(rows, 0);
   epoch_.assign(rows, 0);
+  waiting_.assign(rows, 0);
   peers_.assign(rows, footprints_);
   near_.assign(rows, std::vector<std::uint8_t>(k_ - 1, 0));
   near_first_ = near_;
@@ -98,6 +99,12 @@ bool RobotTeam::jumped(int row, int slot, int m) {
   if (seen == epoch_[m]) return false;
   seen = epoch_[m];
   return true;
+}
+
+bool RobotTeam::roundOver(int env) const {
+  const int first = firstRow(env);
+  return std::all_of(waiting_.begin() + first, waiting_.begin() + first + k_,
+                     [](std::uint8_t w) { return w != 0; });
 }
 
 double RobotTeam::mateDistance(int row, const Eigen::Vector2d& p) const {

@@ -39,9 +39,18 @@ class RobotTeam {
   void started(int row) {
     ++epoch_[row];
     placed_[row] = 1;
+    waiting_[row] = 0;
   }
   /// Marks `row` as not yet placed: a start drawn now ignores it (a reset of several rows).
   void forget(int row) { placed_[row] = 0; }
+  /// Rounds: `row`'s episode ended; it waits, out of the others' worlds, until started() again.
+  void wait(int row) {
+    placed_[row] = 0;
+    waiting_[row] = 1;
+  }
+  bool waiting(int row) const { return waiting_[row] != 0; }
+  /// True when every robot of env `env` waits: its round is over.
+  bool roundOver(int env) const;
   /// Once per control step of `dt` [s], before its physics: which of the other robots of
   /// `row`'s world are near enough to touch it within the step (from their captures), and which
   /// started anew since `row`'s last step (parked for its first physics step, so that the jump is
@@ -76,6 +85,7 @@ class RobotTeam {
   std::vector<Eigen::Vector2d> velocity_;              // per row [m/s]
   std::vector<std::uint8_t> placed_;                   // per row: reset at least once
   std::vector<std::uint32_t> epoch_;                   // per row: its starts
+  std::vector<std::uint8_t> waiting_;                  // per row: rounds, ended and waiting
   mutable std::vector<std::vector<Obstacle>> peers_;   // per row: its K - 1 others
   std::vector<std::vector<std::uint8_t>> near_;        // per row
   std::vector<std::vector<std::uint8_t>> near_first_;  // per row: near_ less the jumped

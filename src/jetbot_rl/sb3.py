@@ -78,8 +78,10 @@ class JetbotSB3VecEnv(_Base):
                 out[i]['terminal_observation'] = final_obs[i]
         if self._jetbot.has_goals and 'outcome' in infos:
             success = (infos['outcome'] == EnvStep.OUTCOME_SUCCESS).tolist()
+            waited = (infos['outcome'] == EnvStep.OUTCOME_WAITED).tolist()
             for i in np.flatnonzero(infos['_outcome']):
-                out[i]['is_success'] = success[i]
+                if not waited[i]:  # a round's wait (rounds) is no episode of the task
+                    out[i]['is_success'] = success[i]
         return obs, rewards, dones, out
 
     def step(self, actions):

@@ -3,6 +3,8 @@
 #include <limits>
 #include <numeric>
 
+#include "jetbot_rl/task.h"
+
 namespace jetbot_rl {
 namespace ppo {
 
@@ -16,9 +18,13 @@ const std::vector<double>& EpisodeTracker::add(const StepResult& batch) {
     current_[i] += batch.rewards[i];
   }
   ended_.clear();
-  for (std::uint32_t id : batch.reset_env_ids) {
+  for (std::size_t i = 0; i < batch.reset_env_ids.size(); ++i) {
+    const std::uint32_t id = batch.reset_env_ids[i];
     if (id >= current_.size()) continue;
-    if (skip_[id]) {
+    // A round's wait (rounds) is no episode: its zero rewards are dropped.
+    const bool waited = i < batch.outcomes.size() &&
+                        batch.outcomes[i] == static_cast<std::uint8_t>(Outcome::kWaited);
+    if (skip_[id] || waited) {
       skip_[id] = 0;
       current_[id] = 0.0;
       continue;

@@ -80,7 +80,8 @@ BenchmarkResult runNavigationBenchmark(Policy& policy, BatchedEnv& env, int epis
     for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
       const std::uint32_t e = r.reset_env_ids[i];
       reset[e] = 1;
-      if (done[e] < quota) {
+      const bool waited = r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kWaited);
+      if (done[e] < quota && !waited) {
         const int outcome = std::min<int>(r.outcomes[i], 2);
         ++outcomes[outcome];
         if (outcome == static_cast<int>(Outcome::kSuccess)) {

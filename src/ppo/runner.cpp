@@ -124,6 +124,7 @@ TrainingSummary OnPolicyRunner::learn() {
   log_options.csv_path = (run_dir / "progress.csv").string();
   log_options.keep_rows = resumed ? iteration_ : -1;
   log_options.target_reward = options_.target_reward;
+  log_options.best_by = options_.best_by;
   log_options.obs_stats_from_step = options_.obs_stats_from_step >= 0 ? options_.obs_stats_from_step
                                                                       : spec.max_episode_length / 2;
   if (static_cast<int>(spec.observation_names.size()) == spec.obs_dim) {

@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "jetbot_rl/task.h"
+
 namespace jetbot_rl {
 namespace ppo {
 namespace {
@@ -29,8 +31,9 @@ std::string describeSummary(const TrainingSummary& s) {
     << "\nfinal_mean_reward_per_step: " << fixed(s.final_reward, 4)
     << "\nfinal_mean_episode_return: "
     << (std::isnan(s.final_episode_return) ? std::string("nan") : fixed(s.final_episode_return, 2))
-    << "\nbest_mean_reward_per_step: " << fixed(s.best_reward, 4)
-    << "\nmean_env_steps_per_s: " << fixed(s.mean_env_steps_per_s, 0)
+    << (s.best_by == BestBy::kEpisodeReturn ? "\nbest_mean_episode_return: "
+                                            : "\nbest_mean_reward_per_step: ")
+    << fixed(s.best_reward, 4) << "\nmean_env_steps_per_s: " << fixed(s.mean_env_steps_per_s, 0)
     << "\ntarget_mean_reward_per_step: " << fixed(s.target_reward, 4);
   if (s.target_iteration >= 0) {
     o << "\ntarget_reached_at_iteration: " << s.target_iteration
@@ -51,6 +54,7 @@ TrainingLogger::TrainingLogger(int num_envs, const LoggerOptions& options, Train
       sink_([](const std::string& line) { std::cout << line << std::endl; }),
       obs_sum_(options.obs_names.size(), 0.0) {
   summary_.target_reward = options.target_reward;
+  summary_.best_by = options.best_by;
   summary_.final_episode_return = std::nan("");
 }
 
@@ -74,7 +78,9 @@ void TrainingLogger::recordObservations(const StepResult& state) {
 void TrainingLogger::recordStep(const StepResult& result) {
   for (float r : result.rewards) reward_sum_ += r;
   reward_count_ += static_cast<std::int64_t>(result.rewards.size());
-  for (std::uint8_t o : result.outcomes) ++outcomes_[std::min<std::uint8_t>(o, 2)];
+  for (std::uint8_t o : result.outcomes) {
+    if (o != static_cast<std::uint8_t>(Outcome::kWaited)) ++outcomes_[std::min<std::uint8_t>(o, 2)];
+  }
   tracker_.add(result);
 }
 
@@ -110,8 +116,11 @@ bool TrainingLogger::endIteration(IterationStats& s) {
   summary_.env_steps = s.env_steps;
   summary_.final_reward = s.mean_reward_per_step;
   summary_.final_episode_return = s.mean_episode_return;
-  const bool best = s.mean_reward_per_step > summary_.best_reward;
-  if (best) summary_.best_reward = s.mean_reward_per_step;
+  // A mean return is NaN before the first episode ends: no comparison makes it the best.
+  const double value =
+      options_.best_by == BestBy::kEpisodeReturn ? s.mean_episode_return : s.mean_reward_per_step;
+  const bool best = value > summary_.best_reward;
+  if (best) summary_.best_reward = value;
   return best;
 }
 

@@ -122,28 +122,102 @@ TEST(Team, ARobotStartsAnewClearOfTheOthersAndAloneWhenItsRowIsReset) {
 }
 
 TEST(Team, TheSameOnAnyThreadCountAndAfterAReseed) {
-  const auto run = [](int threads) {
+  const auto run = [](int threads, bool rounds) {
     EnvConfig c = teamConfig(4, 5, 1.2, threads);
+    c.team.rounds = rounds;
     c.randomization.initial_yaw = {-0.5, 0.5};  // a draw at every reset
     BatchedEnv env(lidar(), c, test::navigationTask());
     Rng rng(3);
     std::vector<float> out, actions(env.numEnvs() * env.actionDim());
+    int waits = 0;
     for (int pass = 0; pass < 2; ++pass) {
       env.reset({}, 11);
-      for (int step = 0; step < 150; ++step) {
+      for (int step = 0; step < 400; ++step) {
         for (std::size_t i = 0; i < actions.size(); ++i) {
           actions[i] = static_cast<float>(env.actionHigh()[i % env.actionDim()] * rng.uniform());
         }
         const StepResult& r = env.step(actions);
         out.insert(out.end(), r.observations.begin(), r.observations.end());
-        for (std::uint8_t o : r.outcomes) out.push_back(o);
+        for (std::uint8_t o : r.outcomes) {
+          out.push_back(o);
+          waits += o == static_cast<std::uint8_t>(Outcome::kWaited);
+        }
       }
     }
+    EXPECT_EQ(waits > 0, rounds) << "rounds " << rounds << ": waits ended " << waits;
     return out;
   };
-  const std::vector<float> one = run(1), two = run(2);
-  ASSERT_EQ(one.size(), two.size());
-  EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin())) << "1 and 2 threads differ";
+  for (bool rounds : {false, true}) {
+    const std::vector<float> one = run(1, rounds), two = run(2, rounds);
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin()))
+        << "1 and 2 threads differ, rounds " << rounds;
+  }
+}
+
+/// The index of the scan sample of `row` nearest the bearing of point `p` [m].
+int sampleTowards(const BatchedEnv& env, int row, const Eigen::Vector2d& p) {
+  const RootState s = env.view(row).rootState();
+  const Eigen::Vector2d d = p - s.position.head<2>();
+  const double bearing = std::remainder(std::atan2(d.y(), d.x()) - yawOf(s), 2.0 * kPi);
+  const ScannerSpec& scanner = *env.scanner();
+  return static_cast<int>(std::lround((bearing - scanner.min_angle) / scanner.angleIncrement()));
+}
+
+TEST(Team, InRoundsARobotThatEndedWaitsUnseenUntilAllHaveEnded) {
+  EnvConfig c = teamConfig(1, 3, 1.0);
+  c.team.rounds = true;
+  BatchedEnv env(lidar(), c, test::navigationTask());
+  auto& task = dynamic_cast<NavigationTask&>(env.task());
+  const std::vector<float> stop(3 * env.actionDim(), 0.0f);
+  const int dim = env.obsDim();
+  const auto at = [&](int row) {
+    return Eigen::Vector2d(env.view(row).rootState().position.head<2>());
+  };
+  const Eigen::Vector2d start0 = at(0), start1 = at(1), start2 = at(2);
+  const int towards0 = sampleTowards(env, 1, start0);
+  const double gap = (start0 - start1).norm() - env.robot().footprintRadius();
+  env.step(stop);
+  EXPECT_NEAR(env.view(1).scan()[towards0], gap, 0.1) << "robot 1 sees robot 0";
+
+  // Robot 0 reaches its goal: its episode ends, and it waits where it stopped.
+  task.setGoal(0, start0);
+  const StepResult& r = env.step(stop);
+  ASSERT_EQ(r.reset_env_ids, std::vector<std::uint32_t>{0});
+  EXPECT_EQ(r.outcomes[0], static_cast<std::uint8_t>(Outcome::kSuccess));
+  const std::vector<float> kept(r.observations.begin(), r.observations.begin() + dim);
+  EXPECT_TRUE(std::equal(kept.begin(), kept.end(), r.final_observations.begin()));
+  const std::uint32_t steps0 = r.episode_steps[0];
+  std::vector<float> drive = stop;  // robot 0 is told to drive: it does not
+  for (int i = 0; i < env.actionDim(); ++i) drive[i] = env.actionHigh()[i];
+  for (int step = 0; step < 5; ++step) {
+    const StepResult& w = env.step(drive);
+    EXPECT_TRUE(w.reset_env_ids.empty());
+    EXPECT_EQ(w.rewards[0], 0.0f);
+    EXPECT_FALSE(w.terminated[0] || w.truncated[0]);
+    EXPECT_EQ(w.episode_steps[0], steps0);
+    EXPECT_TRUE(std::equal(kept.begin(), kept.end(), w.observations.begin()));
+  }
+  EXPECT_LT((at(0) - start0).norm(), 1e-3) << "it stands still";
+  EXPECT_GT(env.view(1).scan()[towards0], gap + 0.5) << "robot 1 no longer sees robot 0";
+
+  // Robot 1 ends; robot 2 still drives on, so the round goes on.
+  task.setGoal(1, at(1));
+  ASSERT_EQ(env.step(stop).reset_env_ids, std::vector<std::uint32_t>{1});
+  // Robot 2 ends last: the round is over, the waiting rows end their waits, all start anew.
+  task.setGoal(2, at(2));
+  const std::vector<float> waited1(env.state().observations.begin() + dim,
+                                   env.state().observations.begin() + 2 * dim);
+  const StepResult& end = env.step(stop);
+  ASSERT_EQ(end.reset_env_ids, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(end.outcomes, (std::vector<std::uint8_t>{5, 5, 1}));
+  EXPECT_TRUE(end.truncated[0] && end.truncated[1] && !end.truncated[2]);
+  EXPECT_TRUE(std::equal(waited1.begin(), waited1.end(), end.final_observations.begin() + dim));
+  EXPECT_LT((at(0) - start0).norm(), 1e-6);
+  EXPECT_LT((at(1) - start1).norm(), 1e-6);
+  EXPECT_LT((at(2) - start2).norm(), 1e-6);
+  for (int row = 0; row < 3; ++row) EXPECT_EQ(end.episode_steps[row], 0u) << "row " << row;
+  EXPECT_NEAR(env.view(1).scan()[towards0], gap, 0.1) << "robot 1 sees robot 0 again";
 }
 
 void expectRefused(const EnvConfig& c, const std::string& field) {
@@ -173,6 +247,9 @@ TEST(Team, BadParametersAreRefusedNamingTheField) {
   c = teamConfig(1, 3, 0.0);
   c.team.robots_per_env = 0;
   expectRefused(c, "robots_per_env");
+  c = teamConfig(1, 1, 1.0);
+  c.team.rounds = true;  // rounds of one robot
+  expectRefused(c, "rounds");
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 """Several robots per env (robots_per_env) through a jetbot_env node and JetbotVecEnv: 2 envs of
 20 robots (config/navigation_swap.yaml) are 40 rows, robot k of env e at row 20 e + k; robots
 that all drive straight for the circle's centre hit each other, and those episodes end as
-OUTCOME_COLLISION_ROBOT in both envs; each robot's odom is under env_<e>/robot_<k>/ (in the
-node's namespace, as every robot view topic)."""
+OUTCOME_COLLISION_ROBOT in both envs; in rounds (the file's rounds: true) a robot that ended
+waits until all have, and then ends a wait (OUTCOME_WAITED) with the others' new start; each
+robot's odom is under env_<e>/robot_<k>/ (in the node's namespace, as every robot view
+topic)."""
 import unittest
 
 import numpy as np
@@ -40,15 +42,29 @@ class TestTeam(unittest.TestCase):
             # Straight ahead at full speed: every robot starts facing the centre (+-0.5 rad).
             ahead = np.tile([env.action_high[0], 0.0], (env.num_envs, 1)).astype(np.float32)
             hits = np.zeros(env.num_envs, dtype=bool)
-            for _ in range(200):
+            waits = np.zeros(env.num_envs, dtype=bool)
+            # Until both envs saw a robot collision and a round's end (600 steps: a time-out).
+            for _ in range(700):
+                if (hits[:ROBOTS].any() and hits[ROBOTS:].any() and waits[:ROBOTS].any()
+                        and waits[ROBOTS:].any()):
+                    break
                 obs, rewards, terminated, truncated, infos = env.step(ahead)
                 self.assertEqual(rewards.shape, (ENVS * ROBOTS,))
                 if '_outcome' in infos:
                     ended = infos['_outcome']
                     outcome = infos['outcome'][ended]
-                    self.assertTrue(set(outcome.tolist()) <= {0, 1, 2, 4}, outcome)
+                    self.assertTrue(set(outcome.tolist()) <= {0, 1, 2, 4, 5}, outcome)
                     hits |= ended & (infos['outcome'] == EnvStep.OUTCOME_COLLISION_ROBOT)
+                    waited = ended & (infos['outcome'] == EnvStep.OUTCOME_WAITED)
+                    # A wait ends only with a new round: every robot of its env starts anew.
+                    for e in range(ENVS):
+                        rows = slice(e * ROBOTS, (e + 1) * ROBOTS)
+                        if waited[rows].any():
+                            self.assertTrue(np.all(infos['episode_steps'][rows] == 0),
+                                            infos['episode_steps'][rows])
+                    waits |= waited
             self.assertTrue(hits[:ROBOTS].any() and hits[ROBOTS:].any(), hits)
+            self.assertTrue(waits[:ROBOTS].any() and waits[ROBOTS:].any(), waits)
         for row, messages in odom.items():
             messages.wait_for(lambda m=messages: len(m) > 0, 'odom of row %d' % row, 30.0)
             msg = messages[0]

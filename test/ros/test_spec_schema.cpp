@@ -112,7 +112,7 @@ TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
   EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
 }
 
-TEST(StepConversion, MoverAndRobotCollisionsCrossAndAnUnknownOutcomeIsRefused) {
+TEST(StepConversion, MoverAndRobotCollisionsAndWaitsCrossAndAnUnknownOutcomeIsRefused) {
   const BatchSpec spec = sampleSpec();
   StepResult r;
   r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
@@ -123,21 +123,22 @@ TEST(StepConversion, MoverAndRobotCollisionsCrossAndAnUnknownOutcomeIsRefused) {
   r.reset_env_ids = {2, 5, 6};
   r.final_observations.assign(3 * spec.obs_dim, 0.0f);
   r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
-                static_cast<std::uint8_t>(Outcome::kCollision),
+                static_cast<std::uint8_t>(Outcome::kWaited),
                 static_cast<std::uint8_t>(Outcome::kCollisionRobot)};
   EnvStep msg;
   toMsg(r, spec.num_envs, spec.obs_dim, ros::Time(1.0), msg);
   EXPECT_EQ(msg.outcomes[0], EnvStep::OUTCOME_COLLISION_MOVER);
+  EXPECT_EQ(msg.outcomes[1], EnvStep::OUTCOME_WAITED);
   EXPECT_EQ(msg.outcomes[2], EnvStep::OUTCOME_COLLISION_ROBOT);
   StepResult back;
   fromMsg(msg, spec, back);
   EXPECT_EQ(back.outcomes, r.outcomes);
-  msg.outcomes[1] = EnvStep::OUTCOME_COLLISION_ROBOT + 1;
+  msg.outcomes[1] = EnvStep::OUTCOME_WAITED + 1;
   try {
     fromMsg(msg, spec, back);
-    ADD_FAILURE() << "outcome 5 accepted";
+    ADD_FAILURE() << "outcome 6 accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("outcomes holds 5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outcomes holds 6"), std::string::npos) << e.what();
   }
 }
 

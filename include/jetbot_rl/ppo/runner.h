@@ -21,7 +21,8 @@ struct RunnerOptions {
   std::string resume;             ///< Checkpoint to continue from; empty: a new run.
   int save_interval = 10;         ///< Save checkpoints/latest.pt every this many iterations.
   double target_reward = 0.54;    ///< Reported: first iteration with mean reward/step >= this.
-  std::string extra_config;       ///< YAML appended to config.yaml (trainer params, env spec).
+  BestBy best_by = BestBy::kRewardPerStep;  ///< What makes checkpoints/best.pt.
+  std::string extra_config;  ///< YAML appended to config.yaml (trainer params, env spec).
   /// obs_mean_* columns: mean of each observation component over the rollout's samples taken at
   /// this step of their episode or later (0: the reset's observation) [control steps]; -1: the
   /// second half of an episode, max_episode_length / 2.
@@ -42,10 +43,21 @@ IfConfig<C, RunnerOptions> visitFields(C& c, V&& v) {
   v("target_reward", c.target_reward,
     Range<double>{-1e300, 1e300, false, false, "m/s", "reported only"},
     "Reported: the first iteration whose mean reward per step reaches this.");
+  v("best_by", c.best_by, AnyValue{},
+    "Which iteration's policy is checkpoints/best.pt (and exported/policy.pt): reward_per_step, "
+    "the highest mean reward per step of an iteration; episode_return, the highest mean return "
+    "of the last 100 episodes (steadier where the reward per step swings with the episodes' "
+    "phase, as with rounds of robots: docs/team.md).");
   v("obs_stats_from_step", c.obs_stats_from_step,
     atLeast(-1, "control steps", "-1: max_episode_length / 2"),
     "progress.csv's obs_mean_<name> columns: mean of each observation over the rollout's "
     "samples at this step of their episode or later.");
+}
+
+inline const EnumNameList<BestBy>& enumNames(BestBy) {
+  static const EnumNameList<BestBy> names{{BestBy::kRewardPerStep, "reward_per_step"},
+                                          {BestBy::kEpisodeReturn, "episode_return"}};
+  return names;
 }
 
 /// Episode steps that stagger num_envs starts evenly over an episode (rsl_rl randomises them):

@@ -14,6 +14,9 @@
 namespace jetbot_rl {
 namespace ppo {
 
+/// What makes an iteration the best so far (checkpoints/best.pt).
+enum class BestBy { kRewardPerStep, kEpisodeReturn };
+
 /// The final figures of a run.
 struct TrainingSummary {
   bool interrupted = false;     ///< Stopped early (Ctrl-C); checkpoints/latest.pt was saved.
@@ -21,9 +24,10 @@ struct TrainingSummary {
   std::int64_t iterations = 0;  ///< Completed iterations.
   std::int64_t env_steps = 0;
   double elapsed_s = 0.0;
-  double final_reward = 0.0;          ///< Mean reward per step of the last iteration [m/s].
-  double final_episode_return = 0.0;  ///< Mean return of the last 100 episodes.
-  double best_reward = -1e300;        ///< Best iteration's mean reward per step.
+  double final_reward = 0.0;                ///< Mean reward per step of the last iteration [m/s].
+  double final_episode_return = 0.0;        ///< Mean return of the last 100 episodes.
+  BestBy best_by = BestBy::kRewardPerStep;  ///< What best_reward measures.
+  double best_reward = -1e300;  ///< Best iteration's mean reward per step (or episode return).
   double target_reward = 0.0;
   std::int64_t target_iteration = -1;  ///< First iteration reaching target_reward; -1: never.
   std::int64_t target_env_steps = -1;
@@ -40,6 +44,7 @@ struct LoggerOptions {
   std::string csv_path;         ///< progress.csv
   std::int64_t keep_rows = -1;  ///< Resumed run: keep the CSV rows up to this iteration.
   double target_reward = 0.54;  ///< First iteration with mean reward/step >= this is noted.
+  BestBy best_by = BestBy::kRewardPerStep;  ///< What makes an iteration the best so far.
   int obs_stats_from_step = 0;  ///< obs_mean_* columns: samples at this episode step or later.
   std::vector<std::string> obs_names;  ///< One per observation component (obs_mean_<name>).
 };
@@ -67,7 +72,7 @@ class TrainingLogger {
   void recordStep(const StepResult& result);
   /// Completes `stats` with the iteration's figures (reward per step, returns, observation
   /// means), writes the CSV row and the progress line and updates the summary; starts the next
-  /// iteration's sums. Returns true when the reward per step is the best so far.
+  /// iteration's sums. Returns true when the iteration is the best so far (best_by).
   bool endIteration(IterationStats& stats);
 
  private:

@@ -45,9 +45,9 @@ void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
             msg.step);
   checkSize("outcomes", msg.outcomes.size(), msg.reset_env_ids.size(), msg.step);
   for (std::uint8_t o : msg.outcomes) {
-    if (o > EnvStep::OUTCOME_COLLISION_ROBOT) {
+    if (o > EnvStep::OUTCOME_WAITED) {
       throw Error("EnvStep " + std::to_string(msg.step) + ": outcomes holds " + std::to_string(o) +
-                  ", not 0, 1, 2, 3 or 4");
+                  ", not 0 to 5");
     }
   }
   for (std::uint32_t id : msg.reset_env_ids) {
