@@ -234,6 +234,7 @@ void BatchedEnv::finishStep(int e) {
     }
     if (team_ && config_.team.rounds) {  // it waits for its round to end (stepTeam())
       team_->wait(e);
+      physics.stop();  // standing (its odom and joint states say so)
       std::copy(final_obs, final_obs + obs_dim_,
                 &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
       return;

@@ -334,6 +334,12 @@ void EnvPhysics::setRootState(const RootState& state) {
   syncColliders();
 }
 
+void EnvPhysics::stop() {
+  robot_->setBaseVel(btVector3(0, 0, 0));
+  robot_->setBaseOmega(btVector3(0, 0, 0));
+  for (int l = 0; l < robot_->getNumLinks(); ++l) robot_->setJointVel(l, 0);
+}
+
 std::string EnvPhysics::divergence() const {
   const auto& models = model_.robot().bodies();
   const btVector3 v = robot_->getBaseVel();

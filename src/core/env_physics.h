@@ -114,6 +114,8 @@ class EnvPhysics {
   RootState rootState() const;
   /// Overwrites the root pose and velocity; joint positions and velocities are kept.
   void setRootState(const RootState& state);
+  /// Stops the robot where it is: the root's and the joints' velocities 0.
+  void stop();
   /// Empty when the state is sane, otherwise why it is not (non-finite or absurd values).
   std::string divergence() const;
   /// Largest distance between a joint's anchor seen from the parent and from the child [m].

@@ -180,17 +180,23 @@ TEST(Team, InRoundsARobotThatEndedWaitsUnseenUntilAllHaveEnded) {
   env.step(stop);
   EXPECT_NEAR(env.view(1).scan()[towards0], gap, 0.1) << "robot 1 sees robot 0";
 
-  // Robot 0 reaches its goal: its episode ends, and it waits where it stopped.
-  task.setGoal(0, start0);
-  const StepResult& r = env.step(stop);
+  // Robot 0, driving, reaches its goal: its episode ends, and it waits where it stopped.
+  std::vector<float> drive = stop;
+  for (int i = 0; i < env.actionDim(); ++i) drive[i] = env.actionHigh()[i];
+  for (int step = 0; step < 3; ++step) env.step(drive);
+  ASSERT_GT(env.view(0).rootState().com_linear_velocity.norm(), 0.05);
+  const Eigen::Vector2d goal0 = at(0);
+  task.setGoal(0, goal0);
+  const StepResult& r = env.step(drive);
   ASSERT_EQ(r.reset_env_ids, std::vector<std::uint32_t>{0});
   EXPECT_EQ(r.outcomes[0], static_cast<std::uint8_t>(Outcome::kSuccess));
   const std::vector<float> kept(r.observations.begin(), r.observations.begin() + dim);
   EXPECT_TRUE(std::equal(kept.begin(), kept.end(), r.final_observations.begin()));
   const std::uint32_t steps0 = r.episode_steps[0];
-  std::vector<float> drive = stop;  // robot 0 is told to drive: it does not
-  for (int i = 0; i < env.actionDim(); ++i) drive[i] = env.actionHigh()[i];
-  for (int step = 0; step < 5; ++step) {
+  const Eigen::Vector2d stopped0 = at(0);
+  EXPECT_EQ(env.view(0).rootState().com_linear_velocity.norm(), 0.0);
+  EXPECT_EQ(env.view(0).rootTwist().linear.norm(), 0.0);
+  for (int step = 0; step < 5; ++step) {  // told to drive on, it does not
     const StepResult& w = env.step(drive);
     EXPECT_TRUE(w.reset_env_ids.empty());
     EXPECT_EQ(w.rewards[0], 0.0f);
@@ -198,7 +204,7 @@ TEST(Team, InRoundsARobotThatEndedWaitsUnseenUntilAllHaveEnded) {
     EXPECT_EQ(w.episode_steps[0], steps0);
     EXPECT_TRUE(std::equal(kept.begin(), kept.end(), w.observations.begin()));
   }
-  EXPECT_LT((at(0) - start0).norm(), 1e-3) << "it stands still";
+  EXPECT_EQ(at(0), stopped0) << "it stands still";
   EXPECT_GT(env.view(1).scan()[towards0], gap + 0.5) << "robot 1 no longer sees robot 0";
 
   // Robot 1 ends; robot 2 still drives on, so the round goes on.
