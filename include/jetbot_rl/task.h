@@ -43,6 +43,13 @@ enum class Outcome : std::uint8_t {
   kWaited = 5,  ///< Not an episode of the task: the row waited for its round to end (rounds).
 };
 
+/// The rate an ended episode counts in: 0 time-out, 1 success, 2 collision (with the world, a
+/// mover or a robot); -1 for a round's wait (kWaited), which is no episode and counts in none.
+inline int outcomeRate(std::uint8_t outcome) {
+  if (outcome == static_cast<std::uint8_t>(Outcome::kWaited)) return -1;
+  return outcome < 2 ? outcome : 2;
+}
+
 /// Kinematic state of an env's root body, in the env's own frame (origin at the env origin).
 struct RootState {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< Root link frame origin [m].

@@ -87,8 +87,9 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
         const std::uint32_t e = r.reset_env_ids[i];
         if (quota == 0 || done[e] >= quota) continue;
-        if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kWaited)) continue;  // rounds
-        ++outcome_count[std::min<std::uint8_t>(r.outcomes[i], 2)];
+        const int rate = outcomeRate(r.outcomes[i]);
+        if (rate < 0) continue;  // a round's wait (rounds): no episode
+        ++outcome_count[rate];
         if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kCollisionMover)) ++mover_hits;
         if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kCollisionRobot)) ++robot_hits;
         episode_steps += lengths[e] + 1;

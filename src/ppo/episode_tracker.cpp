@@ -22,8 +22,7 @@ const std::vector<double>& EpisodeTracker::add(const StepResult& batch) {
     const std::uint32_t id = batch.reset_env_ids[i];
     if (id >= current_.size()) continue;
     // A round's wait (rounds) is no episode: its zero rewards are dropped.
-    const bool waited = i < batch.outcomes.size() &&
-                        batch.outcomes[i] == static_cast<std::uint8_t>(Outcome::kWaited);
+    const bool waited = i < batch.outcomes.size() && outcomeRate(batch.outcomes[i]) < 0;
     if (skip_[id] || waited) {
       skip_[id] = 0;
       current_[id] = 0.0;

@@ -80,9 +80,8 @@ BenchmarkResult runNavigationBenchmark(Policy& policy, BatchedEnv& env, int epis
     for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
       const std::uint32_t e = r.reset_env_ids[i];
       reset[e] = 1;
-      const bool waited = r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kWaited);
-      if (done[e] < quota && !waited) {
-        const int outcome = std::min<int>(r.outcomes[i], 2);
+      const int outcome = outcomeRate(r.outcomes[i]);
+      if (done[e] < quota && outcome >= 0) {
         ++outcomes[outcome];
         if (outcome == static_cast<int>(Outcome::kSuccess)) {
           time_sum += (lengths[e] + 1) * env.controlDt();

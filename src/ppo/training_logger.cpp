@@ -79,7 +79,8 @@ void TrainingLogger::recordStep(const StepResult& result) {
   for (float r : result.rewards) reward_sum_ += r;
   reward_count_ += static_cast<std::int64_t>(result.rewards.size());
   for (std::uint8_t o : result.outcomes) {
-    if (o != static_cast<std::uint8_t>(Outcome::kWaited)) ++outcomes_[std::min<std::uint8_t>(o, 2)];
+    const int rate = outcomeRate(o);  // a round's wait counts in none
+    if (rate >= 0) ++outcomes_[rate];
   }
   tracker_.add(result);
 }
