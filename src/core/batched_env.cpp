@@ -186,10 +186,14 @@ void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
       physics.step(config_.physics_dt);
     }
   } else if (team_) {
-    // The other robots drive on from where they were when the step began (stepTeam()).
-    team_->beginStep(e, config_.controlDt());
+    // The other robots drive on from where they were when the step began (stepTeam()); the
+    // near ones only, as only they are in its Bullet world (none most steps).
+    const bool move = team_->beginStep(e, config_.controlDt());
     for (int k = 0; k < config_.decimation; ++k) {
-      physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt), team_->near(e, k));
+      if (move) {
+        const std::vector<std::uint8_t>& near = team_->near(e, k);
+        physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt, &near), near);
+      }
       physics.step(config_.physics_dt);
     }
   } else {

@@ -92,7 +92,8 @@ class EnvPhysics {
   void setPeers(const std::vector<Obstacle>& peers) {
     setKinematic(num_movers_, movers_.size() - num_movers_, peers);
   }
-  /// Moves the other robots' stand-ins as moveMovers() moves the movers.
+  /// Moves the other robots' stand-ins as moveMovers() moves the movers: those marked in `near`
+  /// (the others' poses are not read) and the parking of those no longer near.
   void movePeers(const std::vector<Obstacle>& peers, const std::vector<std::uint8_t>& near) {
     moveKinematic(num_movers_, movers_.size() - num_movers_, peers, near);
   }

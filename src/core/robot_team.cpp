@@ -29,13 +29,17 @@ RobotTeam::RobotTeam(const TeamConfig& config, const WorldModel& world, int num_
   footprints_.assign(k_ - 1, footprint);
   position_.assign(rows, Eigen::Vector2d::Zero());
   velocity_.assign(rows, Eigen::Vector2d::Zero());
+  speed_.assign(rows, 0.0);
+  any_near_.assign(rows, 0);
   placed_.assign(rows, 0);
   epoch_.assign(rows, 0);
   waiting_.assign(rows, 0);
-  peers_.assign(rows, footprints_);
-  near_.assign(rows, std::vector<std::uint8_t>(k_ - 1, 0));
+  // Scratch per env, not per row: a row's others are needed only while its env steps it, and
+  // one env's scratch stays in the cache through its K rows (per row it missed at every step).
+  peers_.assign(num_envs, footprints_);
+  near_.assign(num_envs, std::vector<std::uint8_t>(k_ - 1, 0));
   near_first_ = near_;
-  seen_.assign(rows, std::vector<std::uint32_t>(k_ - 1, 0));
+  seen_.assign(static_cast<std::size_t>(rows) * (k_ - 1), 0);
   if (config_.swap_radius <= 0.0) return;
   // Every robot's own point must be a start: free of the world, and of its neighbours.
   const double r = config_.swap_radius, clearance = world_.startClearance();
@@ -63,42 +67,56 @@ void RobotTeam::capture(int row, const EnvPhysics& physics) {
   const RootState s = physics.rootState();
   position_[row] = s.position.head<2>();
   velocity_[row] = s.com_linear_velocity.head<2>();
+  speed_[row] = velocity_[row].norm();
 }
 
-void RobotTeam::beginStep(int row, double dt) {
+bool RobotTeam::beginStep(int row, double dt) {
   const int first = (row / k_) * k_;
-  std::vector<std::uint8_t>& near = near_[row];
-  std::vector<std::uint8_t>& near_first = near_first_[row];
-  const double own_speed = velocity_[row].norm();
+  // Plain pointers and locals: a store through a byte pointer could alias any member, which
+  // would reload them all at every slot.
+  std::uint8_t* near = near_[row / k_].data();
+  std::uint8_t* near_first = near_first_[row / k_].data();
+  std::uint32_t* seen = &seen_[static_cast<std::size_t>(row) * (k_ - 1)];
+  const Eigen::Vector2d* position = position_.data();
+  const double* speed = speed_.data();
+  const std::uint8_t* placed = placed_.data();
+  const std::uint32_t* epoch = epoch_.data();
+  const Eigen::Vector2d own = position[row];
+  const double base = 2.0 * radius_ + kNearMargin + speed[row] * dt;
   int slot = 0;
+  bool any = false;
   for (int m = first; m < first + k_; ++m) {
     if (m == row) continue;
-    const double reach = 2.0 * radius_ + kNearMargin + (velocity_[m].norm() + own_speed) * dt;
-    near[slot] = placed_[m] && (position_[m] - position_[row]).squaredNorm() <= reach * reach;
-    const bool jump = jumped(row, slot, m);  // seen now, near or not
-    near_first[slot] = near[slot] && !jump;
+    const double reach = base + speed[m] * dt;
+    const bool is_near = placed[m] && (position[m] - own).squaredNorm() <= reach * reach;
+    const bool jumped = seen[slot] != epoch[m];  // started anew since last seen, near or not
+    seen[slot] = epoch[m];
+    near[slot] = is_near;
+    near_first[slot] = is_near && !jumped;
+    any = any || is_near;
     ++slot;
   }
+  // A stand-in near at the last step may still be in its world: this step parks it.
+  const bool move = any || any_near_[row];
+  any_near_[row] = any;
+  return move;
 }
 
-const std::vector<Obstacle>& RobotTeam::peers(int row, double t) const {
+const std::vector<Obstacle>& RobotTeam::peers(int row, double t,
+                                              const std::vector<std::uint8_t>* only) const {
   const int first = (row / k_) * k_;
-  std::vector<Obstacle>& peers = peers_[row];
+  std::vector<Obstacle>& peers = peers_[row / k_];
   int slot = 0;
   for (int m = first; m < first + k_; ++m) {
     if (m == row) continue;
-    Obstacle& o = peers[slot++];
-    o.center = position_[m] + t * velocity_[m];
-    o.placed = placed_[m] != 0;
+    if (!only || (*only)[slot]) {
+      Obstacle& o = peers[slot];
+      o.center = position_[m] + t * velocity_[m];
+      o.placed = placed_[m] != 0;
+    }
+    ++slot;
   }
   return peers;
-}
-
-bool RobotTeam::jumped(int row, int slot, int m) {
-  std::uint32_t& seen = seen_[row][slot];
-  if (seen == epoch_[m]) return false;
-  seen = epoch_[m];
-  return true;
 }
 
 bool RobotTeam::roundOver(int env) const {

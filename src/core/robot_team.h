@@ -54,13 +54,19 @@ class RobotTeam {
   /// Once per control step of `dt` [s], before its physics: which of the other robots of
   /// `row`'s world are near enough to touch it within the step (from their captures), and which
   /// started anew since `row`'s last step (parked for its first physics step, so that the jump is
-  /// no velocity). Calls for rows of one env come from one thread.
-  void beginStep(int row, double dt);
-  /// The other robots of `row`'s world, `t` [s] after their capture along their velocities.
-  const std::vector<Obstacle>& peers(int row, double t) const;
-  /// The near flags of beginStep() for physics step `substep` of the control step.
+  /// no velocity). Calls for rows of one env come from one thread. False when no stand-in can
+  /// be in the robot's Bullet world in this step (none near now or at its last step): nothing
+  /// to move.
+  bool beginStep(int row, double dt);
+  /// The other robots of `row`'s world, `t` [s] after their capture along their velocities;
+  /// with `only`, just the slots it marks (the others hold nothing to read). Valid until the
+  /// next call for a row of the same env.
+  const std::vector<Obstacle>& peers(int row, double t,
+                                     const std::vector<std::uint8_t>* only = nullptr) const;
+  /// The near flags of beginStep() for physics step `substep` of the control step, per
+  /// peers() slot. Valid until the next beginStep() for a row of the same env.
   const std::vector<std::uint8_t>& near(int row, int substep) const {
-    return substep == 0 ? near_first_[row] : near_[row];
+    return substep == 0 ? near_first_[row / k_] : near_[row / k_];
   }
   /// Draws `row`'s start from its stream, clear of the others placed in its world by
   /// world/start_clearance: circle swap (its own point when free, else a free point of the
@@ -70,9 +76,6 @@ class RobotTeam {
                  double& yaw) const;
 
  private:
-  /// True (once) when the robot `m` in `row`'s peers() slot `slot` started anew since `row`
-  /// last saw it.
-  bool jumped(int row, int slot, int m);
   /// Least distance from `p` to the placed robots of `row`'s world other than it [m].
   double mateDistance(int row, const Eigen::Vector2d& p) const;
 
@@ -83,13 +86,15 @@ class RobotTeam {
   std::vector<Obstacle> footprints_;                   // K - 1 cylinders
   std::vector<Eigen::Vector2d> position_;              // per row [m]
   std::vector<Eigen::Vector2d> velocity_;              // per row [m/s]
+  std::vector<double> speed_;                          // per row: |velocity_| [m/s]
+  std::vector<std::uint8_t> any_near_;                 // per row: at its last beginStep()
   std::vector<std::uint8_t> placed_;                   // per row: reset at least once
   std::vector<std::uint32_t> epoch_;                   // per row: its starts
   std::vector<std::uint8_t> waiting_;                  // per row: rounds, ended and waiting
-  mutable std::vector<std::vector<Obstacle>> peers_;   // per row: its K - 1 others
-  std::vector<std::vector<std::uint8_t>> near_;        // per row
-  std::vector<std::vector<std::uint8_t>> near_first_;  // per row: near_ less the jumped
-  std::vector<std::vector<std::uint32_t>> seen_;       // per row: the others' epochs seen
+  mutable std::vector<std::vector<Obstacle>> peers_;   // per env: a row's K - 1 others
+  std::vector<std::vector<std::uint8_t>> near_;        // per env: a row's, per slot
+  std::vector<std::vector<std::uint8_t>> near_first_;  // per env: near_ less the jumped
+  std::vector<std::uint32_t> seen_;                    // per row and slot: the others' epochs seen
 };
 
 }  // namespace jetbot_rl

@@ -56,15 +56,20 @@ double roughAtan2(double y, double x) {
 
 /// Which beams can hit a shape seen from the sensor: the beams whose direction in the ground
 /// plane lies within the angle its bounding circle subtends (a beam outside that angle cannot
-/// pass the bounding circle), widened by a beam and by what a tilt of the scanner's plane can
-/// bend a beam's ground-plane direction (less than tilt^2 for tilts below a radian).
+/// pass the bounding circle), widened by what a tilt of the scanner's plane can bend a beam's
+/// ground-plane direction (less than tilt^2 for tilts below a radian) and by the rounding of
+/// the angles. Most small shapes far away fall between two beams: no beam to test.
 class BeamWindow {
  public:
-  BeamWindow(const ScannerSpec& spec, const Eigen::Matrix3d& basis)
-      : min_(spec.min_angle), inc_(spec.angleIncrement()), samples_(spec.samples) {
-    heading_ = std::atan2(basis(1, 0), basis(0, 0));  // beam angle 0 in the ground plane
-    margin_ = inc_ + 4.0 * (1.0 - basis(2, 2)) + 2.0 * kAtanError + 1e-9;
-    all_ = inc_ <= 0.0 || basis(2, 2) < 0.5;  // one beam, or a scanner far from level
+  BeamWindow(const ScannerSpec& spec, const Eigen::Matrix3d& basis) : samples_(spec.samples) {
+    const double inc = spec.angleIncrement();
+    all_ = inc <= 0.0 || basis(2, 2) < 0.5;  // one beam, or a scanner far from level
+    if (all_) return;
+    per_rad_ = 1.0 / inc;
+    turn_ = 2.0 * kPi * per_rad_;
+    // Beam angle 0 in the ground plane, and the margin, in beams from the first beam.
+    offset_ = (std::atan2(basis(1, 0), basis(0, 0)) + spec.min_angle) * per_rad_;
+    margin_ = (4.0 * (1.0 - basis(2, 2)) + 2.0 * kAtanError + 1e-9) * per_rad_ + 1e-9;
   }
   /// Calls f(k) for every beam k that may hit a circle of radius r whose centre lies at `rel`
   /// (ground plane, from the sensor, at distance rho); some beams more than once.
@@ -79,13 +84,16 @@ class BeamWindow {
   /// The same for the angles [from, to] [rad, ground plane, to - from < pi].
   template <class F>
   void forEachBetween(double from, double to, F&& f) const {
-    if (all_ || to - from + 2.0 * margin_ >= 2.0 * kPi) return forEachBeam(f);
-    for (double shift : {-2.0 * kPi, 0.0, 2.0 * kPi}) {
-      const double lo = (from - margin_ - heading_ + shift - min_) / inc_;
-      const double hi = (to + margin_ - heading_ + shift - min_) / inc_;
+    if (all_) return forEachBeam(f);
+    const double lo0 = from * per_rad_ - offset_ - margin_, hi0 = to * per_rad_ - offset_ + margin_;
+    if (hi0 - lo0 >= turn_) return forEachBeam(f);
+    for (double shift : {-turn_, 0.0, turn_}) {
+      const double lo = lo0 + shift, hi = hi0 + shift;
       if (hi < 0.0 || lo > samples_ - 1) continue;
-      const int first = std::max(0, static_cast<int>(std::floor(lo)));
-      const int last = std::min(samples_ - 1, static_cast<int>(std::ceil(hi)));
+      // ceil(lo) and floor(hi) where they are positive: truncation, and no library rounding.
+      const int below = static_cast<int>(lo);
+      const int first = lo <= 0.0 ? 0 : below + (below < lo);
+      const int last = std::min(samples_ - 1, static_cast<int>(hi));
       for (int k = first; k <= last; ++k) f(k);
     }
   }
@@ -95,10 +103,11 @@ class BeamWindow {
   }
 
  private:
-  double min_, inc_;
   int samples_;
-  double heading_ = 0.0, margin_ = 0.0;
   bool all_ = false;
+  double per_rad_ = 0.0;                // beams per radian
+  double turn_ = 0.0;                   // beams per turn
+  double offset_ = 0.0, margin_ = 0.0;  // [beams]
 };
 
 }  // namespace
