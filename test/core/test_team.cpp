@@ -106,6 +106,39 @@ TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
   EXPECT_EQ(outcome[1], static_cast<int>(Outcome::kCollisionRobot));
 }
 
+// A robot that drove away leaves no stand-in behind in the other's world: the step after it was
+// last near, its stand-in is parked (the steps after that skip the stand-ins altogether).
+TEST(Team, ARobotThatDroveAwayLeavesNoStandInWhereItWas) {
+  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  auto& task = dynamic_cast<NavigationTask&>(env.task());
+  place(env, 0, Eigen::Vector2d(-0.5, 0.0), 0.0);
+  place(env, 1, Eigen::Vector2d(-0.1, 0.0), 0.0);  // 0.4 m ahead of robot 0: near it
+  task.setGoal(0, Eigen::Vector2d(1.5, 1.5));      // neither is reached on the way
+  task.setGoal(1, Eigen::Vector2d(1.5, -1.5));
+  const int dim = env.actionDim();
+  std::vector<float> actions(2 * dim, 0.0f);
+  const auto drive = [&](int row, bool on) {
+    for (int i = 0; i < dim; ++i) actions[row * dim + i] = on ? env.actionHigh()[i] : 0.0f;
+  };
+  const auto x = [&](int row) { return env.view(row).rootState().position.x(); };
+  int ended = 0;
+  // Robot 1 drives 0.5 m ahead and stops; robot 0 stands.
+  drive(1, true);
+  for (int step = 0; step < 200 && x(1) < 0.4; ++step) {
+    ended += static_cast<int>(env.step(actions).reset_env_ids.size());
+  }
+  ASSERT_GE(x(1), 0.4);
+  drive(1, false);
+  // Robot 0 drives through where robot 1 was when it was last near (about x = 0), up to 0.55 m
+  // short of robot 1: a stand-in left there would end its episode as a robot collision.
+  drive(0, true);
+  for (int step = 0; step < 200 && x(0) < x(1) - 0.55; ++step) {
+    ended += static_cast<int>(env.step(actions).reset_env_ids.size());
+  }
+  EXPECT_EQ(ended, 0) << "an episode ended on the way";
+  EXPECT_GE(x(0), x(1) - 0.55) << "robot 0 stopped at x = " << x(0);
+}
+
 TEST(Team, ARobotStartsAnewClearOfTheOthersAndAloneWhenItsRowIsReset) {
   BatchedEnv env(lidar(), teamConfig(2, 3, 1.0), test::navigationTask());
   // Robot 1 of env 0 parked on robot 0's point: robot 0, reset, takes another point.
