@@ -59,6 +59,7 @@ add_library(jetbot_rl_core
   src/core/goal_watch.cpp
   src/core/path_tracker.cpp
   src/core/world_shapes.cpp
+  src/core/yaml_flatten.cpp
 )
 target_include_directories(jetbot_rl_core PUBLIC include)
 # Bullet's headers are not -Wextra clean: system headers.

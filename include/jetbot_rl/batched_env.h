@@ -112,7 +112,8 @@ class BatchedEnv {
   const MoverSet* movers() const { return movers_.get(); }
   /// Movers left out since construction because they did not fit (world/placement_tries).
   std::uint64_t moversGivenUp() const { return movers_given_up_; }
-  /// The difficulty env `env`'s next generated layout is drawn at (world/curriculum).
+  /// Env `env`'s curriculum level: its generated layouts are drawn at it (below it with
+  /// world/curriculum_mix).
   double difficulty(int env) const;
   /// The scanner in use, or nullptr.
   const ScannerSpec* scanner() const;

@@ -33,7 +33,8 @@ inline void checkFieldRules(const EnvSetup& setup) { checkFieldRules(setup.env);
 /// the dofs against the robot (ModelError naming the joint).
 std::unique_ptr<BatchedEnv> makeEnv(RobotModelConstPtr robot, const EnvSetup& setup);
 
-/// Reads the fields present in each YAML file of `paths` in turn over `setup` (later files win;
+/// Reads the fields present in each YAML file of `paths` in turn over `setup`, the files parsed
+/// as YAML (flattenYaml(): lists in either style, as rosparam loads them; later files win;
 /// unknown keys are ignored, as in a parameter file that also holds a node's other parameters; a
 /// relative world/map is relative to the file that gives it).
 /// Throws ConfigError naming the file that cannot be read or the field with a value of the wrong

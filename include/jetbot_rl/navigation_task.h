@@ -27,6 +27,7 @@ struct NavigationConfig {
   double proximity_distance = 0.25;  ///< Closer than this, a scan range costs [m].
   double proximity_penalty = 0.1;  ///< Per step at range 0, falling linearly to 0 at the distance.
   bool goal_reachable = false;     ///< Goals only where the robot can drive from the start.
+  bool log_beams = false;          ///< Beams on a log scale of range (finer near the robot).
   bool path = false;               ///< Plan a path to the goal and observe and follow it.
   double path_lookahead = 0.6;     ///< The observed point this far along the path [m].
   double path_clearance = 0.3;  ///< Paths keep this beyond the footprint where there is room [m].
@@ -39,6 +40,10 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
     "Beams of the observation, read from the whole scan: beam i is the smallest reading of "
     "samples [i x samples / beams, (i + 1) x samples / beams), so that nothing between two beams "
     "is lost; divided by range_max (+inf as 1, -inf as range_min / range_max).");
+  v("nav/log_beams", c.log_beams, AnyValue{},
+    "Observe each beam as log(range / range_min) / log(range_max / range_min), in [0, 1], named "
+    "beam_log_<i>, instead of range / range_max: 0.05 m at 0.15 m moves it as much as 0.33 m at "
+    "1 m does, so that the policy tells a wall at 0.15 m from one at 0.2 m.");
   v("nav/goal_distance", c.goal_distance, intervalOf(positiveUpTo(1000.0, "m")),
     "Range of the goal's distance from the start, drawn at every reset (its direction uniform).");
   v("nav/goal_clearance", c.goal_clearance, atLeast(0.0, "m"),
@@ -83,9 +88,10 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
  */
 class NavigationObserver : public TaskObserver {
  public:
-  /// `beams` beams of a scanner reading [range_min, range_max] [m]; `action_dim` last actions.
+  /// `beams` beams of a scanner reading [range_min, range_max] [m]; `action_dim` last actions;
+  /// `log_beams`: beams on a log scale (nav/log_beams).
   NavigationObserver(int beams, double range_min, double range_max, int action_dim,
-                     double goal_radius, bool path = false);
+                     double goal_radius, bool path = false, bool log_beams = false);
 
   std::vector<std::string> observationNames() const override;
   void observationBounds(std::vector<float>& low, std::vector<float>& high) const override;
@@ -95,17 +101,20 @@ class NavigationObserver : public TaskObserver {
   bool reached(const MeasuredState& state) const override;
 
   /// A reading as the observation holds it: NaN and +inf as range_max, -inf as range_min,
-  /// clamped into [range_min, range_max], divided by range_max.
+  /// clamped into [range_min, range_max], divided by range_max (or on a log scale, log_beams).
   float beamValue(float range) const;
   int actionDim() const { return action_dim_; }
   /// True when a policy's `observation_names` hold a global path's (trained with nav/path).
   static bool observesPath(const std::vector<std::string>& observation_names);
+  /// True when a policy's `observation_names` hold beams on a log scale (nav/log_beams).
+  static bool observesLogBeams(const std::vector<std::string>& observation_names);
 
  private:
   int beams_, action_dim_;
   float range_min_, range_max_;
   double goal_radius_;
-  bool path_;
+  bool path_, log_beams_;
+  float log_span_;  // log(range_max / range_min)
 };
 
 /**

@@ -62,6 +62,7 @@ struct ObserverSpec {
   double range_max = 0.0;    ///< clamped into it and divided by range_max.
   double goal_radius = 0.2;  ///< A goal is reached within this [m].
   bool path = false;         ///< Navigation: it observes a path (nav/path).
+  bool log_beams = false;    ///< Navigation: its beams on a log scale (nav/log_beams).
 };
 
 }  // namespace jetbot_rl

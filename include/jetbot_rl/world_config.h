@@ -42,6 +42,7 @@ struct WorldConfig {
   int curriculum_episodes = 20;        ///< Episodes an env's success rate is counted over.
   double curriculum_success = 0.8;     ///< The success rate that raises the difficulty.
   double curriculum_step = 0.1;        ///< By this much.
+  double curriculum_mix = 0.0;         ///< Share of resets drawn at a difficulty below the env's.
 
   /// True when the env has any world: a map, walls or obstacles.
   bool enabled() const {
@@ -126,6 +127,10 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
   v("world/curriculum_success", c.curriculum_success, inRange(0.0, 1.0),
     "The success rate that raises an env's difficulty.");
   v("world/curriculum_step", c.curriculum_step, inRange(0.0, 1.0), "By this much.");
+  v("world/curriculum_mix", c.curriculum_mix, inRange(0.0, 1.0),
+    "With the curriculum: the share of an env's resets that draw their layout at a difficulty "
+    "uniform in [0, the env's] instead of at the env's own, so that easy layouts stay in the "
+    "batch; 0: none.");
 }
 
 /// The rules between WorldConfig's fields: arena_size has 2 values, region 4 (min < max),

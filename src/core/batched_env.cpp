@@ -264,7 +264,8 @@ void BatchedEnv::resetEnv(int env) {
   } else if (world_) {
     // The layout from the env's own stream: its start, the task's goal, the obstacles.
     EnvLayout& layout = layouts_[env];
-    world_->drawLayout(rngs_[env], env, curriculum_.difficulty(env), drawer_, layout);
+    const double difficulty = curriculum_.drawDifficulty(env, rngs_[env]);
+    world_->drawLayout(rngs_[env], env, difficulty, drawer_, layout);
     physics.moveRobot(layout.start);
     physics.setObstacles(layout.obstacles);
     given_up_ += static_cast<std::uint64_t>(layout.given_up);

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "jetbot_rl/yaml_flatten.h"
+
 namespace jetbot_rl {
 
 std::unique_ptr<BatchedEnv> makeEnv(RobotModelConstPtr robot, const EnvSetup& setup) {
@@ -20,7 +22,8 @@ void readEnvSetupFiles(const std::vector<std::string>& paths, EnvSetup& setup) {
     const std::string map_before = setup.env.world.map;
     const std::string gazebo_before = setup.env.world.gazebo_world;
     try {
-      fieldsFromYaml(text.str(), setup);
+      // Parsed as YAML (rosparam's reading): block lists, anchors, quoted values.
+      fieldsFromYaml(flattenYaml(text.str(), path), setup);
     } catch (const ConfigError& e) {
       throw ConfigError(path + ": " + e.what());
     }

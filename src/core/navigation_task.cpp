@@ -26,17 +26,27 @@ double yawOf(const RootState& state) {
 }  // namespace
 
 NavigationObserver::NavigationObserver(int beams, double range_min, double range_max,
-                                       int action_dim, double goal_radius, bool path)
+                                       int action_dim, double goal_radius, bool path,
+                                       bool log_beams)
     : beams_(beams),
       action_dim_(action_dim),
       range_min_(static_cast<float>(range_min)),
       range_max_(static_cast<float>(range_max)),
       goal_radius_(goal_radius),
-      path_(path) {}
+      path_(path),
+      log_beams_(log_beams),
+      log_span_(std::log(range_max_ / range_min_)) {
+  if (log_beams_ && !(range_min > 0.0)) {
+    throwInvalid("nav/log_beams", "true",
+                 "needs the scanner's range_min > 0 (log(range / range_min)); it is " +
+                     std::to_string(range_min) + " m");
+  }
+}
 
 std::vector<std::string> NavigationObserver::observationNames() const {
   std::vector<std::string> names;
-  for (int i = 0; i < beams_; ++i) names.push_back("beam_" + std::to_string(i));
+  const std::string beam = log_beams_ ? "beam_log_" : "beam_";
+  for (int i = 0; i < beams_; ++i) names.push_back(beam + std::to_string(i));
   for (const char* n : {"goal_distance", "goal_cos", "goal_sin"}) names.push_back(n);
   if (path_) {
     for (const char* n : kPathNames) names.push_back(n);
@@ -50,7 +60,7 @@ void NavigationObserver::observationBounds(std::vector<float>& low,
                                            std::vector<float>& high) const {
   TaskObserver::observationBounds(low, high);  // ±inf: speeds and the last actions
   for (int i = 0; i < beams_; ++i) {
-    low[i] = range_min_ / range_max_;
+    low[i] = log_beams_ ? 0.0f : range_min_ / range_max_;
     high[i] = 1.0f;
   }
   for (int at : path_ ? std::vector<int>{beams_, beams_ + 3} : std::vector<int>{beams_}) {
@@ -66,7 +76,9 @@ float NavigationObserver::beamValue(float range) const {
   float r = range;
   if (std::isnan(r) || r == kNoReturn) r = range_max_;
   if (r == kTooClose) r = range_min_;
-  return std::clamp(r, range_min_, range_max_) / range_max_;
+  r = std::clamp(r, range_min_, range_max_);
+  if (log_beams_) return std::min(1.0f, std::log(r / range_min_) / log_span_);
+  return r / range_max_;
 }
 
 void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
@@ -93,6 +105,10 @@ void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
 bool NavigationObserver::observesPath(const std::vector<std::string>& observation_names) {
   return std::find(observation_names.begin(), observation_names.end(), kPathNames[0]) !=
          observation_names.end();
+}
+
+bool NavigationObserver::observesLogBeams(const std::vector<std::string>& observation_names) {
+  return !observation_names.empty() && observation_names.front() == "beam_log_0";
 }
 
 bool NavigationObserver::reached(const MeasuredState& state) const {
@@ -130,9 +146,10 @@ void NavigationTask::attach(const TaskContext& context) {
   beam_width_ = scanner.samples > 1
                     ? scan_increment_ * static_cast<double>(scanner.samples) / config_.beams
                     : 0.0;
-  observer_ = NavigationObserver(
-      config_.beams, context.scanner->range_min, context.scanner->range_max,
-      context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius, config_.path);
+  observer_ =
+      NavigationObserver(config_.beams, context.scanner->range_min, context.scanner->range_max,
+                         context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius,
+                         config_.path, config_.log_beams);
   if (config_.path && !context.world) {
     throwInvalid("nav/path", "true",
                  "plans on the env's world: give it one (world/arena_size, world/map or "

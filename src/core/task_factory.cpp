@@ -67,7 +67,8 @@ std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec) {
                           "] m: it needs at least one beam and range_min < range_max");
       }
       return std::make_unique<NavigationObserver>(spec.scan_beams, spec.range_min, spec.range_max,
-                                                  spec.action_dim, spec.goal_radius, spec.path);
+                                                  spec.action_dim, spec.goal_radius, spec.path,
+                                                  spec.log_beams);
     case TaskKind::kVelocity:
       break;
   }

@@ -29,20 +29,29 @@ double shortestPath(const BatchedEnv& env, const NavigationTask& task, int e) {
 
 }  // namespace
 
-std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map) {
+double benchmarkEpisodeS(double top_speed) {
+  if (!(top_speed > 0.0) || !std::isfinite(top_speed)) return kBenchmarkEpisodeS;
+  return std::max(kBenchmarkEpisodeS, kBenchmarkLongestWay / (0.75 * top_speed));
+}
+
+std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map, double episode_s) {
+  // Time for the longest ways: a time-out is a robot that did not get there, not a clock too
+  // short for its path (in the hardest mazes a goal 3 m away is up to 27 m down the corridors).
+  const std::string episode = "episode_length_s: " + std::to_string(episode_s) + "\n";
   std::vector<BenchmarkWorld> worlds;
   for (const char* family : {"clutter", "rooms", "maze"}) {
     for (const char* difficulty : {"0", "0.5", "1"}) {
       worlds.push_back({std::string(family) + " " + difficulty,
-                        "world:\n  map: ''\n  arena_size: [6.0, 6.0]\n  region: []\n"
-                        "  num_boxes: 0\n  num_cylinders: 0\n  random_start: true\n"
-                        "  start_clearance: 0.3\n  families: [" +
+                        episode +
+                            "world:\n  map: ''\n  arena_size: [6.0, 6.0]\n  region: []\n"
+                            "  num_boxes: 0\n  num_cylinders: 0\n  random_start: true\n"
+                            "  start_clearance: 0.3\n  families: [" +
                             std::string(family) + "]\n  family_weights: []\n  difficulty: " +
                             difficulty + "\n  curriculum: false\n"});
     }
   }
   worlds.push_back(
-      {"map 1-15 m", "world:\n  map: " + map +
+      {"map 1-15 m", episode + "world:\n  map: " + map +
                          "\n  arena_size: []\n  region: []\n  num_boxes: 0\n  num_cylinders: 0\n"
                          "  random_start: true\n  families: []\n  curriculum: false\n"
                          "nav:\n  goal_distance: [1.0, 15.0]\n  goal_reachable: true\n"});

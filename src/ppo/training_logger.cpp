@@ -32,6 +32,7 @@ std::string describeSummary(const TrainingSummary& s) {
     << "\nfinal_mean_episode_return: "
     << (std::isnan(s.final_episode_return) ? std::string("nan") : fixed(s.final_episode_return, 2))
     << (s.best_by == BestBy::kEpisodeReturn ? "\nbest_mean_episode_return: "
+        : s.best_by == BestBy::kLast        ? "\nlast_mean_reward_per_step: "
                                             : "\nbest_mean_reward_per_step: ")
     << fixed(s.best_reward, 4) << "\nmean_env_steps_per_s: " << fixed(s.mean_env_steps_per_s, 0)
     << "\ntarget_mean_reward_per_step: " << fixed(s.target_reward, 4);
@@ -120,7 +121,7 @@ bool TrainingLogger::endIteration(IterationStats& s) {
   // A mean return is NaN before the first episode ends: no comparison makes it the best.
   const double value =
       options_.best_by == BestBy::kEpisodeReturn ? s.mean_episode_return : s.mean_reward_per_step;
-  const bool best = value > summary_.best_reward;
+  const bool best = options_.best_by == BestBy::kLast || value > summary_.best_reward;
   if (best) summary_.best_reward = value;
   return best;
 }

@@ -6,6 +6,7 @@
 #include "jetbot_rl/command_line.h"
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/yaml_flatten.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -67,6 +68,35 @@ TEST(EnvSetup, AnUnreadableFileOrAWrongTypeIsNamedAndChangesNothingAfterIt) {
   const std::string text = configError([&] { readEnvSetupFiles({bad}, setup); });
   EXPECT_NE(text.find(bad), std::string::npos) << text;
   EXPECT_NE(text.find("num_envs = 'many'"), std::string::npos) << text;
+  EXPECT_EQ(setup.env.num_envs, EnvConfig().num_envs);
+}
+
+TEST(EnvSetup, FilesAreReadAsYamlListsInEitherStyleAsRosparamReadsThem) {
+  // A block list (as PyYAML or a user writes one) means what the flow list means: the scanner's
+  // angles were silently left as they were before.
+  const std::string flow = test::writeTempFile(
+      "setup_flow.yaml", "scan:\n  samples: 360\n  angles: [-3.1, 3.0]\nworld:\n  map: ''\n");
+  const std::string block = test::writeTempFile(
+      "setup_block.yaml",
+      "scan:\n  angles:\n  - -3.1\n  -   3.0  # comment\n  samples: 360\nworld:\n  map: \"\"\n");
+  for (const std::string& file : {flow, block}) {
+    EnvSetup setup;
+    setup.env.world.map = "maps/office.yaml";
+    readEnvSetupFiles({file}, setup);
+    EXPECT_EQ(setup.env.scan.samples, 360) << file;
+    EXPECT_EQ(setup.env.scan.angles, (std::vector<double>{-3.1, 3.0})) << file;
+    EXPECT_EQ(setup.env.world.map, "") << file;  // an empty string given, not left out
+  }
+  EXPECT_EQ(flattenYaml("a:\n  b: [x, y]\n  c:\n    - 1\n  d:\n", "f"), "a/b: [x, y]\na/c: [1]\n");
+  // Not YAML, or a list of lists: named, nothing read.
+  EnvSetup setup;
+  const std::string broken = test::writeTempFile("setup_broken.yaml", "num_envs: 7\nscan: [1,\n");
+  std::string text = configError([&] { readEnvSetupFiles({broken}, setup); });
+  EXPECT_NE(text.find(broken + ": no YAML at line"), std::string::npos) << text;
+  const std::string nested =
+      test::writeTempFile("setup_nested.yaml", "num_envs: 7\nscan:\n  angles:\n  - [1, 2]\n");
+  text = configError([&] { readEnvSetupFiles({nested}, setup); });
+  EXPECT_NE(text.find("scan/angles holds a list or a map"), std::string::npos) << text;
   EXPECT_EQ(setup.env.num_envs, EnvConfig().num_envs);
 }
 

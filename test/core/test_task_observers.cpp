@@ -1,13 +1,15 @@
 // The task observers: for every task, the observer a robot elsewhere builds from the env's spec
 // (makeObserver) computes from the env's measured state (root state, the scan at the observed
 // beams, goal or command, last action) exactly the observation the simulated task gave, bit for
-// bit, step after step; and the navigation observer's goal test is the task's success test.
+// bit, step after step (beams on a log scale too); and the navigation observer's goal test is the
+// task's success test.
 #include <cmath>
 #include <random>
 
 #include "jetbot_rl/batched_env.h"
 #include "jetbot_rl/command_task.h"
 #include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/errors.h"
 #include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/scan_reading.h"
 #include "jetbot_rl/task_factory.h"
@@ -40,6 +42,7 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& spec) {
   o.task = spec.task;
   o.action_dim = spec.action_dim;
   o.scan_beams = static_cast<int>(spec.scan_beam_angles.size());
+  o.log_beams = NavigationObserver::observesLogBeams(spec.observation_names);  // as the deploy node
   if (!spec.scan_range.empty()) {
     o.range_min = spec.scan_range[0];
     o.range_max = spec.scan_range[1];
@@ -58,12 +61,9 @@ std::vector<float> scanAtBeams(const BatchedEnv& env, int e, const BatchSpec& sp
   return ranges;
 }
 
-class TaskObservers : public ::testing::TestWithParam<TaskKind> {};
-
-TEST_P(TaskObservers, TheObserverOfTheSpecObservesWhatTheSimulatedTaskObserved) {
-  TaskConfig t;
-  t.task = GetParam();
-  BatchedEnv env(test::jetbot(), config(GetParam()), makeTask(t));
+/// Steps an env of task `t` with random actions and checks the spec's observer against it.
+void expectTheSpecsObserverAgrees(const TaskConfig& t) {
+  BatchedEnv env(test::jetbot(), config(t.task), makeTask(t));
   const BatchSpec spec = env.spec();
   const std::unique_ptr<TaskObserver> observer = observerOf(spec);
   ASSERT_EQ(observer->observationNames(), spec.observation_names);
@@ -110,6 +110,52 @@ TEST_P(TaskObservers, TheObserverOfTheSpecObservesWhatTheSimulatedTaskObserved) 
   }
   EXPECT_EQ(compared, 150 * env.numEnvs());
   EXPECT_GT(ended, 0);  // resets happened: first observations compared too
+}
+
+class TaskObservers : public ::testing::TestWithParam<TaskKind> {};
+
+TEST_P(TaskObservers, TheObserverOfTheSpecObservesWhatTheSimulatedTaskObserved) {
+  TaskConfig t;
+  t.task = GetParam();
+  expectTheSpecsObserverAgrees(t);
+}
+
+TEST(NavigationObserver, BeamsOnALogScaleAreObservedOnARobotAsInTheTask) {
+  TaskConfig t;
+  t.task = TaskKind::kNavigation;
+  t.navigation.log_beams = true;
+  expectTheSpecsObserverAgrees(t);
+}
+
+TEST(NavigationObserver, BeamsOnALogScaleTellNearRangesApart) {
+  const NavigationObserver linear(2, 0.15, 3.5, 2, 0.2);
+  const NavigationObserver log(2, 0.15, 3.5, 2, 0.2, false, true);
+  EXPECT_EQ(log.observationNames().front(), "beam_log_0");
+  EXPECT_TRUE(NavigationObserver::observesLogBeams(log.observationNames()));
+  EXPECT_FALSE(NavigationObserver::observesLogBeams(linear.observationNames()));
+  EXPECT_FLOAT_EQ(log.beamValue(0.15f), 0.0f);
+  EXPECT_FLOAT_EQ(log.beamValue(3.5f), 1.0f);
+  EXPECT_FLOAT_EQ(log.beamValue(-INFINITY), 0.0f);  // too close: range_min
+  EXPECT_FLOAT_EQ(log.beamValue(INFINITY), 1.0f);   // no return: range_max
+  EXPECT_FLOAT_EQ(log.beamValue(NAN), 1.0f);
+  EXPECT_FLOAT_EQ(log.beamValue(0.01f), 0.0f);  // clamped into the range
+  EXPECT_FLOAT_EQ(log.beamValue(50.0f), 1.0f);
+  // log(r / 0.15) / log(3.5 / 0.15): 0.2 m lies 0.0912 above 0.15 m (on a linear scale 0.0143)
+  EXPECT_NEAR(log.beamValue(0.2f) - log.beamValue(0.15f),
+              std::log(0.2 / 0.15) / std::log(3.5 / 0.15), 1e-6);
+  EXPECT_GT(log.beamValue(0.2f) - log.beamValue(0.15f),
+            5.0f * (linear.beamValue(0.2f) - linear.beamValue(0.15f)));
+  std::vector<float> low(log.observationNames().size()), high(low.size());
+  log.observationBounds(low, high);
+  EXPECT_EQ(low[0], 0.0f);
+  EXPECT_EQ(high[0], 1.0f);
+  // A scanner whose range starts at 0 has no log scale: refused naming the parameter.
+  try {
+    NavigationObserver(2, 0.0, 3.5, 2, 0.2, false, true);
+    FAIL() << "accepted range_min 0";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("nav/log_beams"), std::string::npos) << e.what();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryTask, TaskObservers,

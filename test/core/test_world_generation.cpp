@@ -1,8 +1,8 @@
 // Generated worlds (issue 30): clutter, rooms and mazes drawn per env at every reset from the
 // env's own stream; every start and goal joined by a path for the robot (checked here on a finer
 // grid than the generator's), the clutter's narrowest passage kept, families mixed by weight,
-// a layout that cannot be made counted and flagged, the curriculum, the same layouts on any
-// thread count, and bad parameters refused naming the field.
+// a layout that cannot be made counted and flagged, the curriculum and its mix, the same layouts on
+// any thread count, and bad parameters refused naming the field.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -313,6 +313,55 @@ TEST(GeneratedWorlds, TheCurriculumRaisesAnEnvsDifficultyAfterAGoodRun) {
   }
 }
 
+TEST(GeneratedWorlds, TheCurriculumMixDrawsItsShareOfLayoutsBelowAnEnvsDifficulty) {
+  WorldConfig w;
+  w.curriculum = true;
+  w.difficulty = 0.8;
+  w.curriculum_mix = 0.25;
+  const Curriculum mixed(w, 1);
+  Rng rng(7, 0);
+  int below = 0;
+  double sum_below = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    const double d = mixed.drawDifficulty(0, rng);
+    ASSERT_GE(d, 0.0);
+    ASSERT_LE(d, 0.8);
+    if (d < 0.8) {
+      ++below;
+      sum_below += d;
+    }
+  }
+  EXPECT_NEAR(below / 4000.0, 0.25, 0.03);
+  EXPECT_NEAR(sum_below / below, 0.4, 0.04);  // uniform in [0, 0.8]
+  // Without the mix, or without the curriculum, the env's own difficulty and nothing drawn
+  // from its stream (the layouts stay those of runs without the parameter).
+  for (const auto& [curriculum, mix] : {std::pair{true, 0.0}, std::pair{false, 0.5}}) {
+    w.curriculum = curriculum;
+    w.curriculum_mix = mix;
+    Rng a(7, 0), b(7, 0);
+    for (int k = 0; k < 100; ++k) ASSERT_DOUBLE_EQ(Curriculum(w, 1).drawDifficulty(0, a), 0.8);
+    EXPECT_EQ(a.next(), b.next());
+  }
+
+  // In the batch: the layouts are drawn at the env's difficulty or below it, some below.
+  EnvConfig c = generatedConfig(4, 2, {"clutter"});
+  c.world.difficulty = 0.9;
+  c.world.curriculum = true;
+  c.world.curriculum_success = 1.0;
+  c.world.curriculum_mix = 0.5;
+  BatchedEnv env(test::jetbot(), c, navigation());
+  int layouts = 0, easier = 0;
+  for (int s = 0; s < 40; ++s) {
+    for (int e : env.step(actions(4, s)).reset_env_ids) {
+      ++layouts;
+      EXPECT_LE(env.view(e).layout().difficulty, env.difficulty(e));
+      easier += env.view(e).layout().difficulty < env.difficulty(e) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(easier, layouts / 4) << easier << " of " << layouts;
+  EXPECT_LT(easier, 3 * layouts / 4) << easier << " of " << layouts;
+}
+
 void expectRefused(const EnvConfig& c, const std::string& field) {
   try {
     BatchedEnv env(test::jetbot(), c, navigation());
@@ -350,6 +399,9 @@ TEST(GeneratedWorlds, BadParametersAreRefusedNamingTheField) {
   c = good;
   c.world.max_generated_obstacles = 0;
   expectRefused(c, "world/max_generated_obstacles = 0");
+  c = good;
+  c.world.curriculum_mix = 1.5;
+  expectRefused(c, "world/curriculum_mix = 1.5");
   c = good;
   c.world.families = {};
   c.world.num_boxes = 2;

@@ -1,12 +1,14 @@
 """Test helpers for a navigation policy deployed on the env node's robot: train it in-process, run
 jetbot_deploy_node on env 0's scan, odometry and cmd_vel with the map, send goals as RViz's
 "2D Nav Goal" sends them and record odometry, scans, outcomes and plans."""
+import os
 import signal
 import subprocess
 import tempfile
 import unittest
 
 import actionlib
+import rospkg
 import rospy
 from geometry_msgs.msg import PoseStamped
 from move_base_msgs.msg import MoveBaseAction
@@ -28,10 +30,12 @@ def goal_msg(x, y, frame='env_0/map'):
 
 
 class DeployedNavigation(unittest.TestCase):
-    """Trains (200 iterations, `train_args` added) and deploys once per class as /deploy
+    """Trains (200 iterations, `train_args` added: by default in the small arena of
+    config/navigation_arena.yaml, no path observed) and deploys once per class as /deploy
     (`deploy_args` added)."""
     node_name = 'test_deployed_navigation'
-    train_args = []
+    train_args = ['task_config:=' + os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
+                                                 'navigation_arena.yaml')]
     deploy_args = []
 
     @classmethod

@@ -16,6 +16,7 @@ import yaml
 PKG = rospkg.RosPack().get_path('jetbot_rl')
 NAV_URDF = os.path.join(PKG, 'urdf', 'jetbot_lidar.urdf')
 NAV_ENV = os.path.join(PKG, 'config', 'navigation_env.yaml')
+NAV_WORLD = os.path.join(PKG, 'config', 'world_generated.yaml')
 JETBOT_URDF = os.path.join(PKG, 'urdf', 'jetbot.urdf')
 BASE_ENV = os.path.join(PKG, 'config', 'jetbot_env.yaml')
 # Parameters a launch file sets for its purpose (how the env runs, not which env it is):
@@ -79,14 +80,29 @@ class TestTaskDefaults(unittest.TestCase):
                                             for k in differ if k not in allowed)))
 
     def test_navigation_defaults_of_jetbot_env_launch(self):
-        """task:=navigation alone: the lidar Jetbot and config/navigation_env.yaml, as given
-        explicitly."""
+        """task:=navigation alone: the lidar Jetbot, config/navigation_env.yaml and the generated
+        worlds of config/world_generated.yaml, as given explicitly."""
         self.assertEqual(self.nav['/robot_description'], text(NAV_URDF))
         self.assertEqual(self.nav_env['task'], 'navigation')
-        for key, value in file_params(NAV_ENV).items():
+        for key, value in list(file_params(NAV_ENV).items()) + list(file_params(NAV_WORLD).items()):
             self.assertEqual(self.nav_env[key], value, key)
         self.assertEqual(self.nav, dump('jetbot_env.launch', 'task:=navigation',
-                                        'urdf:=' + NAV_URDF, 'task_config:=' + NAV_ENV))
+                                        'urdf:=' + NAV_URDF, 'task_config:=' + NAV_ENV,
+                                        'world:=' + NAV_WORLD))
+
+    def test_a_world_of_ones_own_replaces_the_generated_worlds(self):
+        """A map, a Gazebo world or a world file given: no generated layouts with it (the core
+        refuses families beside a map), the task's env file still loaded."""
+        office = os.path.join(PKG, 'maps', 'office.yaml')
+        obstacles = os.path.join(PKG, 'config', 'world_obstacles.yaml')
+        room = os.path.join(PKG, 'worlds', 'furnished_room.world')
+        for arg, own in (('map:=' + office, {}), ('world:=' + obstacles, file_params(obstacles)),
+                         ('gazebo_world:=' + room, {})):
+            env = under(dump('jetbot_env.launch', 'task:=navigation', arg), '/jetbot_env')
+            self.assertNotIn('world/families', env, arg)
+            self.assertNotIn('world/curriculum', env, arg)
+            for key, value in dict(file_params(NAV_ENV), **own).items():
+                self.assertEqual(env[key], value, '%s: %s' % (arg, key))  # the world file wins
 
     def test_train_launch_trains_that_env(self):
         train = dump('train.launch', 'task:=navigation')
@@ -117,7 +133,7 @@ class TestTaskDefaults(unittest.TestCase):
         """`env` holds none of navigation_env.yaml's settings (but those of `but`): its keys that
         config/jetbot_env.yaml sets have that file's values, the others are unset."""
         base = file_params(BASE_ENV)
-        for key in set(file_params(NAV_ENV)) - set(but):
+        for key in (set(file_params(NAV_ENV)) | set(file_params(NAV_WORLD))) - set(but):
             if key in base:
                 self.assertEqual(env[key], base[key], '%s: %s' % (what, key))
             else:

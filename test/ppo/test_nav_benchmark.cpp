@@ -59,7 +59,19 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   for (const BenchmarkWorld& w : worlds) {
     const EnvSetup setup = benchmarkSetup(w.yaml, 2);
     EXPECT_NO_THROW(makeEnv(lidarJetbot(), setup)) << w.name;
+    EnvSetup own;  // the world's own episode length, over any the env's files give
+    own.env.episode_length_s = 20.0;
+    fieldsFromYaml(w.yaml, own);
+    EXPECT_DOUBLE_EQ(own.env.episode_length_s, kBenchmarkEpisodeS) << w.name;
   }
+  // A slower robot gets the time to drive the longest way at 0.75 of its top speed.
+  EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.6), 60.0);
+  EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.264), 27.0 / (0.75 * 0.264));
+  EXPECT_DOUBLE_EQ(benchmarkEpisodeS(2.0), 60.0);
+  EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.0), 60.0);
+  EnvSetup slow;
+  fieldsFromYaml(navigationBenchmarkWorlds("m.yaml", 136.0)[4].yaml, slow);
+  EXPECT_DOUBLE_EQ(slow.env.episode_length_s, 136.0);
   const EnvSetup map = benchmarkSetup(worlds[9].yaml, 1);
   EXPECT_TRUE(map.task.navigation.goal_reachable);
   EXPECT_EQ(map.task.navigation.goal_distance, (std::vector<double>{1.0, 15.0}));

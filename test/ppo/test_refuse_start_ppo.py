@@ -38,22 +38,24 @@ class TestRefuseStartPpo(unittest.TestCase):
         """A navigation run of one iteration: its checkpoint holds the beams it observed."""
         if cls.trained_navigation is None:
             cls.trained_navigation = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_nav_')
+            arena = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
+                                 'navigation_arena.yaml')  # 24 samples, no path
             subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
                             'task:=navigation', 'iterations:=1', 'num_envs:=4',
+                            'task_config:=' + arena,
                             'run_dir:=' + cls.trained_navigation, 'output:=log'], check=True,
                            timeout=10 * RUN_TIMEOUT, stdout=subprocess.DEVNULL)
         return cls.trained_navigation
 
     @classmethod
     def path_checkpoint(cls):
-        """A navigation run of one iteration that follows a global path (nav/path)."""
+        """A navigation run of one iteration that follows a global path (nav/path: the task's
+        defaults)."""
         if cls.trained_path is None:
             cls.trained_path = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_path_')
-            path_config = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'test',
-                                       'sim2real', 'navigation_path.yaml')
             subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
                             'task:=navigation', 'iterations:=1', 'num_envs:=4',
-                            'world:=' + path_config, 'run_dir:=' + cls.trained_path,
+                            'run_dir:=' + cls.trained_path,
                             'output:=log'], check=True, timeout=10 * RUN_TIMEOUT,
                            stdout=subprocess.DEVNULL)
         return cls.trained_path
@@ -141,7 +143,7 @@ class TestRefuseStartPpo(unittest.TestCase):
                      "task = 'command'", "trained on task 'velocity'")
 
     def test_deploy_scan_range_not_the_checkpoints(self):
-        # config/navigation_env.yaml's scanner reads 0.15-3.5 m: another range would misread it
+        # config/navigation_arena.yaml's scanner reads 0.15-3.5 m: another range would misread it
         self.refuses('jetbot_deploy_node',
                      {'checkpoint': self.navigation_checkpoint()},
                      'scan_range = [0.12, 12]', 'was trained with [0.15, 3.5] m',

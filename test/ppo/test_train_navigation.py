@@ -57,7 +57,8 @@ class TestTrainNavigation(unittest.TestCase):
             ['rosrun', 'jetbot_rl', 'jetbot_rl_evaluate', '--checkpoint', run_dir, '--urdf',
              os.path.join(PKG, 'urdf', 'jetbot_lidar.urdf'), '--config',
              os.path.join(PKG, 'config', 'jetbot_env.yaml'), '--config',
-             os.path.join(PKG, 'config', 'navigation_env.yaml'), '--task', 'navigation',
+             os.path.join(PKG, 'config', 'navigation_env.yaml'), '--config',
+             os.path.join(PKG, 'config', 'world_generated.yaml'), '--task', 'navigation',
              '--num-envs', '50', '--episodes', '200', '--steps', '100000', '--seed', '5000'],
             check=True, stdout=subprocess.PIPE, universal_newlines=True, timeout=TIMEOUT * 6).stdout
         figures = dict(line.split('=', 1) for line in out.splitlines() if '=' in line)
@@ -67,15 +68,17 @@ class TestTrainNavigation(unittest.TestCase):
         self.assertLess(float(figures['collision_rate']), EVAL_COLLISION_CEILING)
 
         # The beams it observed travelled from the env node (~spec) into the export's meta.yaml:
-        # config/navigation_env.yaml's 24 samples over [-3.14159, 2.87979] rad, 0.15-3.5 m.
+        # config/navigation_env.yaml's 24 beams, each 15 of its 360 samples over
+        # [-3.14159, 3.12414] rad, 0.15-3.5 m, on a log scale.
         wait_for(lambda: exported_meta(run_dir), timeout=TIMEOUT, what='the exported policy',
                  recheck=0.5)
         meta = exported_meta(run_dir)
         angles = [float(a) for a in meta['scan_beam_angles'].strip('[]').split(',')]
         self.assertEqual(len(angles), 24)
         for k, angle in enumerate(angles):
-            self.assertAlmostEqual(angle, -3.14159 + k * (2.87979 + 3.14159) / 23, places=9)
+            self.assertAlmostEqual(angle, -3.14159 + 15 * k * (3.12414 + 3.14159) / 359, places=9)
         self.assertEqual(meta['scan_range'], '[0.15, 3.5]')
+        self.assertTrue(meta['observation_names'].startswith('[beam_log_0, '), meta)
 
 
 if __name__ == '__main__':

@@ -68,10 +68,15 @@ bool secondIsBest(BestBy best_by) {
   return best;
 }
 
-TEST(TrainingLogger, BestByRewardPerStepOrByEpisodeReturn) {
+TEST(TrainingLogger, BestByRewardPerStepByEpisodeReturnOrTheLast) {
   // Reward per step: 5, then -0.5; mean return of the episodes: 1, then (1 + 2 + 5) / 3.
   EXPECT_FALSE(secondIsBest(BestBy::kRewardPerStep));
   EXPECT_TRUE(secondIsBest(BestBy::kEpisodeReturn));
+  EXPECT_TRUE(secondIsBest(BestBy::kLast));  // whatever its reward
+  TrainingSummary summary;
+  summary.best_by = BestBy::kLast;
+  EXPECT_NE(describeSummary(summary).find("\nlast_mean_reward_per_step: "), std::string::npos)
+      << describeSummary(summary);
 }
 
 }  // namespace

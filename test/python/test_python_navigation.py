@@ -262,16 +262,19 @@ class TestNavigation(unittest.TestCase):
     @unittest.skipIf(NO_BOUNDS, 'the node sends no observation bounds (EnvSpec.observation_low '
                      'empty): runs once the C++ side fills them')
     def test_navigation_observation_bounds(self):
-        """Once the node fills them, config/navigation_env.yaml's bounds (24 beams in
-        [0.15, 3.5] m, no observation noise): beams in [0.15 / 3.5, 1], goal_distance in
-        [0, inf), goal_cos and goal_sin in [-1, 1], the speeds and last actions unbounded."""
+        """Once the node fills them, config/navigation_env.yaml's bounds (24 beams on a log
+        scale, no observation noise, a path): beams in [0, 1], goal_distance and path_remaining
+        in [0, inf), goal_cos, goal_sin, path_cos and path_sin in [-1, 1], the speeds and last
+        actions unbounded."""
         with JetbotVecEnv(A, timeout=TIMEOUT) as env:
             names = env.observation_names
             expected = {}
             for k in range(24):
-                expected['beam_%d' % k] = (0.15 / 3.5, 1.0)
+                expected['beam_log_%d' % k] = (0.0, 1.0)
             expected.update(goal_distance=(0.0, np.inf), goal_cos=(-1.0, 1.0),
-                            goal_sin=(-1.0, 1.0), lin_vel_b_x=(-np.inf, np.inf),
+                            goal_sin=(-1.0, 1.0), path_remaining=(0.0, np.inf),
+                            path_cos=(-1.0, 1.0), path_sin=(-1.0, 1.0),
+                            lin_vel_b_x=(-np.inf, np.inf),
                             ang_vel_z=(-np.inf, np.inf), last_action_0=(-np.inf, np.inf),
                             last_action_1=(-np.inf, np.inf))
             self.assertEqual(sorted(names), sorted(expected))

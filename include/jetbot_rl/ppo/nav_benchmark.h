@@ -27,10 +27,22 @@ struct BenchmarkResult {
   double path_ratio = 0.0;
 };
 
+/// The longest shortest path of the benchmark's worlds, about: a goal 3 m away in the hardest
+/// maze, down its corridors [m].
+constexpr double kBenchmarkLongestWay = 27.0;
+/// The least time an episode of the benchmark has before it is truncated (a time-out) [s].
+constexpr double kBenchmarkEpisodeS = 60.0;
+
+/// The time a benchmark episode of a robot of top speed `top_speed` [m/s] has [s]: time to drive
+/// kBenchmarkLongestWay at 0.75 of it (the turns), at least kBenchmarkEpisodeS (60 s for the
+/// Jetbot's 0.6 m/s; with no top speed known, that).
+double benchmarkEpisodeS(double top_speed);
+
 /// The benchmark's worlds: each generated family at difficulty 0, 0.5 and 1 in a 6 x 6 m arena,
 /// goals 1-3 m away; then the map `map` with goals 1-15 m away anywhere the robot can reach
-/// (nav/goal_reachable), other rooms included.
-std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map);
+/// (nav/goal_reachable), other rooms included; every episode `episode_s` long [s].
+std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map,
+                                                      double episode_s = kBenchmarkEpisodeS);
 
 /**
  * Plays `policy`'s mean action on `env` (the navigation task, its world) until each env has

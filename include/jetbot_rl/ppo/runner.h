@@ -47,7 +47,9 @@ IfConfig<C, RunnerOptions> visitFields(C& c, V&& v) {
     "Which iteration's policy is checkpoints/best.pt (and exported/policy.pt): reward_per_step, "
     "the highest mean reward per step of an iteration; episode_return, the highest mean return "
     "of the last 100 episodes (steadier where the reward per step swings with the episodes' "
-    "phase, as with rounds of robots: docs/team.md).");
+    "phase, as with rounds of robots: docs/team.md); last, the last iteration (with a "
+    "curriculum, whose later iterations are harder, rewards of different iterations do not "
+    "compare).");
   v("obs_stats_from_step", c.obs_stats_from_step,
     atLeast(-1, "control steps", "-1: max_episode_length / 2"),
     "progress.csv's obs_mean_<name> columns: mean of each observation over the rollout's "
@@ -56,7 +58,8 @@ IfConfig<C, RunnerOptions> visitFields(C& c, V&& v) {
 
 inline const EnumNameList<BestBy>& enumNames(BestBy) {
   static const EnumNameList<BestBy> names{{BestBy::kRewardPerStep, "reward_per_step"},
-                                          {BestBy::kEpisodeReturn, "episode_return"}};
+                                          {BestBy::kEpisodeReturn, "episode_return"},
+                                          {BestBy::kLast, "last"}};
   return names;
 }
 

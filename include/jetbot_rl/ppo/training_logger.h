@@ -15,7 +15,7 @@ namespace jetbot_rl {
 namespace ppo {
 
 /// What makes an iteration the best so far (checkpoints/best.pt).
-enum class BestBy { kRewardPerStep, kEpisodeReturn };
+enum class BestBy { kRewardPerStep, kEpisodeReturn, kLast };
 
 /// The final figures of a run.
 struct TrainingSummary {

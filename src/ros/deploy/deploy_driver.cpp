@@ -53,6 +53,7 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBea
                                          double goal_radius, const std::string& checkpoint) {
   ObserverSpec o;
   o.path = NavigationObserver::observesPath(trained.observation_names);
+  o.log_beams = NavigationObserver::observesLogBeams(trained.observation_names);
   if (o.path && !(trained.path_lookahead > 0.0)) {
     throw ConfigError("the policy of " + checkpoint +
                       " follows a global path, but its checkpoint does not hold the look-ahead "
