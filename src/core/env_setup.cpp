@@ -23,7 +23,7 @@ void readEnvSetupFiles(const std::vector<std::string>& paths, EnvSetup& setup) {
     const std::string gazebo_before = setup.env.world.gazebo_world;
     try {
       // Parsed as YAML (rosparam's reading): block lists, anchors, quoted values.
-      fieldsFromYaml(flattenYaml(text.str(), path), setup);
+      fieldsFromYaml(flattenYaml(text.str()), setup);
     } catch (const ConfigError& e) {
       throw ConfigError(path + ": " + e.what());
     }

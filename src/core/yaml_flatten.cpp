@@ -9,21 +9,20 @@
 namespace jetbot_rl {
 namespace {
 
-void flatten(const YAML::Node& node, const std::string& key, const std::string& source,
-             std::ostringstream& out) {
+void flatten(const YAML::Node& node, const std::string& key, std::ostringstream& out) {
   switch (node.Type()) {
     case YAML::NodeType::Map:
       for (const auto& child : node) {
         const std::string name = child.first.as<std::string>();
-        flatten(child.second, key.empty() ? name : key + "/" + name, source, out);
+        flatten(child.second, key.empty() ? name : key + "/" + name, out);
       }
       break;
     case YAML::NodeType::Sequence: {
       out << key << ": [";
       for (std::size_t i = 0; i < node.size(); ++i) {
         if (!node[i].IsScalar()) {
-          throw ConfigError(source + ": " + key + " holds a list or a map as item " +
-                            std::to_string(i) + ": a parameter's list holds values");
+          throw ConfigError(key + " holds a list or a map as item " + std::to_string(i) +
+                            ": a parameter's list holds values");
         }
         out << (i ? ", " : "") << node[i].Scalar();
       }
@@ -41,19 +40,17 @@ void flatten(const YAML::Node& node, const std::string& key, const std::string& 
 
 }  // namespace
 
-std::string flattenYaml(const std::string& yaml, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source + ": no YAML at line " + std::to_string(e.mark.line + 1) + ": " +
-                      e.msg);
-  }
-  if (!root.IsMap() && !root.IsNull()) {
-    throw ConfigError(source + ": a parameter file holds a map of names to values");
-  }
+std::string flattenYaml(const std::string& yaml) {
   std::ostringstream out;
-  flatten(root, "", source, out);
+  try {
+    const YAML::Node root = YAML::Load(yaml);
+    if (!root.IsMap() && !root.IsNull()) {
+      throw ConfigError("a parameter file holds a map of names to values");
+    }
+    flatten(root, "", out);
+  } catch (const YAML::Exception& e) {  // not YAML, or a key that is no name
+    throw ConfigError("no YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
   return out.str();
 }
 

@@ -87,16 +87,17 @@ TEST(EnvSetup, FilesAreReadAsYamlListsInEitherStyleAsRosparamReadsThem) {
     EXPECT_EQ(setup.env.scan.angles, (std::vector<double>{-3.1, 3.0})) << file;
     EXPECT_EQ(setup.env.world.map, "") << file;  // an empty string given, not left out
   }
-  EXPECT_EQ(flattenYaml("a:\n  b: [x, y]\n  c:\n    - 1\n  d:\n", "f"), "a/b: [x, y]\na/c: [1]\n");
+  EXPECT_EQ(flattenYaml("a:\n  b: [x, y]\n  c:\n    - 1\n  d:\n"), "a/b: [x, y]\na/c: [1]\n");
   // Not YAML, or a list of lists: named, nothing read.
   EnvSetup setup;
   const std::string broken = test::writeTempFile("setup_broken.yaml", "num_envs: 7\nscan: [1,\n");
   std::string text = configError([&] { readEnvSetupFiles({broken}, setup); });
   EXPECT_NE(text.find(broken + ": no YAML at line"), std::string::npos) << text;
+  EXPECT_EQ(text.find(broken), text.rfind(broken)) << text;  // the file named once
   const std::string nested =
       test::writeTempFile("setup_nested.yaml", "num_envs: 7\nscan:\n  angles:\n  - [1, 2]\n");
   text = configError([&] { readEnvSetupFiles({nested}, setup); });
-  EXPECT_NE(text.find("scan/angles holds a list or a map"), std::string::npos) << text;
+  EXPECT_NE(text.find(nested + ": scan/angles holds a list or a map"), std::string::npos) << text;
   EXPECT_EQ(setup.env.num_envs, EnvConfig().num_envs);
 }
 
