@@ -108,6 +108,14 @@ IfConfig<C, BatchSpec> visitFields(C& c, V&& v) {
     "The cmd_vel kinematics' wheel separation; 0: the robot is no differential drive.");
 }
 
+/// The action names of action_space twist (v [m/s], omega [rad/s]).
+inline const std::vector<std::string>& twistActionNames() {
+  static const std::vector<std::string> names{"linear_x", "angular_z"};
+  return names;
+}
+/// True when `spec`'s actions are a twist (action_space twist), not wheel targets.
+inline bool actsByTwist(const BatchSpec& spec) { return spec.action_names == twistActionNames(); }
+
 /// Sizes that fit: num_envs, obs_dim and action_dim >= 1, as many names and bounds as
 /// components, max_episode_length >= 2, control_dt > 0, scan_range two values with the beams;
 /// ConfigError naming the field and its value.

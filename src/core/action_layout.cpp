@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 
@@ -38,7 +39,7 @@ ActionLayout makeActionLayout(const RobotModel& robot, const EnvConfig& config,
   // 0 - reverse: no reverse speed is 0, not -0 (which prints as "-0." in the spec).
   a.low = {static_cast<float>(0.0 - reverse), static_cast<float>(-w)};
   a.high = {static_cast<float>(v), static_cast<float>(w)};
-  a.names = {"linear_x", "angular_z"};
+  a.names = twistActionNames();
   return a;
 }
 

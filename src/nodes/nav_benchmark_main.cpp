@@ -41,9 +41,8 @@ int main(int argc, char** argv) {
         NavigationObserver::observesLogBeams(policy.meta().spec.observation_names);
     // A twist policy's top speed sets the episodes' time (a slow robot needs longer).
     const BatchSpec& trained = policy.meta().spec;
-    const bool twist = trained.action_names == std::vector<std::string>{"linear_x", "angular_z"};
     const double episode_s = ppo::benchmarkEpisodeS(
-        twist && !trained.action_high.empty() ? trained.action_high[0] : 0.0);
+        actsByTwist(trained) && !trained.action_high.empty() ? trained.action_high[0] : 0.0);
     std::printf("# %s: %d episodes per world of %.0f s, seed %lld, %s\n", checkpoint.c_str(),
                 episodes, episode_s, seed, path ? "with its global path" : "without a path");
     std::printf("%-14s %8s %8s %9s %8s %12s %13s\n", "world", "episodes", "success", "collision",

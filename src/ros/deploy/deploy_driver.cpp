@@ -43,7 +43,7 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
   PolicyRun run;
   run.control_rate = 1.0 / spec.control_dt;
   run.path_lookahead = spec.path_lookahead;
-  run.twist = spec.action_names == std::vector<std::string>{"linear_x", "angular_z"};
+  run.twist = actsByTwist(spec);
   run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
   run.checkpoint = checkpoint;
   return run;
