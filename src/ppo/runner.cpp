@@ -114,6 +114,7 @@ TrainingSummary OnPolicyRunner::learn() {
   fs::create_directories(checkpoints);
   const std::string latest = (checkpoints / "latest.pt").string();
   const std::string best = (checkpoints / "best.pt").string();
+  const bool last_is_best = options_.best_by == BestBy::kLast;
   {
     std::ofstream config_file(run_dir / "config.yaml");
     config_file << "# PPO hyper-parameters\n" << toYaml(config_) << options_.extra_config;
@@ -192,10 +193,12 @@ TrainingSummary OnPolicyRunner::learn() {
       s.action_std = ppo_->actionStd();
       const bool improved = logger.endIteration(s);
       elapsed_at_save = s.elapsed_s;
-      if (improved) save(best, elapsed_at_save, summary.best_reward);
-      if (iteration_ % options_.save_interval == 0 || iteration_ == options_.iterations) {
-        save(latest, elapsed_at_save, summary.best_reward);
-      }
+      const bool save_point =
+          iteration_ % options_.save_interval == 0 || iteration_ == options_.iterations;
+      // best_by last: best.pt is the last iteration, written with latest.pt, not at every one.
+      if (improved && (!last_is_best || save_point))
+        save(best, elapsed_at_save, summary.best_reward);
+      if (save_point) save(latest, elapsed_at_save, summary.best_reward);
       // The last iteration's callback comes after summary.yaml and the export, so that whoever
       // waits for it finds the run's files complete.
       if (iteration_ < options_.iterations) {
@@ -213,6 +216,7 @@ TrainingSummary OnPolicyRunner::learn() {
   }
   if (summary.interrupted || !summary.error.empty()) {
     save(latest, elapsed_at_save, summary.best_reward);  // the model after the last update
+    if (last_is_best) save(best, elapsed_at_save, summary.best_reward);
   }
   summary.iterations = iteration_;
   summary.env_steps = env_steps_;

@@ -115,12 +115,13 @@ std::vector<std::vector<std::string>> readCsv(const std::string& path) {
 }
 
 TrainingSummary train(VecEnv& env, const std::string& dir, std::int64_t iterations,
-                      const std::string& resume = "") {
+                      const std::string& resume = "", BestBy best_by = BestBy::kRewardPerStep) {
   RunnerOptions o;
   o.iterations = iterations;
   o.run_dir = dir;
   o.resume = resume;
   o.save_interval = 2;
+  o.best_by = best_by;
   OnPolicyRunner runner(env, toyConfig(), o);
   runner.setLogger([](const std::string&) {});
   return runner.learn();
@@ -151,6 +152,17 @@ TEST(Runner, LearnsTheToyTaskAndWritesTheRunDirectory) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/config.yaml"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/summary.yaml"));
   EXPECT_EQ(readCheckpointMeta(dir + "/checkpoints/latest.pt").iteration, 40);
+}
+
+TEST(Runner, BestByLastMakesTheLastIterationTheBest) {
+  // 5 iterations, saves every 2: best.pt is the last iteration's, written with latest.pt.
+  ToyEnv env(8);
+  const std::string dir = runDir("best_last");
+  const TrainingSummary s = train(env, dir, 5, "", BestBy::kLast);
+  EXPECT_TRUE(s.error.empty()) << s.error;
+  EXPECT_EQ(readCheckpointMeta(dir + "/checkpoints/best.pt").iteration, 5);
+  EXPECT_EQ(readCheckpointMeta(dir + "/checkpoints/latest.pt").iteration, 5);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/exported/policy.pt"));
 }
 
 /// Every CSV column but the timing ones.
