@@ -60,7 +60,7 @@ catkin_add_gtest(test_ppo
   test/ppo/test_nav_benchmark.cpp
   test/ppo/test_training_logger.cpp
 )
-target_link_libraries(test_ppo jetbot_rl_ppo)
+target_link_libraries(test_ppo jetbot_rl_ppo jetbot_rl_eval)
 target_compile_definitions(test_ppo PRIVATE ${_robots} JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # ---- ROS adapter without a master ----

@@ -11,7 +11,6 @@ add_library(jetbot_rl_ppo
   src/ppo/gae.cpp
   src/ppo/input_history.cpp
   src/ppo/iteration_stats.cpp
-  src/ppo/nav_benchmark.cpp
   src/ppo/obs_normalizer.cpp
   src/ppo/policy.cpp
   src/ppo/policy_export.cpp
@@ -44,17 +43,6 @@ target_link_libraries(jetbot_rl_ppo_ros PUBLIC jetbot_rl_ppo jetbot_rl_client)
 jetbot_rl_nodelet_library(jetbot_rl_learner_nodelets src/nodelets/learner_nodelets.cpp)
 target_link_libraries(jetbot_rl_learner_nodelets jetbot_rl_ppo_ros)
 
-# A policy's mean reward per step on envs configured by YAML (e.g. perturbed physics), in-process.
-add_executable(jetbot_rl_evaluate src/nodes/evaluate_main.cpp)
-target_link_libraries(jetbot_rl_evaluate jetbot_rl_ppo)
-target_compile_definitions(jetbot_rl_evaluate PRIVATE ${JETBOT_RL_DEFAULT_URDF_DEFINE})
-add_executable(jetbot_rl_nav_benchmark src/nodes/nav_benchmark_main.cpp)
-target_link_libraries(jetbot_rl_nav_benchmark jetbot_rl_ppo)
-target_compile_definitions(jetbot_rl_nav_benchmark PRIVATE
-  JETBOT_RL_DEFAULT_LIDAR_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot_lidar.urdf"
-  JETBOT_RL_DEFAULT_MAP="${PROJECT_SOURCE_DIR}/maps/office.yaml"
-  JETBOT_RL_NAVIGATION_ENV="${PROJECT_SOURCE_DIR}/config/navigation_env.yaml")
-
 add_executable(jetbot_ppo_trainer src/nodes/jetbot_ppo_trainer.cpp)
 target_link_libraries(jetbot_ppo_trainer jetbot_rl_ppo_ros)
 add_executable(jetbot_policy_node src/nodes/jetbot_policy_node.cpp)
@@ -64,5 +52,5 @@ install(TARGETS jetbot_rl_ppo jetbot_rl_ppo_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
-install(TARGETS jetbot_ppo_trainer jetbot_policy_node jetbot_rl_evaluate jetbot_rl_nav_benchmark
+install(TARGETS jetbot_ppo_trainer jetbot_policy_node
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

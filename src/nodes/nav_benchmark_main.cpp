@@ -1,4 +1,5 @@
-// jetbot_rl_nav_benchmark --checkpoint PATH [--episodes N] [--seed S] [--map YAML] [--config YAML
+// jetbot_rl_nav_benchmark --checkpoint PATH (a file, or a run directory: its latest.pt, else its
+// best.pt) [--episodes N] [--seed S] [--map YAML] [--config YAML
 // ...] [--num-envs N] [--steps S] [--threads T] [--urdf PATH]: the navigation benchmark
 // (config/navigation_env.yaml, then the --config files: those the policy was trained with)
 // (docs/navigation.md#the-benchmark): a navigation policy in each generated family at three
@@ -10,7 +11,7 @@
 #include <string>
 
 #include "jetbot_rl/config/command_line.h"
-#include "jetbot_rl/ppo/nav_benchmark.h"
+#include "jetbot_rl/eval/nav_benchmark.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 
 int main(int argc, char** argv) {
@@ -34,36 +35,37 @@ int main(int argc, char** argv) {
   const int episodes = std::max(options.episodes, 1);
   env_options.configs.insert(env_options.configs.begin(), JETBOT_RL_NAVIGATION_ENV);
   try {
-    if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/latest.pt";
+    if (std::filesystem::is_directory(checkpoint)) {
+      // A run's newest state; a shipped policy (policies/) keeps only its best.pt.
+      const std::string latest = checkpoint + "/checkpoints/latest.pt";
+      checkpoint = std::filesystem::exists(latest) ? latest : checkpoint + "/checkpoints/best.pt";
+    }
     ppo::Policy policy(checkpoint);
     const bool path = NavigationObserver::observesPath(policy.meta().spec.observation_names);
     const bool log_beams =
         NavigationObserver::observesLogBeams(policy.meta().spec.observation_names);
     // A twist policy's top speed sets the episodes' time (a slow robot needs longer).
     const BatchSpec& trained = policy.meta().spec;
-    const double episode_s = ppo::benchmarkEpisodeS(
+    const double episode_s = benchmarkEpisodeS(
         actsByTwist(trained) && !trained.action_high.empty() ? trained.action_high[0] : 0.0);
     std::printf("# %s: %d episodes per world of %.0f s, seed %lld, %s\n", checkpoint.c_str(),
                 episodes, episode_s, seed, path ? "with its global path" : "without a path");
     std::printf("%-14s %8s %8s %9s %8s %12s %13s\n", "world", "episodes", "success", "collision",
                 "timeout", "time_to_goal", "path/shortest");
-    for (const ppo::BenchmarkWorld& world : ppo::navigationBenchmarkWorlds(map, episode_s)) {
-      EnvSetup setup = env_options.setup();
-      fieldsFromYaml("task: navigation\n" + world.yaml, setup);
-      fieldsFromYaml(std::string("nav:\n  path: ") + (path ? "true" : "false") +
-                         "\n  log_beams: " + (log_beams ? "true" : "false") + "\n",
-                     setup);
-      setup.env.seed = static_cast<std::uint64_t>(seed);
-      const std::unique_ptr<BatchedEnv> env = makeEnv(
-          RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
-          setup);
+    EnvSetup base = env_options.setup();
+    base.task.navigation.path = path;
+    base.task.navigation.log_beams = log_beams;
+    base.env.seed = static_cast<std::uint64_t>(seed);
+    const RobotModelConstPtr robot =
+        RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
+    for (const BenchmarkWorld& world : navigationBenchmarkWorlds(base, map, episode_s)) {
+      const std::unique_ptr<BatchedEnv> env = makeEnv(robot, world.setup);
       for (const std::string& warning : policy.fitTo(env->spec())) {
         // The benchmark's own episode length (kBenchmarkEpisodeS) is no surprise to warn of.
         if (warning.rfind("the env's max_episode_length", 0) == 0) continue;
         std::fprintf(stderr, "warning: %s\n", warning.c_str());
       }
-      const ppo::BenchmarkResult r =
-          ppo::runNavigationBenchmark(policy, *env, episodes, env_options.steps);
+      const BenchmarkResult r = runNavigationBenchmark(policy, *env, episodes, env_options.steps);
       std::printf("%-14s %8d %8.3f %9.3f %8.3f %11.1fs %13.2f%s\n", world.name.c_str(), r.episodes,
                   r.success, r.collision, r.timeout, r.time_to_goal, r.path_ratio,
                   r.steps_ran_out ? "  (the steps ran out first)" : "");

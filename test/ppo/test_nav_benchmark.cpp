@@ -7,18 +7,24 @@
 
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/eval/nav_benchmark.h"
 #include "jetbot_rl/ppo/checkpoint.h"
-#include "jetbot_rl/ppo/nav_benchmark.h"
 #include "jetbot_rl/ppo/ppo.h"
 
 namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-EnvSetup benchmarkSetup(const std::string& world_yaml, int envs) {
+/// The env the benchmark's worlds are drawn over: the navigation task's env file.
+EnvSetup navigationEnv() {
   EnvSetup setup;
   readEnvSetupFiles({std::string(JETBOT_RL_SOURCE_DIR) + "/config/navigation_env.yaml"}, setup);
-  fieldsFromYaml("task: navigation\n" + world_yaml, setup);
+  return setup;
+}
+
+/// A world of the benchmark with `envs` envs on one thread, its episodes short.
+EnvSetup benchmarkSetup(const BenchmarkWorld& world, int envs) {
+  EnvSetup setup = world.setup;
   setup.env.num_envs = envs;
   setup.env.num_threads = 1;
   setup.env.episode_length_s = 4.0;  // time-outs come soon
@@ -50,36 +56,45 @@ Policy untrainedPolicy(const BatchedEnv& env) {
 }
 
 TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
+  const EnvSetup base = navigationEnv();
   const auto worlds =
-      navigationBenchmarkWorlds(std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
+      navigationBenchmarkWorlds(base, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
   ASSERT_EQ(worlds.size(), 10u);
   EXPECT_EQ(worlds[0].name, "clutter 0");
   EXPECT_EQ(worlds[8].name, "maze 1");
   EXPECT_EQ(worlds[9].name, "map 1-15 m");
   for (const BenchmarkWorld& w : worlds) {
-    const EnvSetup setup = benchmarkSetup(w.yaml, 2);
-    EXPECT_NO_THROW(makeEnv(lidarJetbot(), setup)) << w.name;
-    EnvSetup own;  // the world's own episode length, over any the env's files give
-    own.env.episode_length_s = 20.0;
-    fieldsFromYaml(w.yaml, own);
-    EXPECT_DOUBLE_EQ(own.env.episode_length_s, kBenchmarkEpisodeS) << w.name;
+    EXPECT_NO_THROW(makeEnv(lidarJetbot(), benchmarkSetup(w, 2))) << w.name;
+    // The world's own episode length, over the env's (20 s), and the rest of the env kept.
+    EXPECT_DOUBLE_EQ(w.setup.env.episode_length_s, kBenchmarkEpisodeS) << w.name;
+    EXPECT_EQ(w.setup.task.task, TaskKind::kNavigation) << w.name;
+    EXPECT_EQ(w.setup.env.decimation, base.env.decimation) << w.name;
+    EXPECT_EQ(w.setup.task.navigation.log_beams, base.task.navigation.log_beams) << w.name;
+    EXPECT_TRUE(w.setup.env.world.random_start) << w.name;
+    EXPECT_FALSE(w.setup.env.world.curriculum) << w.name;
   }
+  EXPECT_EQ(worlds[4].setup.env.world.families, (std::vector<std::string>{"rooms"}));
+  EXPECT_EQ(worlds[4].setup.env.world.difficulty, 0.5);
+  EXPECT_EQ(worlds[4].setup.env.world.arena_size, (std::vector<double>{6.0, 6.0}));
+  EXPECT_TRUE(worlds[4].setup.env.world.map.empty());
   // A slower robot gets the time to drive the longest way at 0.75 of its top speed.
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.6), 60.0);
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.264), 27.0 / (0.75 * 0.264));
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(2.0), 60.0);
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.0), 60.0);
-  EnvSetup slow;
-  fieldsFromYaml(navigationBenchmarkWorlds("m.yaml", 136.0)[4].yaml, slow);
-  EXPECT_DOUBLE_EQ(slow.env.episode_length_s, 136.0);
-  const EnvSetup map = benchmarkSetup(worlds[9].yaml, 1);
+  EXPECT_DOUBLE_EQ(navigationBenchmarkWorlds(base, "m.yaml", 136.0)[4].setup.env.episode_length_s,
+                   136.0);
+  const EnvSetup map = worlds[9].setup;
+  EXPECT_TRUE(map.env.world.families.empty());
+  EXPECT_TRUE(map.env.world.arena_size.empty());
+  EXPECT_EQ(map.env.world.map, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
   EXPECT_TRUE(map.task.navigation.goal_reachable);
   EXPECT_EQ(map.task.navigation.goal_distance, (std::vector<double>{1.0, 15.0}));
 }
 
 TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPath) {
-  const auto worlds = navigationBenchmarkWorlds("unused.yaml");
-  const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3].yaml, 6));
+  const auto worlds = navigationBenchmarkWorlds(navigationEnv(), "unused.yaml");
+  const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
   Policy policy = untrainedPolicy(*env);
   const BenchmarkResult r = runNavigationBenchmark(policy, *env, 12, 5000);
   EXPECT_FALSE(r.steps_ran_out);
@@ -90,8 +105,7 @@ TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPa
     EXPECT_GT(r.path_ratio, 0.9);
   }
   // With a quota the steps cannot meet, the result says so.
-  const std::unique_ptr<BatchedEnv> again =
-      makeEnv(lidarJetbot(), benchmarkSetup(worlds[3].yaml, 6));
+  const std::unique_ptr<BatchedEnv> again = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
   EXPECT_TRUE(runNavigationBenchmark(policy, *again, 600, 50).steps_ran_out);
 }
 

@@ -4,16 +4,16 @@
 #include <vector>
 
 #include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/ppo/policy.h"
 
 namespace jetbot_rl {
-namespace ppo {
 
-/// A world of the navigation benchmark: its name and the parameters (YAML) it sets over the
-/// env's own.
+/// A world of the navigation benchmark: its name and the env it is (the env's own setup with
+/// the world's fields set over it).
 struct BenchmarkWorld {
   std::string name;
-  std::string yaml;
+  EnvSetup setup;
 };
 
 /// How a policy fared in one world, over the episodes counted.
@@ -38,21 +38,22 @@ constexpr double kBenchmarkEpisodeS = 60.0;
 /// Jetbot's 0.6 m/s; with no top speed known, that).
 double benchmarkEpisodeS(double top_speed);
 
-/// The benchmark's worlds: each generated family at difficulty 0, 0.5 and 1 in a 6 x 6 m arena,
-/// goals 1-3 m away; then the map `map` with goals 1-15 m away anywhere the robot can reach
-/// (nav/goal_reachable), other rooms included; every episode `episode_s` long [s].
-std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const std::string& map,
+/// The benchmark's worlds over the env `base` (the navigation task set): each generated family
+/// at difficulty 0, 0.5 and 1 in a 6 x 6 m arena, goals 1-3 m away; then the map `map` with
+/// goals 1-15 m away anywhere the robot can reach (nav/goal_reachable), other rooms included;
+/// every episode `episode_s` long [s]. The rest of `base` (the robot's control, the scanner, the
+/// observation, the other world fields) is kept.
+std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, const std::string& map,
                                                       double episode_s = kBenchmarkEpisodeS);
 
 /**
  * Plays `policy`'s mean action on `env` (the navigation task, its world) until each env has
- * ended ceil(episodes / envs) episodes or `max_steps` control steps ran; counts each episode's
- * outcome and, for a success, its time and the distance its root drove (control step by control
- * step; the last step, whose end the reset hides, as far as the goal's circle) over its shortest
- * path. ConfigError unless the env has the navigation task and a world.
+ * ended ceil(episodes / envs) episodes or `max_steps` control steps ran (runEpisodes()); counts
+ * each episode's outcome and, for a success, its time and the distance its root drove (control
+ * step by control step; the last step, whose end the reset hides, as far as the goal's circle)
+ * over its shortest path. ConfigError unless the env has the navigation task and a world.
  */
-BenchmarkResult runNavigationBenchmark(Policy& policy, BatchedEnv& env, int episodes,
+BenchmarkResult runNavigationBenchmark(ppo::Policy& policy, BatchedEnv& env, int episodes,
                                        int max_steps);
 
-}  // namespace ppo
 }  // namespace jetbot_rl
