@@ -132,6 +132,9 @@ foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigatio
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 
+# ---- the shipped policies (policies/): each still loads and acts as its figures say ----
+add_rostest(test/policies/shipped_policies.test DEPENDENCIES jetbot_rl_evaluate)
+
 # ---- the fault suite (docs/reliability.md): peers that die or misbehave, signals, a soak ----
 foreach(_scenario signals client_killed env_killed env_hung two_learners slow_subscriber soak)
   add_rostest(test/reliability/${_scenario}.test DEPENDENCIES ${_nodes})

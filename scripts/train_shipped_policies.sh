@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Trains the policies shipped in policies/ (policies/README.md), each exactly as its row there
-# says, and copies each run's checkpoints/best.pt to policies/<name>.pt. Deterministic: the same
-# build trains the same policies bit for bit. Needs a sourced workspace (devel/setup.bash).
+# says, and keeps of each run directory what a user plays, deploys and reads in policies/<name>/:
+# checkpoints/best.pt, exported/ (TorchScript and meta.yaml), config.yaml and summary.yaml.
+# Deterministic: the same build trains the same policies bit for bit. Needs a sourced workspace
+# (devel/setup.bash).
 #   bash scripts/train_shipped_policies.sh [NAME ...]   (none: all of them)
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -30,7 +32,11 @@ for name in "${names[@]}"; do
   start=$(date +%s)
   # shellcheck disable=SC2086
   roslaunch jetbot_rl train.launch in_process:=true seed:=0 output:=log run_dir:="$run_dir" ${recipe[$name]} >/dev/null
-  echo "   $(( $(date +%s) - start )) s; $(grep -E '^(iterations|final|best)' "$run_dir/summary.yaml" | tr '\n' ' ')"
-  cp "$run_dir/checkpoints/best.pt" "$repo/policies/$name.pt"
-  cp "$run_dir/summary.yaml" "$repo/policies/$name.summary.yaml"
+  echo "   $(( $(date +%s) - start )) s"
+  cat "$run_dir/summary.yaml"
+  keep=$repo/policies/$name
+  rm -rf "$keep"
+  mkdir -p "$keep/checkpoints"
+  cp "$run_dir/checkpoints/best.pt" "$keep/checkpoints/"
+  cp -r "$run_dir/exported" "$run_dir/config.yaml" "$run_dir/summary.yaml" "$keep/"
 done

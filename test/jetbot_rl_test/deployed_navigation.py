@@ -1,10 +1,9 @@
-"""Test helpers for a navigation policy deployed on the env node's robot: train it in-process, run
-jetbot_deploy_node on env 0's scan, odometry and cmd_vel with the map, send goals as RViz's
+"""Test helpers for a navigation policy deployed on the env node's robot: a shipped policy
+(policies/README.md), run by jetbot_deploy_node on env 0's scan, odometry and cmd_vel with the map, send goals as RViz's
 "2D Nav Goal" sends them and record odometry, scans, outcomes and plans."""
 import os
 import signal
 import subprocess
-import tempfile
 import unittest
 
 import actionlib
@@ -30,24 +29,18 @@ def goal_msg(x, y, frame='env_0/map'):
 
 
 class DeployedNavigation(unittest.TestCase):
-    """Trains (200 iterations, `train_args` added: by default in the small arena of
-    config/navigation_arena.yaml, no path observed) and deploys once per class as /deploy
+    """Deploys the shipped policy `shipped_policy` (by default policies/navigation_arena: 200 iterations in
+    the small arena of config/navigation_arena.yaml, no path observed) once per class as /deploy
     (`deploy_args` added)."""
     node_name = 'test_deployed_navigation'
-    train_args = ['task_config:=' + os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
-                                                 'navigation_arena.yaml')]
+    shipped_policy = 'navigation_arena'
     deploy_args = []
 
     @classmethod
     def setUpClass(cls):
         rospy.init_node(cls.node_name)
-        cls.run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_nav_')
-        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                        'task:=navigation', 'iterations:=200', 'run_dir:=' + cls.run_dir,
-                        'output:=log'] + cls.train_args,
-                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
-        with open(cls.run_dir + '/summary.yaml') as f:
-            print(f.read())
+        cls.run_dir = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies',
+                                   cls.shipped_policy)
         cls.odoms, cls.scans, cls.outcomes, cls.plans = (EventList(), EventList(), EventList(),
                                                          EventList())
         rospy.Subscriber('/env_0/odom', Odometry, cls.odoms.append)

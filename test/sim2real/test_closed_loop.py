@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Closed loop, as on a robot: a policy trained with domain randomisation (config/
-randomization.yaml) drives the env node's robot view through jetbot_deploy_node
+"""Closed loop, as on a robot: a shipped policy trained with domain randomisation (config/
+randomization.yaml; policies/README.md) drives the env node's robot view through jetbot_deploy_node
 (odometry in, cmd_vel out). Velocity task: the robot reaches >= 90 % of its top speed. Command
 task: given a command on the command topic, the robot heads along it within 0.3 rad after 3 s,
 and again 3 s after a new command is set while it drives."""
@@ -33,19 +33,6 @@ class TestClosedLoop(unittest.TestCase):
         self.odoms = EventList()
         rospy.Subscriber('/env_0/odom', Odometry, self.odoms.append)
 
-    def train(self, task, iterations):
-        """Trains in the trainer's process with randomisation; returns the run directory."""
-        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_closed_loop_')
-        randomization = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
-                                     'randomization.yaml')
-        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                        'task:=' + task, 'iterations:=%d' % iterations, 'run_dir:=' + run_dir,
-                        'randomization:=' + randomization, 'output:=log'],
-                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
-        with open(os.path.join(run_dir, 'summary.yaml')) as f:
-            print(f.read())
-        return run_dir
-
     def drive(self, run_dir, task):
         """Starts jetbot_deploy_node on env 0's robot view."""
         return subprocess.Popen([
@@ -74,7 +61,7 @@ class TestClosedLoop(unittest.TestCase):
 
     def test_closed_loop(self):
         task = rospy.get_param('~task')
-        run_dir = self.train(task, rospy.get_param('~iterations'))
+        run_dir = rospy.get_param('~policy')
         wait_for(lambda: self.odoms, what='odometry of env 0')
         if task == 'velocity':
             count = len(self.odoms)

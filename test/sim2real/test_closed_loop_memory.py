@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Closed loop with unequal motors (docs/sim_to_real.md#policies-with-memory): two command-task
-policies trained with domain randomisation and the stock Jetbot's open-loop motors
+"""Closed loop with unequal motors (docs/sim_to_real.md#policies-with-memory): two shipped
+command-task policies (policies/command_memory and policies/command_motors) trained with domain
+randomisation and the stock Jetbot's open-loop motors
 (config/randomization.yaml, config/jetbot_motors.yaml), one with memory
 (config/ppo_command_memory.yaml) and one without (config/ppo_command.yaml), drive through
 jetbot_deploy_node two realtime envs: `weak`, whose right motor is 20 % weaker than
@@ -13,7 +14,6 @@ import math
 import os
 import signal
 import subprocess
-import tempfile
 import unittest
 
 import rospkg
@@ -59,10 +59,6 @@ print('export check passed: hidden_size %%d, %%d steps' %% (meta['hidden_size'],
 """
 
 
-def config(name):
-    return os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config', name)
-
-
 def heading_error(odom, command):
     d = yaw(odom.pose.pose.orientation) - command
     return abs(math.atan2(math.sin(d), math.cos(d)))
@@ -80,24 +76,9 @@ class TestClosedLoopMemory(unittest.TestCase):
             rospy.Subscriber('/%s/env_0/odom' % robot, Odometry, cls.odoms[robot].append)
         cls.commands = {robot: rospy.Publisher('/%s_command' % robot, Vector3, queue_size=1,
                                                latch=True) for robot in ROBOTS}
-        cls.runs = {'memory': cls.train('ppo_command_memory.yaml'),
-                    'memoryless': cls.train('ppo_command.yaml', rospy.get_param('~iterations'))}
-
-    @staticmethod
-    def train(ppo_config, iterations=None):
-        """Trains the command task in the trainer's process with randomisation and the open-loop
-        motors, as docs/sim_to_real.md tells a stock-Jetbot user to; returns the run directory."""
-        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_memory_')
-        args = ['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true', 'task:=command',
-                'config:=' + config(ppo_config), 'run_dir:=' + run_dir,
-                'robot_config:=' + config('jetbot_motors.yaml'),
-                'randomization:=' + config('randomization.yaml'), 'output:=log']
-        if iterations:
-            args.append('iterations:=%d' % iterations)
-        subprocess.run(args, check=True, timeout=60 * TIMEOUT, stdout=subprocess.DEVNULL)
-        with open(os.path.join(run_dir, 'summary.yaml')) as f:
-            print('%s:\n%s' % (ppo_config, f.read()))
-        return run_dir
+        policies = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies')
+        cls.runs = {'memory': os.path.join(policies, 'command_memory'),
+                    'memoryless': os.path.join(policies, 'command_motors')}
 
     def window(self, robot, start):
         """Odometry of `robot` from `start` + SETTLE for WINDOW s of simulation time."""

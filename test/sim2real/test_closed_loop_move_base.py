@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The learnt navigator behind the move_base action, as a mission script drives it: the navigation
-policy as train.launch task:=navigation trains it (200 iterations, no path observed) on the env
+"""The learnt navigator behind the move_base action, as a mission script drives it: the shipped
+arena navigator (policies/navigation_arena: 200 iterations, no path observed) on the env
 node's lidar Jetbot in the office map, through jetbot_deploy_node's move_base action
 (actionlib's SimpleActionClient, move_base_msgs/MoveBaseAction). Quiet while idle; goals in an
 obstacle, in an unknown frame or too near a wall ABORTED at once with the reason and the robot

@@ -1,15 +1,13 @@
 #!/usr/bin/python3
-"""Closed loop with a policy that follows a global path, as on a robot: trained as
-train.launch task:=navigation trains it (generated worlds, nav/path; 200 iterations), it drives the
+"""Closed loop with a policy that follows a global path, as on a robot: the shipped navigator
+(policies/navigation: as train.launch task:=navigation trains it: generated worlds, nav/path), it drives the
 env node's lidar Jetbot in the office map through jetbot_deploy_node, which plans on /map. A goal behind a wall, in the room above, and
 then one in the room on the other side of the floor are reached through the doors within a time
 bound without touching anything, each with a plan on ~plan that goes round the walls; a goal
 too near a wall for the footprint ends with no path, and the robot stays stopped."""
 import math
-import os
 import time
 
-import rospkg
 import rostest
 
 from jetbot_rl_test.deployed_navigation import DeployedNavigation, goal_msg
@@ -28,7 +26,7 @@ def length(points):
 
 class TestClosedLoopPath(DeployedNavigation):
     node_name = 'test_closed_loop_path'
-    train_args = []  # the task's defaults
+    shipped_policy = 'navigation'  # the task's defaults
 
     def reach(self, goal):
         """Sends `goal`, waits for its plan and arrival; returns the plan's points."""
