@@ -25,6 +25,8 @@ add_library(jetbot_rl_core
   src/core/env_setup.cpp
   src/core/env_view.cpp
   src/core/robot_team.cpp
+  src/core/scene/env_scene.cpp
+  src/core/scene/people_bodies.cpp
   src/core/former_names.cpp
   src/core/gazebo_blocks.cpp
   src/core/gazebo_world.cpp
