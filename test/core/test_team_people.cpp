@@ -3,11 +3,11 @@
 // is the same on any thread count.
 #include <cmath>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/laser_scanner.h"
-#include "jetbot_rl/movers.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/rng.h"
+#include "jetbot_rl/scene/movers.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -4,12 +4,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "env_physics.h"
-#include "jetbot_rl/movers.h"
-#include "jetbot_rl/task_capabilities.h"
-#include "robot_team.h"
+#include "env/env_physics.h"
+#include "jetbot_rl/scene/movers.h"
+#include "jetbot_rl/tasks/task_capabilities.h"
 #include "scene/people_bodies.h"
-#include "world_shapes.h"
+#include "scene/robot_team.h"
+#include "world/world_shapes.h"
 
 namespace jetbot_rl {
 

@@ -6,12 +6,12 @@
 #include <optional>
 #include <vector>
 
-#include "env_sensor.h"
-#include "jetbot_rl/curriculum.h"
-#include "jetbot_rl/env_config.h"
+#include "jetbot_rl/env/env_config.h"
 #include "jetbot_rl/rng.h"
-#include "jetbot_rl/world_model.h"
+#include "jetbot_rl/scene/curriculum.h"
+#include "jetbot_rl/world/world_model.h"
 #include "scene/moving_bodies.h"
+#include "sensors/env_sensor.h"
 
 namespace jetbot_rl {
 

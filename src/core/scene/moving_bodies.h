@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "jetbot_rl/world_model.h"
+#include "jetbot_rl/world/world_model.h"
 
 namespace jetbot_rl {
 

@@ -1,7 +1,7 @@
 // The movers of each world as bodies that move in its robots' worlds (PeopleBodies).
 #include "scene/people_bodies.h"
 
-#include "env_physics.h"
+#include "env/env_physics.h"
 
 namespace jetbot_rl {
 

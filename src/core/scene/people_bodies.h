@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "jetbot_rl/movers.h"
+#include "jetbot_rl/scene/movers.h"
 #include "scene/moving_bodies.h"
 
 namespace jetbot_rl {

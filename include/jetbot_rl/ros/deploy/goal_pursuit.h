@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/diff_drive.h"
-#include "jetbot_rl/goal_watch.h"
+#include "jetbot_rl/planning/goal_watch.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/goal_input.h"
 #include "jetbot_rl/ros/deploy/path_follower.h"
-#include "jetbot_rl/task_observer.h"
+#include "jetbot_rl/tasks/task_observer.h"
 
 namespace jetbot_rl {
 
