@@ -39,7 +39,9 @@ add_library(jetbot_rl_core
   src/core/robot/physics_model.cpp
   src/core/robot/robot_model.cpp
   src/core/robot/urdf_gazebo_blocks.cpp
+  src/core/scene/env_scene.cpp
   src/core/scene/movers.cpp
+  src/core/scene/people_bodies.cpp
   src/core/scene/robot_team.cpp
   src/core/sensors/laser_scanner.cpp
   src/core/sensors/scan_cast.cpp

@@ -36,6 +36,7 @@ catkin_add_gtest(test_core
   test/core/test_gazebo_world.cpp
   test/core/test_movers.cpp
   test/core/test_team.cpp
+  test/core/test_team_people.cpp
   test/core/test_navigation.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp

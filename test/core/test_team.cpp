@@ -270,9 +270,6 @@ void expectRefused(const EnvConfig& c, const std::string& field) {
 
 TEST(Team, BadParametersAreRefusedNamingTheField) {
   EnvConfig c = teamConfig(1, 3, 1.0);
-  c.movers.num_people = 2;
-  expectRefused(c, "robots_per_env");
-  c = teamConfig(1, 3, 1.0);
   c.world.num_boxes = 2;
   expectRefused(c, "robots_per_env");
   c = teamConfig(1, 3, 0.0);

@@ -25,15 +25,14 @@ namespace jetbot_rl {
 struct ActionLayout;
 class EnvPhysics;
 class EnvRandomizer;
+class EnvScene;
 class EnvSensor;
 struct SensedEnv;
 class MoverSet;
 class PhysicsModel;
-class RobotTeam;
 class ScanSensor;
 class ThreadPool;
 class WorldDrawing;
-class WorldShapes;
 struct WorkerContext;
 
 /**
@@ -102,16 +101,16 @@ class BatchedEnv {
   void setRootState(int env, const RootState& state);
 
   /// The world every env shares (map, walls, region); nullptr when none is configured.
-  const WorldModel* world() const { return world_.get(); }
+  const WorldModel* world() const;
   /// Obstacles left out since construction because they did not fit (world/placement_tries,
   /// world/max_generated_obstacles).
-  std::uint64_t obstaclesGivenUp() const { return given_up_; }
+  std::uint64_t obstaclesGivenUp() const;
   /// Resets since construction whose generated layout could not be made (EnvLayout::unmade).
-  std::uint64_t layoutsUnmade() const { return unmade_; }
+  std::uint64_t layoutsUnmade() const;
   /// The movers of every env (movers/...), or nullptr when there are none.
-  const MoverSet* movers() const { return movers_.get(); }
+  const MoverSet* movers() const;
   /// Movers left out since construction because they did not fit (world/placement_tries).
-  std::uint64_t moversGivenUp() const { return movers_given_up_; }
+  std::uint64_t moversGivenUp() const;
   /// Env `env`'s curriculum level: its generated layouts are drawn at it (below it with
   /// world/curriculum_mix).
   double difficulty(int env) const;
@@ -140,13 +139,9 @@ class BatchedEnv {
   /// Rounds: ends the waiting rows' stand-in episodes (outcome kWaited) and starts all the
   /// robots of env `group` anew, together.
   void startRound(int group);
-  /// The start (and a circle swap's goal) of row `env`, clear of the other robots of its world.
-  void placeTeamRobot(int env);
   void resetEnv(int env);
   /// Gives the task env `env`'s senses (scan, contact, last action).
   void senseEnv(int env);
-  /// What env `env`'s sensors read: its physics, layout and movers.
-  SensedEnv sensedEnv(int env) const;
 
   RobotModelConstPtr robot_;
   EnvConfig config_;
@@ -158,7 +153,7 @@ class BatchedEnv {
   std::unique_ptr<ThreadPool> pool_;
   std::vector<std::unique_ptr<WorkerContext>> contexts_;  // per worker
   std::vector<std::unique_ptr<EnvPhysics>> envs_;
-  std::vector<Rng> rngs_;
+  std::unique_ptr<EnvScene> scene_;  // world, layouts, curriculum, people, other robots
   std::unique_ptr<ActionLayout> actions_layout_;  // bounds, names, twist kinematics
   std::vector<float> wheel_low_, wheel_high_;     // per dof: its velocity limits
   std::vector<float> actions_;                    // per env: its last action (zeros after a reset)
@@ -172,18 +167,9 @@ class BatchedEnv {
   std::vector<std::string> diverged_;  // per env divergence reason of the current step
   StepResult result_;
   std::uint64_t diverged_count_ = 0;
-  // The world (when configured) and the sensors (the scanner, when the robot has one).
-  std::shared_ptr<const WorldModel> world_;
-  std::unique_ptr<WorldShapes> world_shapes_;
-  std::vector<EnvLayout> layouts_;      // per env
   std::vector<std::uint8_t> collided_;  // per env: in the last step, kHitWorld or kHitMover
   static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2, kHitRobot = 3;
-  std::atomic<std::uint64_t> given_up_{0};  // obstacles left out
-  std::atomic<std::uint64_t> unmade_{0};    // generated layouts not made
-  std::unique_ptr<MoverSet> movers_;        // none without movers
-  std::unique_ptr<RobotTeam> team_;         // with robots_per_env > 1 or a circle swap
-  std::atomic<std::uint64_t> movers_given_up_{0};
-  Curriculum curriculum_;  // per env difficulty of generated layouts
+  // The sensors (the scanner, when the robot has one).
   std::unique_ptr<ScanSensor> scan_;
   std::vector<EnvSensor*> sensors_;  // every sensor, in stepping order
 };

@@ -27,15 +27,31 @@ class MoverSet {
   const MoverConfig& config() const { return config_; }
   /// Movers per env (placed or not).
   int count() const { return config_.count(); }
+  /// Envs (worlds) it walks movers in.
+  std::size_t numEnvs() const { return bodies_.size(); }
   /// Restarts env `env`'s mover stream from `seed` (a reset with a seed).
   void reseed(int env, std::uint64_t seed);
   /// Draws env `env`'s movers for the episode of `layout`: the people, then the carts, none
   /// within start_clearance of the start; a mover that does not fit in world/placement_tries
   /// draws is left out (placed false). Returns how many were left out.
-  int reset(int env, const EnvLayout& layout);
+  int reset(int env, const EnvLayout& layout) { return reset(env, layout, &layout.start, 1); }
+  /// As above, none within start_clearance of any of the `count` points `keep_clear` [m] (the
+  /// starts of the robots of its world).
+  int reset(int env, const EnvLayout& layout, const Eigen::Vector2d* keep_clear, int count);
   /// Sets env `env`'s velocities for a control step of `dt` [s] with the robot's root at
-  /// `robot` [m] (env frame); draws new waypoints for those that arrived.
-  void plan(int env, const EnvLayout& layout, const Eigen::Vector2d& robot, double dt);
+  /// `robot` [m] (env frame), and nearRobot(); draws new waypoints for those that arrived.
+  void plan(int env, const EnvLayout& layout, const Eigen::Vector2d& robot, double dt) {
+    plan(env, layout, &robot, nullptr, 1, dt);
+    markNear(env, robot, dt, near_[env]);
+  }
+  /// As above with the `count` robots of its world at `robots` [m] (each avoided where
+  /// `present` is null or 1); nearRobot() is left as it was.
+  void plan(int env, const EnvLayout& layout, const Eigen::Vector2d* robots,
+            const std::uint8_t* present, int count, double dt);
+  /// Per mover of env `env`: 1 in `near` when it may touch a robot at `robot` [m] within a
+  /// control step of `dt` [s] at the velocities of the last plan().
+  void markNear(int env, const Eigen::Vector2d& robot, double dt,
+                std::vector<std::uint8_t>& near) const;
   /// Moves env `env`'s movers on by their velocities for `dt` [s] (a physics step).
   void advance(int env, double dt);
   /// Env `env`'s movers as they stand: the people, then the carts (env frame).
@@ -66,7 +82,8 @@ class MoverSet {
   void drawWaypoint(int env, int k, const EnvLayout& layout, int tries);
   /// The social force's acceleration on env `env`'s mover `k` [m/s^2].
   Eigen::Vector2d socialForce(int env, int k, const EnvLayout& layout,
-                              const Eigen::Vector2d& robot) const;
+                              const Eigen::Vector2d* robots, const std::uint8_t* present,
+                              int count) const;
 
   MoverConfig config_;
   const WorldModel& world_;

@@ -15,9 +15,9 @@
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/tasks/task_observer.h"
 #include "robot/physics_model.h"
+#include "scene/env_scene.h"
 #include "scene/robot_team.h"
 #include "sensors/scan_sensor.h"
-#include "world/world_shapes.h"
 
 namespace jetbot_rl {
 namespace {
@@ -48,20 +48,16 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     if (config_.world.cut_height == 0.0 && scanner) {
       config_.world.cut_height = scannerHeight(*robot_, *scanner);
     }
-    world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
-    world_shapes_ = std::make_unique<WorldShapes>(*world_);
-    if (config_.movers.count() > 0) {
-      movers_ = std::make_unique<MoverSet>(config_.movers, *world_, config_.num_envs, config_.seed);
-    }
   }
+  scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_);
   const int n = config_.numRows();
   if (scanner) {
-    scan_ = std::make_unique<ScanSensor>(*scanner, world_.get(), n, config_.seed);
+    scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
     sensors_.push_back(scan_.get());
   }
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;
-  context.world = world_.get();
+  context.world = scene_->world();
   context.action_dim = actionDim();
   context.control_dt = config_.controlDt();
   task_->attach(context);
@@ -80,15 +76,11 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   pool_->run(workers, [this, n, num_obstacles, num_movers, num_peers](int w) {
     contexts_[w] = std::make_unique<WorkerContext>();
     for (int e = pool_->firstItemOf(w, n); e < pool_->firstItemOf(w + 1, n); ++e) {
-      envs_[e] = std::make_unique<EnvPhysics>(*physics_, *contexts_[w], world_shapes_.get(),
+      envs_[e] = std::make_unique<EnvPhysics>(*physics_, *contexts_[w], scene_->shapes(),
                                               num_obstacles, num_movers, num_peers);
     }
   });
-  if (world_ && (num_peers > 0 || config_.team.swap_radius > 0.0)) {
-    team_ = std::make_unique<RobotTeam>(config_.team, *world_, config_.num_envs,
-                                        robot_->footprintRadius(), envs_[0]->robotTop());
-    for (auto& env : envs_) env->setPeers(team_->footprints());
-  }
+  scene_->attach(envs_);
   for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
     joint_names_.push_back(robot_->bodies()[b].joint_name);
     dof_of_joint_.push_back(-1);
@@ -111,9 +103,6 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   result_.episode_steps.assign(n, 0);
   result_.reset_env_ids.reserve(n);
   result_.final_observations.reserve(static_cast<std::size_t>(n) * obs_dim_);
-  for (int e = 0; e < n; ++e) rngs_.emplace_back(config_.seed, e);
-  layouts_.resize(n);
-  curriculum_ = Curriculum(config_.world, n);
   collided_.assign(n, 0);
   reset();
 }
@@ -138,7 +127,7 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   // An env's result does not depend on the thread that steps it: the thread lends it its
   // solver, which keeps nothing between envs.
   // The robots of one env are stepped by one thread (stepTeam()).
-  if (team_) {
+  if (scene_->team()) {
     pool_->runStealing(config_.num_envs, [this](int g, int w) { stepTeam(g, *contexts_[w]); });
   } else {
     pool_->runStealing(n, [this](int e, int w) { stepEnv(e, *contexts_[w]); });
@@ -164,6 +153,7 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
 }
 
 void BatchedEnv::stepEnv(int e, WorkerContext& context) {
+  scene_->beginWorldStep(e);
   stepPhysics(e, context);
   sensePhysics(e);
   finishStep(e);
@@ -176,28 +166,19 @@ void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
   if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
   physics.setTargets(targets);
   physics.clearCollided();
-  if (movers_) {
-    // The movers walk on with the robot: their velocities for the control step, then each
-    // physics step takes them to where they are at its end.
-    movers_->plan(e, layouts_[e], physics.rootState().position.head<2>(), config_.controlDt());
-    for (int k = 0; k < config_.decimation; ++k) {
-      movers_->advance(e, config_.physics_dt);
-      physics.moveMovers(movers_->bodies(e), movers_->nearRobot(e));
-      physics.step(config_.physics_dt);
+  // The people and the other robots move on with the robot: each physics step takes those near
+  // it to where they are at its end (the other robots: none most steps).
+  constexpr std::size_t kMaxKinds = 2;
+  const std::vector<MovingBodies*>& moving = scene_->moving();
+  bool move[kMaxKinds] = {false, false};
+  for (std::size_t i = 0; i < moving.size(); ++i) {
+    move[i] = moving[i]->beginStep(e, config_.controlDt());
+  }
+  for (int k = 0; k < config_.decimation; ++k) {
+    for (std::size_t i = 0; i < moving.size(); ++i) {
+      if (move[i]) moving[i]->moveIn(e, k, physics);
     }
-  } else if (team_) {
-    // The other robots drive on from where they were when the step began (stepTeam()); the
-    // near ones only, as only they are in its Bullet world (none most steps).
-    const bool move = team_->beginStep(e, config_.controlDt());
-    for (int k = 0; k < config_.decimation; ++k) {
-      if (move) {
-        const std::vector<std::uint8_t>& near = team_->near(e, k);
-        physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt, &near), near);
-      }
-      physics.step(config_.physics_dt);
-    }
-  } else {
-    for (int k = 0; k < config_.decimation; ++k) physics.step(config_.physics_dt);
+    physics.step(config_.physics_dt);
   }
   ++result_.episode_steps[e];
   collided_[e] = physics.collidedWithPeer()    ? kHitRobot
@@ -207,7 +188,7 @@ void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
 }
 
 void BatchedEnv::sensePhysics(int e) {
-  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, sensedEnv(e));
+  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, scene_->sensed(e));
 }
 
 void BatchedEnv::finishStep(int e) {
@@ -228,7 +209,7 @@ void BatchedEnv::finishStep(int e) {
   ended_[e] = terminated || truncated;
   if (ended_[e]) {
     outcome_[e] = static_cast<std::uint8_t>(terminated ? task_->outcome(e) : Outcome::kTimeOut);
-    curriculum_.episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
+    scene_->episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
     if (diverged) {
@@ -236,8 +217,8 @@ void BatchedEnv::finishStep(int e) {
     } else if (randomizer_->noisesObservations()) {
       randomizer_->noiseObservation(e, final_obs);  // what the learner would have seen
     }
-    if (team_ && config_.team.rounds) {  // it waits for its round to end (stepTeam())
-      team_->wait(e);
+    if (scene_->team() && config_.team.rounds) {  // it waits for its round to end (stepTeam())
+      scene_->team()->wait(e);
       physics.stop();  // standing (its odom and joint states say so)
       std::copy(final_obs, final_obs + obs_dim_,
                 &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
@@ -258,36 +239,13 @@ void BatchedEnv::observeRow(int e) {
 void BatchedEnv::resetEnv(int env) {
   EnvPhysics& physics = *envs_[env];
   physics.reset();
-  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], physics);
-  if (team_) {
-    placeTeamRobot(env);
-  } else if (world_) {
-    // The layout from the env's own stream: its start, the task's goal, the obstacles.
-    EnvLayout& layout = layouts_[env];
-    const double difficulty = curriculum_.drawDifficulty(env, rngs_[env]);
-    world_->drawLayout(rngs_[env], env, difficulty, drawer_, layout);
-    physics.moveRobot(layout.start);
-    physics.setObstacles(layout.obstacles);
-    given_up_ += static_cast<std::uint64_t>(layout.given_up);
-    if (layout.unmade) ++unmade_;
-    if (movers_) {
-      movers_given_up_ += static_cast<std::uint64_t>(movers_->reset(env, layout));
-      physics.setMovers(movers_->bodies(env));
-    }
-  }
+  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, scene_->rng(env), physics);
+  scene_->place(env);
   result_.episode_steps[env] = 0;
-  task_->resetEnv(env, rngs_[env]);
+  task_->resetEnv(env, scene_->rng(env));
   collided_[env] = 0;
   std::fill_n(actions_.begin() + static_cast<std::ptrdiff_t>(env) * actionDim(), actionDim(), 0.0f);
-  for (EnvSensor* sensor : sensors_) sensor->afterReset(env, sensedEnv(env));
-}
-
-SensedEnv BatchedEnv::sensedEnv(int env) const {
-  // The other robots of its world are seen as movers are, where they are now.
-  const std::vector<Obstacle>* moving = movers_ ? &movers_->bodies(env)
-                                        : team_ ? &team_->peers(env, 0.0)
-                                                : nullptr;
-  return {*envs_[env], layouts_[env], moving};
+  for (EnvSensor* sensor : sensors_) sensor->afterReset(env, scene_->sensed(env));
 }
 
 void BatchedEnv::senseEnv(int env) {
@@ -332,24 +290,21 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
     }
   }
   for (EnvSensor* sensor : sensors_) sensor->forgetNewReadings();
-  // Robots reset together start free of each other, whatever they did before.
-  for (int e = 0; team_ && e < n; ++e) {
-    if (selected[e]) team_->forget(e);
-  }
+  scene_->beginReset(selected, seed);
   for (int e = 0; e < n; ++e) {
     if (!selected[e]) continue;
     if (seed) {
-      rngs_[e] = Rng(*seed, e);
+      scene_->reseed(e, *seed);
       randomizer_->reseed(e, *seed);
       for (EnvSensor* sensor : sensors_) sensor->reseed(e, *seed);
-      if (movers_) movers_->reseed(e, *seed);
     }
     resetEnv(e);
   }
+  scene_->endReset();
   // Each sees the others where they started (the first ones placed saw the later ones not yet).
-  for (int e = 0; team_ && e < n; ++e) {
+  for (int e = 0; scene_->team() && e < n; ++e) {
     if (!selected[e]) continue;
-    for (EnvSensor* sensor : sensors_) sensor->afterReset(e, sensedEnv(e));
+    for (EnvSensor* sensor : sensors_) sensor->afterReset(e, scene_->sensed(e));
   }
   // Starting steps are given in env_ids order, which need not be ascending.
   for (std::size_t i = 0; i < episode_steps.size(); ++i) {
@@ -421,8 +376,18 @@ void BatchedEnv::checkEnv(int env) const {
 
 double BatchedEnv::difficulty(int env) const {
   checkEnv(env);
-  return curriculum_.difficulty(env);
+  return scene_->difficulty(env);
 }
+
+const WorldModel* BatchedEnv::world() const { return scene_->world(); }
+
+std::uint64_t BatchedEnv::obstaclesGivenUp() const { return scene_->obstaclesGivenUp(); }
+
+std::uint64_t BatchedEnv::layoutsUnmade() const { return scene_->layoutsUnmade(); }
+
+const MoverSet* BatchedEnv::movers() const { return scene_->movers(); }
+
+std::uint64_t BatchedEnv::moversGivenUp() const { return scene_->moversGivenUp(); }
 
 EnvView BatchedEnv::view(int env) const {
   checkEnv(env);
@@ -438,7 +403,7 @@ void BatchedEnv::setRootState(int env, const RootState& state) {
                      ": values must be finite and the orientation a non-zero quaternion");
   }
   envs_[env]->setRootState(state);
-  if (team_) team_->capture(env, *envs_[env]);  // the others see it there
+  scene_->robotMoved(env);  // the others see it there
 }
 
 }  // namespace jetbot_rl

@@ -10,8 +10,8 @@ namespace jetbot_rl {
 
 namespace {
 
-/// Several robots share one world: its obstacles and movers must be the same for all of them,
-/// and each needs a start of its own.
+/// Several robots share one world: its obstacles must be the same for all of them (its movers
+/// are: they walk per world), and each needs a start of its own.
 void checkTeamRules(const EnvConfig& config) {
   const int k = config.team.robots_per_env;
   const bool swap = config.team.swap_radius > 0.0;
@@ -35,9 +35,6 @@ void checkTeamRules(const EnvConfig& config) {
         "needs world/num_boxes and world/num_cylinders 0: each robot would draw its own obstacles");
   }
   if (!w.families.empty()) refuse("needs world/families []: each robot would draw its own layout");
-  if (config.movers.count() > 0) {
-    refuse("needs movers/num_people and movers/num_carts 0: movers walk per robot, not per world");
-  }
   if (!w.random_start && !swap) {
     refuse(
         "needs world/random_start true or swap_radius > 0: K robots cannot all start at "

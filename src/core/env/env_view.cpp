@@ -8,6 +8,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/scene/movers.h"
 #include "robot/bullet_conversions.h"
+#include "scene/env_scene.h"
 #include "sensors/scan_sensor.h"
 
 namespace jetbot_rl {
@@ -74,13 +75,14 @@ double EnvView::maxJointError() const { return batch_->envs_[env_]->maxJointErro
 
 RandomizationDraw EnvView::randomization() const { return batch_->randomizer_->values(env_); }
 
-const EnvLayout& EnvView::layout() const { return batch_->layouts_[env_]; }
+const EnvLayout& EnvView::layout() const { return batch_->scene_->layout(env_); }
 
 bool EnvView::collided() const { return batch_->collided_[env_] != 0; }
 
 const std::vector<Obstacle>& EnvView::movers() const {
   static const std::vector<Obstacle> kNone;
-  return batch_->movers_ ? batch_->movers_->bodies(env_) : kNone;
+  const MoverSet* movers = batch_->scene_->movers();
+  return movers ? movers->bodies(env_ / batch_->config_.team.robots_per_env) : kNone;
 }
 
 const float* EnvView::scan() const { return batch_->scan_ ? batch_->scan_->ranges(env_) : nullptr; }

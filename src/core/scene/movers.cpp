@@ -169,7 +169,8 @@ void MoverSet::drawWaypoint(int env, int k, const EnvLayout& layout, int tries) 
   s.has_waypoint = false;
 }
 
-int MoverSet::reset(int env, const EnvLayout& layout) {
+int MoverSet::reset(int env, const EnvLayout& layout, const Eigen::Vector2d* keep_clear,
+                    int count) {
   const int tries = world_.config().placement_tries;
   Rng& rng = rngs_[env];
   int given_up = 0;
@@ -190,7 +191,10 @@ int MoverSet::reset(int env, const EnvLayout& layout) {
     b.placed = false;
     for (int t = 0; t < tries && !b.placed; ++t) {
       if (!drawClearPoint(env, r + kMargin, layout, b.center)) continue;
-      if ((b.center - layout.start).norm() < config_.start_clearance + r) continue;
+      const auto too_near = [&](const Eigen::Vector2d& p) {
+        return (b.center - p).norm() < config_.start_clearance + r;
+      };
+      if (std::any_of(keep_clear, keep_clear + count, too_near)) continue;
       b.placed = std::none_of(bodies.begin(), bodies.begin() + k, [&](const Obstacle& o) {
         return o.placed && (o.center - b.center).norm() < o.boundingRadius() + r + kMargin;
       });
@@ -209,7 +213,8 @@ int MoverSet::reset(int env, const EnvLayout& layout) {
 }
 
 Eigen::Vector2d MoverSet::socialForce(int env, int k, const EnvLayout& layout,
-                                      const Eigen::Vector2d& robot) const {
+                                      const Eigen::Vector2d* robots, const std::uint8_t* present,
+                                      int count) const {
   const Obstacle& b = bodies_[env][k];
   const State& s = state_[env][k];
   const double r = b.boundingRadius();
@@ -232,7 +237,9 @@ Eigen::Vector2d MoverSet::socialForce(int env, int k, const EnvLayout& layout,
     const Obstacle& o = bodies_[env][j];
     if (static_cast<int>(j) != k && o.placed) push(o.center, o.boundingRadius());
   }
-  if (config_.avoid_robot) push(robot, world_.robotRadius());
+  for (int i = 0; config_.avoid_robot && i < count; ++i) {
+    if (!present || present[i]) push(robots[i], world_.robotRadius());
+  }
   // Each wall and obstacle pushes from its nearest point, as Helbing's walls do; a map's cells
   // push along the gradient of the distance to them.
   const auto push_from = [&](const Obstacle& o) {
@@ -258,7 +265,8 @@ Eigen::Vector2d MoverSet::socialForce(int env, int k, const EnvLayout& layout,
   return f;
 }
 
-void MoverSet::plan(int env, const EnvLayout& layout, const Eigen::Vector2d& robot, double dt) {
+void MoverSet::plan(int env, const EnvLayout& layout, const Eigen::Vector2d* robots,
+                    const std::uint8_t* present, int count, double dt) {
   std::vector<Obstacle>& bodies = bodies_[env];
   std::vector<State>& states = state_[env];
   const int n = static_cast<int>(bodies.size());
@@ -284,7 +292,7 @@ void MoverSet::plan(int env, const EnvLayout& layout, const Eigen::Vector2d& rob
       next[k] = std::min(s.speed, to.norm() / dt) * to.normalized();
       continue;
     }
-    Eigen::Vector2d v = s.velocity + dt * socialForce(env, k, layout, robot);
+    Eigen::Vector2d v = s.velocity + dt * socialForce(env, k, layout, robots, present, count);
     const double top = kMaxSpeedFactor * s.speed;
     if (v.norm() > top) v *= top / v.norm();
     // Never into the world: a step that would take it nearer than its outline stands instead,
@@ -299,16 +307,25 @@ void MoverSet::plan(int env, const EnvLayout& layout, const Eigen::Vector2d& rob
     }
     next[k] = v;
   }
-  const double margin = std::max(kNearMargin, kNearPerSecond * dt);
   for (int k = 0; k < n; ++k) {
     states[k].velocity = next[k];
     Obstacle& b = bodies[k];
-    const double gap = (b.center - robot).norm() - b.boundingRadius() - world_.robotRadius();
-    near_[env][k] = b.placed && gap < next[k].norm() * dt + margin;
     // A cart turns to where it goes.
     if (b.shape == Obstacle::Shape::kBox && next[k].norm() > 1e-6) {
       b.yaw = std::atan2(next[k].y(), next[k].x());
     }
+  }
+}
+
+void MoverSet::markNear(int env, const Eigen::Vector2d& robot, double dt,
+                        std::vector<std::uint8_t>& near) const {
+  const std::vector<Obstacle>& bodies = bodies_[env];
+  const double margin = std::max(kNearMargin, kNearPerSecond * dt);
+  near.resize(bodies.size());
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const Obstacle& b = bodies[k];
+    const double gap = (b.center - robot).norm() - b.boundingRadius() - world_.robotRadius();
+    near[k] = b.placed && gap < state_[env][k].velocity.norm() * dt + margin;
   }
 }
 

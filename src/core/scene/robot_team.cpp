@@ -19,8 +19,12 @@ constexpr double kNearMargin = 0.25;
 }  // namespace
 
 RobotTeam::RobotTeam(const TeamConfig& config, const WorldModel& world, int num_envs,
-                     double robot_radius, double robot_height)
-    : config_(config), world_(world), k_(config.robots_per_env), radius_(robot_radius) {
+                     double robot_radius, double robot_height, double physics_dt)
+    : config_(config),
+      world_(world),
+      k_(config.robots_per_env),
+      radius_(robot_radius),
+      physics_dt_(physics_dt) {
   const int rows = num_envs * k_;
   Obstacle footprint;
   footprint.shape = Obstacle::Shape::kCylinder;
@@ -102,6 +106,11 @@ bool RobotTeam::beginStep(int row, double dt) {
   return move;
 }
 
+void RobotTeam::moveIn(int row, int substep, EnvPhysics& physics) {
+  const std::vector<std::uint8_t>& only = near(row, substep);
+  physics.movePeers(peers(row, (substep + 1) * physics_dt_, &only), only);
+}
+
 const std::vector<Obstacle>& RobotTeam::peers(int row, double t,
                                               const std::vector<std::uint8_t>* only) const {
   const int first = (row / k_) * k_;
@@ -135,13 +144,23 @@ double RobotTeam::mateDistance(int row, const Eigen::Vector2d& p) const {
 }
 
 void RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
-                          std::optional<Eigen::Vector2d>& goal, double& yaw) const {
+                          std::optional<Eigen::Vector2d>& goal, double& yaw,
+                          const std::vector<Obstacle>* others) const {
   const double clearance = world_.startClearance();
+  // Distance from `p` to the nearest other robot or to the outline of the nearest other body.
+  const auto free_of = [&](const Eigen::Vector2d& p) {
+    double d = mateDistance(row, p);
+    for (std::size_t i = 0; others && i < others->size(); ++i) {
+      const Obstacle& o = (*others)[i];
+      if (o.placed) d = std::min(d, std::max(0.0, (o.center - p).norm() - o.boundingRadius()));
+    }
+    return d;
+  };
   const Eigen::Vector2d centre(world_.config().spawn[0], world_.config().spawn[1]);
   const double r = config_.swap_radius;
   // A candidate's score: its distance to the nearest other robot, or -1 off the free floor.
   const auto score = [&](const Eigen::Vector2d& p) {
-    return world_.staticClearance(p) < clearance ? -1.0 : mateDistance(row, p);
+    return world_.staticClearance(p) < clearance ? -1.0 : free_of(p);
   };
   double angle = 2.0 * kPi * (row % k_) / k_;
   const auto onCircle = [&](double a) {
@@ -165,7 +184,7 @@ void RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
   for (int k = 0; k < world_.config().placement_tries && best < clearance; ++k) {
     const std::optional<Eigen::Vector2d> p = world_.drawFreePoint(rng, clearance);
     if (!p) break;
-    const double s = mateDistance(row, *p);
+    const double s = free_of(*p);
     if (s > best) best = s, start = *p;
   }
   if (best < 0.0) {  // no free point drawn: the world's fallback start

@@ -9,6 +9,7 @@
 #include "jetbot_rl/rng.h"
 #include "jetbot_rl/scene/team_config.h"
 #include "jetbot_rl/world/world_model.h"
+#include "scene/moving_bodies.h"
 
 namespace jetbot_rl {
 
@@ -19,13 +20,15 @@ class EnvPhysics;
  * batch, with its own Bullet world, as every row. The others of its env enter that world as
  * kinematic stand-ins of their footprints (as movers do), moved along their velocities over a
  * control step from where they were when it began, and its scan sees them where they are after
- * it. A group (env) is stepped by one thread in row order, so that it is deterministic.
+ * it. A group (env) is stepped by one thread in row order, so that it is deterministic. To a
+ * robot the others are MovingBodies, as people are.
  */
-class RobotTeam {
+class RobotTeam final : public MovingBodies {
  public:
   /// ConfigError naming robots_per_env or swap_radius when the K starts do not fit the world.
+  /// `physics_dt` [s]: the physics step (moveIn()).
   RobotTeam(const TeamConfig& config, const WorldModel& world, int num_envs, double robot_radius,
-            double robot_height);
+            double robot_height, double physics_dt);
 
   int robotsPerEnv() const { return k_; }
   /// Rows of env `env`: [env K, env K + K).
@@ -57,7 +60,12 @@ class RobotTeam {
   /// no velocity). Calls for rows of one env come from one thread. False when no stand-in can
   /// be in the robot's Bullet world in this step (none near now or at its last step): nothing
   /// to move.
-  bool beginStep(int row, double dt);
+  bool beginStep(int row, double dt) override;
+  /// Moves the near stand-ins of the others in `physics` (row `row`'s) to where they are at the
+  /// end of physics step `substep`, parks those no longer near.
+  void moveIn(int row, int substep, EnvPhysics& physics) override;
+  /// The others where they are now (peers() at t 0).
+  const std::vector<Obstacle>& bodies(int row) const override { return peers(row, 0.0); }
   /// The other robots of `row`'s world, `t` [s] after their capture along their velocities;
   /// with `only`, just the slots it marks (the others hold nothing to read). Valid until the
   /// next call for a row of the same env.
@@ -72,8 +80,9 @@ class RobotTeam {
   /// world/start_clearance: circle swap (its own point when free, else a free point of the
   /// circle) with `goal` the opposite point and `yaw` facing the centre [rad]; else a free
   /// point of the region (no goal, yaw 0). The clearest draw stands in when none is free.
+  /// With `others` (the people of its world), clear of their outlines too.
   void drawStart(int row, Rng& rng, Eigen::Vector2d& start, std::optional<Eigen::Vector2d>& goal,
-                 double& yaw) const;
+                 double& yaw, const std::vector<Obstacle>* others = nullptr) const;
 
  private:
   /// Least distance from `p` to the placed robots of `row`'s world other than it [m].
@@ -83,6 +92,7 @@ class RobotTeam {
   const WorldModel& world_;
   int k_;
   double radius_;
+  double physics_dt_;
   std::vector<Obstacle> footprints_;                   // K - 1 cylinders
   std::vector<Eigen::Vector2d> position_;              // per row [m]
   std::vector<Eigen::Vector2d> velocity_;              // per row [m/s]
