@@ -48,8 +48,8 @@ CASES = {
                              '--episodes', '400', '--seed', '123'],
                {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
     'swap': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--num-envs', '5',
-                           '--episodes', '200', '--seed', '123'],
-             {'success_rate': (0.95, None), 'collision_rate': (None, 0.05)}),
+                           '--episodes', '400', '--seed', '123'],
+             {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
 }
 
 
