@@ -15,6 +15,7 @@
 #include "jetbot_rl/command_task.h"
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
 #include "jetbot_rl/ros/env_node/robot_state_output.h"
 #include "jetbot_rl/ros/env_node/scan_output.h"

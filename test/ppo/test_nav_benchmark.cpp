@@ -7,9 +7,9 @@
 
 #include "jetbot_rl/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/nav_benchmark.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 #include "jetbot_rl/ppo/training_logger.h"
 #include "jetbot_rl/vec_env.h"
 
