@@ -4,7 +4,7 @@
 #include <random>
 #include <string>
 
-#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/config/command_line.h"
 #include "resident_memory.h"
 
 int main(int argc, char** argv) {

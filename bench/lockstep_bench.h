@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/ros/common/param_reader.h"
 
 namespace jetbot_rl {

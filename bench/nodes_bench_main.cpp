@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/config/command_line.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
 
 int main(int argc, char** argv) {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/config/command_line.h"
 #include "lockstep_bench.h"
 
 int main(int argc, char** argv) {

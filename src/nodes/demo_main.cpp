@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/config/command_line.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/command_line.h"
+#include "jetbot_rl/config/command_line.h"
 #include "jetbot_rl/ppo/policy.h"
 
 int main(int argc, char** argv) {

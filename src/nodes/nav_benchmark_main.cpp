@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <string>
 
-#include "jetbot_rl/command_line.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/config/command_line.h"
 #include "jetbot_rl/ppo/nav_benchmark.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/ppo/ros/policy_params.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"

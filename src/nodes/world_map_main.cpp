@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "jetbot_rl/command_line.h"
-#include "jetbot_rl/world_model.h"
+#include "jetbot_rl/config/command_line.h"
+#include "jetbot_rl/world/world_model.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;

@@ -3,7 +3,7 @@
 #include <limits>
 #include <numeric>
 
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/tasks/task.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/footprint_grid.h"
-#include "jetbot_rl/grid_planner.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/planning/footprint_grid.h"
+#include "jetbot_rl/planning/grid_planner.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/policy_memory.h"

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/tasks/task.h"
 
 namespace jetbot_rl {
 namespace ppo {

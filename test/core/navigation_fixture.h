@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "jetbot_rl/laser_scanner.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 
 namespace jetbot_rl {
 namespace test {

@@ -2,8 +2,8 @@
 // command draw (unit, in the plane, reproducible per seed, redrawn only on reset).
 #include <cmath>
 
-#include "jetbot_rl/command_task.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/tasks/command_task.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -133,7 +133,7 @@ TEST(CommandTask, ObservationsFollowTheRobotInTheBatch) {
 }  // namespace
 }  // namespace jetbot_rl
 
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {

@@ -2,8 +2,8 @@
 // from both robots' URDFs, with an error naming the joint or link where they cannot be.
 #include <cmath>
 
-#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <string>
 
-#include "jetbot_rl/command_line.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/config/command_line.h"
+#include "jetbot_rl/config/yaml_flatten.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/yaml_flatten.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

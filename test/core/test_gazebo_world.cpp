@@ -10,10 +10,10 @@
 #include <cstring>
 #include <filesystem>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/gazebo_world.h"
-#include "jetbot_rl/laser_scanner.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {

@@ -2,7 +2,7 @@
 // time-out (pushing into a wall, turning on the spot), with progress restarting after a recovery.
 #include <gtest/gtest.h>
 
-#include "jetbot_rl/goal_watch.h"
+#include "jetbot_rl/planning/goal_watch.h"
 
 namespace jetbot_rl {
 namespace {

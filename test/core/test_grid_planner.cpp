@@ -5,14 +5,14 @@
 
 #include <cmath>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/footprint_grid.h"
-#include "jetbot_rl/grid_planner.h"
-#include "jetbot_rl/laser_scanner.h"
-#include "jetbot_rl/navigation_task.h"
-#include "jetbot_rl/path_tracker.h"
+#include "jetbot_rl/planning/footprint_grid.h"
+#include "jetbot_rl/planning/grid_planner.h"
+#include "jetbot_rl/planning/path_tracker.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {

@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/laser_scanner.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/map_planner.h"
+#include "jetbot_rl/planning/map_planner.h"
 
 namespace jetbot_rl {
 namespace {

@@ -1,5 +1,5 @@
 // The motor model: dead zone, saturation and trim, on hand-computed values and in the physics.
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "randomization_test_util.h"
 
 namespace jetbot_rl {

@@ -3,10 +3,10 @@
 // the same on any thread count; bad parameters are refused naming the field.
 #include <cmath>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/movers.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/scene/movers.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

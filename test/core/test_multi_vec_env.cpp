@@ -2,9 +2,9 @@
 // its derived seed; parts whose specs disagree are refused naming the part and the field.
 #include <gtest/gtest.h>
 
-#include "jetbot_rl/local_vec_env.h"
-#include "jetbot_rl/multi_vec_env.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/env/local_vec_env.h"
+#include "jetbot_rl/env/multi_vec_env.h"
+#include "jetbot_rl/tasks/task_factory.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -3,10 +3,10 @@
 // the twist action space.
 #include <cmath>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 #include "navigation_fixture.h"
 #include "test_util.h"
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/occupancy_map.h"
-#include "jetbot_rl/world_model.h"
+#include "jetbot_rl/world/occupancy_map.h"
+#include "jetbot_rl/world/world_model.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {

@@ -3,7 +3,7 @@
 // (refused configurations: test_randomization_config.cpp; the motor model: test_motor_model.cpp).
 #include <cmath>
 
-#include "jetbot_rl/command_task.h"
+#include "jetbot_rl/tasks/command_task.h"
 #include "randomization_test_util.h"
 
 namespace jetbot_rl {

@@ -2,8 +2,8 @@
 // before randomisation existed, and no draw is taken from an env's random stream.
 #include <cstring>
 
-#include "jetbot_rl/command_task.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/tasks/command_task.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <random>
 
-#include "jetbot_rl/laser_scanner.h"
-#include "scan_rays.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "sensors/scan_rays.h"
 
 namespace jetbot_rl {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "jetbot_rl/laser_scanner.h"
-#include "jetbot_rl/scan_reading.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/sensors/scan_reading.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <random>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/command_task.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/navigation_task.h"
-#include "jetbot_rl/scan_reading.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/sensors/scan_reading.h"
+#include "jetbot_rl/tasks/command_task.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/task_factory.h"
 #include "navigation_fixture.h"
 #include "test_util.h"
 

@@ -3,7 +3,7 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "thread_pool.h"
+#include "env/thread_pool.h"
 
 namespace jetbot_rl {
 namespace {

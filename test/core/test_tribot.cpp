@@ -2,7 +2,7 @@
 // cmd_vel drives it: straight at r * omega, in place at 2 omega r / separation, parked still.
 #include <cmath>
 
-#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -4,7 +4,7 @@
 #include <functional>
 
 #include "jetbot_rl/errors.h"
-#include "physics_model.h"
+#include "robot/physics_model.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

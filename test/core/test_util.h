@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/laser_scanner.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace test {

@@ -3,7 +3,7 @@
 // same worlds, trajectories and scans on any thread count; the Gazebo blocks of the tribot.
 #include <cstring>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "world_test_util.h"
 

@@ -10,12 +10,12 @@
 #include <deque>
 #include <map>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/curriculum.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/navigation_task.h"
-#include "jetbot_rl/world_generation.h"
+#include "jetbot_rl/scene/curriculum.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/world/world_generation.h"
 #include "test_util.h"
 
 namespace jetbot_rl {

@@ -11,15 +11,15 @@
 
 #include <random>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/command_task.h"
-#include "jetbot_rl/env_setup.h"
-#include "jetbot_rl/navigation_task.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
 #include "jetbot_rl/ros/env_node/robot_state_output.h"
 #include "jetbot_rl/ros/env_node/scan_output.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/tasks/command_task.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {

@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 
 namespace jetbot_rl {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <random>
 
-#include "jetbot_rl/multi_vec_env.h"
+#include "jetbot_rl/env/multi_vec_env.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
 
 namespace jetbot_rl {

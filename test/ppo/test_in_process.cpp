@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "jetbot_rl/local_vec_env.h"
+#include "jetbot_rl/env/local_vec_env.h"
 #include "jetbot_rl/ppo/runner.h"
 
 namespace jetbot_rl {

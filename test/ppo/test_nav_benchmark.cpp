@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/nav_benchmark.h"
 #include "jetbot_rl/ppo/ppo.h"

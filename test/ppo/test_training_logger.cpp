@@ -6,7 +6,7 @@
 
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/training_logger.h"
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/tasks/task.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -9,7 +9,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
 #include "jetbot_rl/ros/common/msg_fields.h"
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/tasks/task.h"
 
 namespace jetbot_rl {
 namespace {

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
+#include "jetbot_rl/env/step_result.h"
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/network_config.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
-#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {

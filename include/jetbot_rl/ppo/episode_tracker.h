@@ -5,7 +5,7 @@
 #include <deque>
 #include <vector>
 
-#include "jetbot_rl/step_result.h"
+#include "jetbot_rl/env/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/ppo/policy.h"
 
 namespace jetbot_rl {

@@ -3,7 +3,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/env/step_result.h"
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
 #include "jetbot_rl/ppo/policy_memory.h"
-#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {

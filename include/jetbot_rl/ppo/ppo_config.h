@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/ppo/network_config.h"
 
 namespace jetbot_rl {

@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
+#include "jetbot_rl/env/vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
 #include "jetbot_rl/ppo/training_logger.h"
-#include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
 namespace ppo {

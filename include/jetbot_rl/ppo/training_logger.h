@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/env/step_result.h"
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/progress_csv.h"
-#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -12,7 +12,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "jetbot_rl/multi_vec_env.h"
+#include "jetbot_rl/env/multi_vec_env.h"
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/policy_params.h"

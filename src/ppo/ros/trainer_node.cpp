@@ -8,8 +8,8 @@
 #include <memory>
 #include <sstream>
 
-#include "jetbot_rl/env_setup.h"
-#include "jetbot_rl/local_vec_env.h"
+#include "jetbot_rl/env/env_setup.h"
+#include "jetbot_rl/env/local_vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ppo/runner.h"

@@ -1,7 +1,7 @@
 #include "jetbot_rl/ros/client/connect_envs.h"
 
 #include "jetbot_rl/Reset.h"
-#include "jetbot_rl/multi_vec_env.h"
+#include "jetbot_rl/env/multi_vec_env.h"
 #include "jetbot_rl/ros/client/ros_vec_env.h"
 
 namespace jetbot_rl {

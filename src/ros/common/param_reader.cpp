@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "jetbot_rl/former_names.h"
+#include "jetbot_rl/config/former_names.h"
 
 namespace jetbot_rl {
 

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "jetbot_rl/command_task.h"
-#include "jetbot_rl/navigation_task.h"
 #include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/common/private_topic.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/tasks/command_task.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <memory>
 
-#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/param_reader.h"
 #include "jetbot_rl/ros/common/robot_description.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
 #include "jetbot_rl/ros/deploy/goal_pursuit.h"
-#include "jetbot_rl/task_factory.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "jetbot_rl/scan_reading.h"
+#include "jetbot_rl/sensors/scan_reading.h"
 
 namespace jetbot_rl {
 

@@ -5,7 +5,6 @@
 #include <ros/transport_hints.h>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/gazebo_world.h"
 #include "jetbot_rl/ros/common/bounded_service.h"
 #include "jetbot_rl/ros/common/bounded_subscription.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
@@ -20,6 +19,7 @@
 #include "jetbot_rl/ros/env_node/scan_output.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
 #include "jetbot_rl/ros/env_node/tf_publisher.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 
 namespace jetbot_rl {
 namespace {

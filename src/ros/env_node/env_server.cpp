@@ -9,7 +9,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ros/common/msg_conversion.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
-#include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/tasks/task_capabilities.h"
 
 namespace jetbot_rl {
 

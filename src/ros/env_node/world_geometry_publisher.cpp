@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include "jetbot_rl/gazebo_world.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 
 namespace jetbot_rl {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
 #include "jetbot_rl/ros/common/env_mode.h"
 

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner.h"
 #include "jetbot_rl/ros/client/connect_envs.h"

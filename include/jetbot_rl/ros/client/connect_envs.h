@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/env/vec_env.h"
 #include "jetbot_rl/ros/common/param_reader.h"
-#include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
 

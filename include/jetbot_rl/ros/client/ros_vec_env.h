@@ -14,8 +14,8 @@
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/Reset.h"
 #include "jetbot_rl/WheelTargets.h"
+#include "jetbot_rl/env/vec_env.h"
 #include "jetbot_rl/ros/common/drop_counter.h"
-#include "jetbot_rl/vec_env.h"
 
 namespace jetbot_rl {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 
 namespace jetbot_rl {
 

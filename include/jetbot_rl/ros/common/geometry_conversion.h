@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
-#include "jetbot_rl/occupancy_map.h"
-#include "jetbot_rl/task.h"
+#include "jetbot_rl/tasks/task.h"
+#include "jetbot_rl/world/occupancy_map.h"
 
 namespace jetbot_rl {
 

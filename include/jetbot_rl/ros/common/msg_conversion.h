@@ -6,7 +6,7 @@
 
 #include "jetbot_rl/EnvSpec.h"
 #include "jetbot_rl/EnvStep.h"
-#include "jetbot_rl/step_result.h"
+#include "jetbot_rl/env/step_result.h"
 
 namespace jetbot_rl {
 

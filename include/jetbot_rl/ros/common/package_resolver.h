@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "jetbot_rl/mesh_loader.h"
+#include "jetbot_rl/world/gazebo/mesh_loader.h"
 
 namespace jetbot_rl {
 

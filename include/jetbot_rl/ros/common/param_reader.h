@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "jetbot_rl/config_fields.h"
+#include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {

@@ -2,7 +2,7 @@
 
 #include <ros/node_handle.h>
 
-#include "jetbot_rl/robot_model.h"
+#include "jetbot_rl/robot/robot_model.h"
 
 namespace jetbot_rl {
 

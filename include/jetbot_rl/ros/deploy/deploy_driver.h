@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/diff_drive.h"
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/drop_counter.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/fresh_input.h"
 #include "jetbot_rl/ros/deploy/goal_pursuit.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
-#include "jetbot_rl/task_observer.h"
+#include "jetbot_rl/tasks/task_observer.h"
 
 namespace jetbot_rl {
 

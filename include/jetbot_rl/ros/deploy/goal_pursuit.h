@@ -11,13 +11,13 @@
 #include <optional>
 #include <string>
 
-#include "jetbot_rl/diff_drive.h"
-#include "jetbot_rl/goal_watch.h"
+#include "jetbot_rl/planning/goal_watch.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/map_input.h"
 #include "jetbot_rl/ros/deploy/move_base_server.h"
 #include "jetbot_rl/ros/deploy/path_follower.h"
-#include "jetbot_rl/task_observer.h"
+#include "jetbot_rl/tasks/task_observer.h"
 
 namespace jetbot_rl {
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "jetbot_rl/occupancy_map.h"
+#include "jetbot_rl/world/occupancy_map.h"
 
 namespace jetbot_rl {
 

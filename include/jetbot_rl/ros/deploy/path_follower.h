@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/map_planner.h"
-#include "jetbot_rl/path_tracker.h"
-#include "jetbot_rl/task_observer.h"
+#include "jetbot_rl/planning/map_planner.h"
+#include "jetbot_rl/planning/path_tracker.h"
+#include "jetbot_rl/tasks/task_observer.h"
 
 namespace jetbot_rl {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/env/step_result.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
-#include "jetbot_rl/step_result.h"
 
 namespace jetbot_rl {
 

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/robot/diff_drive.h"
 
 namespace jetbot_rl {
 

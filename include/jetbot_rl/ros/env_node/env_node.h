@@ -12,8 +12,8 @@
 #include <optional>
 #include <vector>
 
-#include "jetbot_rl/batched_env.h"
-#include "jetbot_rl/diff_drive.h"
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/inline_callback_queue.h"
 #include "jetbot_rl/ros/env_node/env_diagnostics.h"
 #include "jetbot_rl/ros/env_node/env_server.h"

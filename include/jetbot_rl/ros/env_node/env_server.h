@@ -13,7 +13,7 @@
 #include "jetbot_rl/SetCommand.h"
 #include "jetbot_rl/Step.h"
 #include "jetbot_rl/WheelTargets.h"
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/ros/env_node/cmd_vel_mixer.h"
 #include "jetbot_rl/ros/env_node/node_params.h"
 

@@ -3,9 +3,9 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/node_handle.h>
 
-#include "jetbot_rl/occupancy_map.h"
 #include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/env_node/robot_names.h"
+#include "jetbot_rl/world/occupancy_map.h"
 
 namespace jetbot_rl {
 

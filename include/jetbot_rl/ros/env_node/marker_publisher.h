@@ -5,7 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "jetbot_rl/ros/env_node/state_output.h"
-#include "jetbot_rl/task_capabilities.h"
+#include "jetbot_rl/tasks/task_capabilities.h"
 
 namespace jetbot_rl {
 

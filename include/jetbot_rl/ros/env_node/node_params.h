@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <string>
 
-#include "jetbot_rl/config_fields.h"
-#include "jetbot_rl/env_setup.h"
+#include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/ros/common/env_mode.h"
 
 namespace jetbot_rl {

@@ -6,7 +6,7 @@
 #include <mutex>
 
 #include "jetbot_rl/GetRandomization.h"
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/ros/common/bounded_subscription.h"
 
 namespace jetbot_rl {

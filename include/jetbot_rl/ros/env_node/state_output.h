@@ -5,7 +5,7 @@
 #include <ros/time.h>
 
 #include "jetbot_rl/EnvStep.h"
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 
 namespace jetbot_rl {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "jetbot_rl/batched_env.h"
+#include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/ros/env_node/robot_names.h"
 
 namespace jetbot_rl {

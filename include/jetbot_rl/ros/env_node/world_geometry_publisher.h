@@ -4,7 +4,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "jetbot_rl/ros/env_node/robot_names.h"
-#include "jetbot_rl/world_model.h"
+#include "jetbot_rl/world/world_model.h"
 
 namespace jetbot_rl {
 

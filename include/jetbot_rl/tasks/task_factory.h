@@ -1,0 +1,77 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/tasks/command_task.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/task.h"
+#include "jetbot_rl/tasks/task_observer.h"
+#include "jetbot_rl/tasks/velocity_task.h"
+
+namespace jetbot_rl {
+
+/// The tasks makeTask() builds.
+enum class TaskKind {
+  kVelocity,    ///< VelocityTask: drive fast (the walkthrough's first part).
+  kCommand,     ///< CommandTask: turn to a random command and drive along it.
+  kNavigation,  ///< NavigationTask: reach a goal without hitting anything.
+};
+
+inline const EnumNameList<TaskKind>& enumNames(TaskKind) {
+  static const EnumNameList<TaskKind> names{{TaskKind::kVelocity, "velocity"},
+                                            {TaskKind::kCommand, "command"},
+                                            {TaskKind::kNavigation, "navigation"}};
+  return names;
+}
+
+/// The reward variants of every task; each task takes its own (default: its first).
+enum class RewardVariant { kDefault, kExp, kSum, kProduct, kProgress, kSparse };
+
+inline const EnumNameList<RewardVariant>& enumNames(RewardVariant) {
+  static const EnumNameList<RewardVariant> names{
+      {RewardVariant::kDefault, "default"},   {RewardVariant::kExp, "exp"},
+      {RewardVariant::kSum, "sum"},           {RewardVariant::kProduct, "product"},
+      {RewardVariant::kProgress, "progress"}, {RewardVariant::kSparse, "sparse"}};
+  return names;
+}
+
+/// Which task an env runs: the `task`, `reward_variant` and `nav/...` parameters.
+struct TaskConfig {
+  TaskKind task = TaskKind::kVelocity;
+  /// The task's reward: command exp (default), sum or product; navigation progress (default) or
+  /// sparse; the velocity task has one.
+  RewardVariant reward_variant = RewardVariant::kDefault;
+  NavigationConfig navigation;  ///< The navigation task's.
+};
+
+template <typename C, typename V>
+IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
+  v("task", c.task, AnyValue{},
+    "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm), command "
+    "(turn to a random command and drive along it) or navigation (reach a goal without "
+    "collisions; needs a laser scanner).");
+  v("reward_variant", c.reward_variant, AnyValue{},
+    "The task's reward: command: exp (v_x exp(dot), default), sum (v_x + dot) or product (v_x "
+    "dot); navigation: progress (default) or sparse; default: the task's first.");
+  visitFields(c.navigation, v);
+}
+
+/// The reward variant fits the task: ConfigError naming reward_variant otherwise.
+void checkFieldRules(const TaskConfig& config);
+
+/// Builds the configured task (ConfigError for a reward variant it does not take).
+std::unique_ptr<Task> makeTask(const TaskConfig& config);
+
+/// True when task `task` observes a laser scan (its observer needs ObserverSpec's beams);
+/// ConfigError naming `task` for an unknown one.
+bool observesScan(const std::string& task);
+
+/// The observer of task `spec.task` for a robot elsewhere (the same code the simulated task
+/// observes with); ConfigError naming `task` for an unknown one, or a navigation observer
+/// without its beams or range.
+std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec);
+
+}  // namespace jetbot_rl

@@ -1,0 +1,67 @@
+#pragma once
+
+// Generated worlds (issue 30): each env's layout drawn at every reset from the env's own stream,
+// in one of three families, at a difficulty in [0, 1] (docs/world.md#generated-worlds).
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/rng.h"
+#include "jetbot_rl/world/world_model.h"
+
+namespace jetbot_rl {
+
+class WorldDrawing;
+
+/// Layouts drawn for one reset before it runs in the bare arena (counted as unmade).
+constexpr int kLayoutAttempts = 20;
+
+/// The families of generated layouts.
+enum class WorldFamily {
+  kClutter,  ///< Posts and crates on a jittered grid; denser and narrower with difficulty.
+  kRooms,    ///< A floor plan: rooms in a grid, a door in each wall between them, furniture.
+  kMaze,     ///< A perfect maze (one way between any two cells) of smaller cells with difficulty.
+};
+
+inline const EnumNameList<WorldFamily>& enumNames(WorldFamily) {
+  static const EnumNameList<WorldFamily> names{{WorldFamily::kClutter, "clutter"},
+                                               {WorldFamily::kRooms, "rooms"},
+                                               {WorldFamily::kMaze, "maze"}};
+  return names;
+}
+
+/// What a family's generator is given: where to build, for which robot, how high.
+struct GenerationArea {
+  Eigen::AlignedBox2d area;      ///< The floor to fill (inside the arena walls) [m].
+  double robot_radius = 0.1;     ///< The robot's footprint [m]: passages keep it through.
+  double height = 0.5;           ///< Of the walls and obstacles [m].
+  double wall_thickness = 0.05;  ///< Of generated walls [m].
+};
+
+/// The narrowest passage a family leaves at `difficulty` [m]: from four robot widths at 0 down
+/// to 1.5 at 1 (clutter, doors, maze corridors alike).
+double narrowestPassage(const GenerationArea& a, double difficulty);
+
+/// Appends to `out` the obstacles (boxes, cylinders; walls as thin boxes) of a layout of
+/// `family` at `difficulty`, drawn from `rng`; at most `max_obstacles` of them (the rest are
+/// left out, and their count returned).
+int generateObstacles(WorldFamily family, double difficulty, const GenerationArea& area, Rng& rng,
+                      int max_obstacles, std::vector<Obstacle>& out);
+
+/**
+ * Draws env `env`'s generated layout (world/families) at `difficulty` from its stream: a family
+ * by world/family_weights, its obstacles in the arena, a start with the start clearance the
+ * robot can stand on, then `task`'s goal, which must have a path from the start for the robot's
+ * footprint on a FootprintGrid. A layout without such a start and goal is drawn again, up
+ * to kLayoutAttempts; then the episode runs in the bare arena and `layout.unmade` is set.
+ */
+void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double difficulty,
+                         WorldDrawing* task, EnvLayout& layout);
+
+/// Start-up check that every family leaves the robot somewhere to start at world/difficulty and
+/// at the hardest the curriculum reaches: ConfigError naming world/difficulty (or
+/// world/arena_size) and the family when none of a few trial layouts has a start.
+void checkGeneratedLayouts(const WorldModel& world);
+
+}  // namespace jetbot_rl

@@ -1,0 +1,444 @@
+#include "jetbot_rl/env/batched_env.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "env/action_layout.h"
+#include "env/env_physics.h"
+#include "env/env_randomizer.h"
+#include "env/thread_pool.h"
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/robot/diff_drive.h"
+#include "jetbot_rl/scene/movers.h"
+#include "jetbot_rl/tasks/task_capabilities.h"
+#include "jetbot_rl/tasks/task_observer.h"
+#include "robot/physics_model.h"
+#include "scene/robot_team.h"
+#include "sensors/scan_sensor.h"
+#include "world/world_shapes.h"
+
+namespace jetbot_rl {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
+                       std::unique_ptr<Task> task)
+    : robot_(std::move(robot)), config_(config), task_(std::move(task)) {
+  config_.validate();
+  if (!robot_) throw ModelError("no robot model given");
+  if (!task_) throw ConfigError("invalid task = null: a task object is required");
+  drawer_ = capability<WorldDrawing>(*task_);
+  config_.dof_names = resolvedDofNames(config_, *robot_);
+  physics_ = std::make_unique<PhysicsModel>(robot_, config_);
+  for (const auto& dof : physics_->dofs()) {
+    wheel_low_.push_back(static_cast<float>(-dof.velocity_limit));
+    wheel_high_.push_back(static_cast<float>(dof.velocity_limit));
+    dof_limits_.push_back(dof);
+  }
+  actions_layout_ = std::make_unique<ActionLayout>(makeActionLayout(
+      *robot_, config_, std::vector<double>(wheel_high_.begin(), wheel_high_.end())));
+  const std::optional<ScannerSpec> scanner =
+      resolveScanner(config_.scan, *robot_, config_.controlDt());
+  if (config_.world.enabled()) {
+    if (config_.world.cut_height == 0.0 && scanner) {
+      config_.world.cut_height = scannerHeight(*robot_, *scanner);
+    }
+    world_ = std::make_shared<const WorldModel>(config_.world, robot_->footprintRadius());
+    world_shapes_ = std::make_unique<WorldShapes>(*world_);
+    if (config_.movers.count() > 0) {
+      movers_ = std::make_unique<MoverSet>(config_.movers, *world_, config_.num_envs, config_.seed);
+    }
+  }
+  const int n = config_.numRows();
+  if (scanner) {
+    scan_ = std::make_unique<ScanSensor>(*scanner, world_.get(), n, config_.seed);
+    sensors_.push_back(scan_.get());
+  }
+  TaskContext context;
+  context.scanner = scanner ? &scan_->spec() : nullptr;
+  context.world = world_.get();
+  context.action_dim = actionDim();
+  context.control_dt = config_.controlDt();
+  task_->attach(context);
+  obs_dim_ = static_cast<int>(task_->observationNames().size());
+  randomizer_ = std::make_unique<EnvRandomizer>(config_, *physics_, obs_dim_);
+  const int num_obstacles = config_.world.obstacleSlots();
+  const int num_movers = config_.movers.count();
+  const int num_peers = config_.team.robots_per_env - 1;
+
+  const int workers = std::min(config_.resolvedThreads(), n);
+  pool_ = std::make_unique<ThreadPool>(workers);
+  contexts_.resize(workers);
+  envs_.resize(n);
+  // Each thread builds its scratch and its block's envs, in parallel, so that their memory comes
+  // from its own allocator arena and is first touched by the thread that steps it.
+  pool_->run(workers, [this, n, num_obstacles, num_movers, num_peers](int w) {
+    contexts_[w] = std::make_unique<WorkerContext>();
+    for (int e = pool_->firstItemOf(w, n); e < pool_->firstItemOf(w + 1, n); ++e) {
+      envs_[e] = std::make_unique<EnvPhysics>(*physics_, *contexts_[w], world_shapes_.get(),
+                                              num_obstacles, num_movers, num_peers);
+    }
+  });
+  if (world_ && (num_peers > 0 || config_.team.swap_radius > 0.0)) {
+    team_ = std::make_unique<RobotTeam>(config_.team, *world_, config_.num_envs,
+                                        robot_->footprintRadius(), envs_[0]->robotTop());
+    for (auto& env : envs_) env->setPeers(team_->footprints());
+  }
+  for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
+    joint_names_.push_back(robot_->bodies()[b].joint_name);
+    dof_of_joint_.push_back(-1);
+  }
+  for (std::size_t d = 0; d < physics_->dofs().size(); ++d) {
+    const int body = physics_->joints()[physics_->dofs()[d].joint].child;
+    dof_of_joint_[body - 1] = static_cast<int>(d);
+  }
+  task_->resize(n);
+  targets_.assign(static_cast<std::size_t>(n) * physics_->dofs().size(), 0.0f);
+  actions_.assign(static_cast<std::size_t>(n) * actionDim(), 0.0f);
+  outcome_.assign(n, 0);
+  ended_.assign(n, 0);
+  final_scratch_.assign(static_cast<std::size_t>(n) * obs_dim_, 0.0f);
+  diverged_.assign(n, std::string());
+  result_.observations.assign(static_cast<std::size_t>(n) * obs_dim_, 0.0f);
+  result_.rewards.assign(n, 0.0f);
+  result_.terminated.assign(n, 0);
+  result_.truncated.assign(n, 0);
+  result_.episode_steps.assign(n, 0);
+  result_.reset_env_ids.reserve(n);
+  result_.final_observations.reserve(static_cast<std::size_t>(n) * obs_dim_);
+  for (int e = 0; e < n; ++e) rngs_.emplace_back(config_.seed, e);
+  layouts_.resize(n);
+  curriculum_ = Curriculum(config_.world, n);
+  collided_.assign(n, 0);
+  reset();
+}
+
+BatchedEnv::~BatchedEnv() = default;
+
+int BatchedEnv::numThreads() const { return pool_->size(); }
+
+int BatchedEnv::actionDim() const { return static_cast<int>(actions_layout_->low.size()); }
+
+const std::vector<float>& BatchedEnv::actionLow() const { return actions_layout_->low; }
+
+const std::vector<float>& BatchedEnv::actionHigh() const { return actions_layout_->high; }
+
+const ScannerSpec* BatchedEnv::scanner() const { return scan_ ? &scan_->spec() : nullptr; }
+
+const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
+  const int n = config_.numRows();
+  checkActions(*actions_layout_, n, actions, count);
+  actionsToTargets(*actions_layout_, n, wheel_low_.size(), actions, randomizer_->noisesActions(),
+                   actions_.data(), targets_.data());
+  // An env's result does not depend on the thread that steps it: the thread lends it its
+  // solver, which keeps nothing between envs.
+  // The robots of one env are stepped by one thread (stepTeam()).
+  if (team_) {
+    pool_->runStealing(config_.num_envs, [this](int g, int w) { stepTeam(g, *contexts_[w]); });
+  } else {
+    pool_->runStealing(n, [this](int e, int w) { stepEnv(e, *contexts_[w]); });
+  }
+  ++result_.step;
+
+  result_.reset_env_ids.clear();
+  result_.final_observations.clear();
+  result_.outcomes.clear();
+  result_.divergences.clear();
+  for (int e = 0; e < n; ++e) {
+    if (!ended_[e]) continue;
+    result_.reset_env_ids.push_back(static_cast<std::uint32_t>(e));
+    result_.outcomes.push_back(outcome_[e]);
+    const float* f = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
+    result_.final_observations.insert(result_.final_observations.end(), f, f + obs_dim_);
+    if (!diverged_[e].empty()) {
+      result_.divergences.push_back({static_cast<std::uint32_t>(e), diverged_[e]});
+      ++diverged_count_;
+    }
+  }
+  return result_;
+}
+
+void BatchedEnv::stepEnv(int e, WorkerContext& context) {
+  stepPhysics(e, context);
+  sensePhysics(e);
+  finishStep(e);
+}
+
+void BatchedEnv::stepPhysics(int e, WorkerContext& context) {
+  EnvPhysics& physics = *envs_[e];
+  physics.useContext(context);
+  float* targets = &targets_[static_cast<std::size_t>(e) * wheel_low_.size()];
+  if (randomizer_->shapesTargets()) randomizer_->shapeTargets(e, targets);
+  physics.setTargets(targets);
+  physics.clearCollided();
+  if (movers_) {
+    // The movers walk on with the robot: their velocities for the control step, then each
+    // physics step takes them to where they are at its end.
+    movers_->plan(e, layouts_[e], physics.rootState().position.head<2>(), config_.controlDt());
+    for (int k = 0; k < config_.decimation; ++k) {
+      movers_->advance(e, config_.physics_dt);
+      physics.moveMovers(movers_->bodies(e), movers_->nearRobot(e));
+      physics.step(config_.physics_dt);
+    }
+  } else if (team_) {
+    // The other robots drive on from where they were when the step began (stepTeam()); the
+    // near ones only, as only they are in its Bullet world (none most steps).
+    const bool move = team_->beginStep(e, config_.controlDt());
+    for (int k = 0; k < config_.decimation; ++k) {
+      if (move) {
+        const std::vector<std::uint8_t>& near = team_->near(e, k);
+        physics.movePeers(team_->peers(e, (k + 1) * config_.physics_dt, &near), near);
+      }
+      physics.step(config_.physics_dt);
+    }
+  } else {
+    for (int k = 0; k < config_.decimation; ++k) physics.step(config_.physics_dt);
+  }
+  ++result_.episode_steps[e];
+  collided_[e] = physics.collidedWithPeer()    ? kHitRobot
+                 : physics.collidedWithMover() ? kHitMover
+                 : physics.collided()          ? kHitWorld
+                                               : 0;
+}
+
+void BatchedEnv::sensePhysics(int e) {
+  for (EnvSensor* sensor : sensors_) sensor->afterStep(e, sensedEnv(e));
+}
+
+void BatchedEnv::finishStep(int e) {
+  const int last_step = config_.maxEpisodeLength() - 1;
+  EnvPhysics& physics = *envs_[e];
+  // Isaac Lab order: dones, then rewards, then reset, then observations.
+  const RootState state = physics.rootState();
+  diverged_[e] = physics.divergence();
+  const bool diverged = !diverged_[e].empty();
+  if (diverged) diverged_[e] = "env " + std::to_string(e) + " diverged: " + diverged_[e];
+  senseEnv(e);
+  const bool terminated = !diverged && task_->terminated(e, state);
+  const bool truncated =
+      diverged || result_.episode_steps[e] >= static_cast<std::uint32_t>(last_step);
+  result_.terminated[e] = terminated;
+  result_.truncated[e] = truncated;
+  result_.rewards[e] = diverged ? 0.0f : task_->reward(e, state);
+  ended_[e] = terminated || truncated;
+  if (ended_[e]) {
+    outcome_[e] = static_cast<std::uint8_t>(terminated ? task_->outcome(e) : Outcome::kTimeOut);
+    curriculum_.episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
+    float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
+    task_->observe(e, state, final_obs);
+    if (diverged) {
+      std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
+    } else if (randomizer_->noisesObservations()) {
+      randomizer_->noiseObservation(e, final_obs);  // what the learner would have seen
+    }
+    if (team_ && config_.team.rounds) {  // it waits for its round to end (stepTeam())
+      team_->wait(e);
+      physics.stop();  // standing (its odom and joint states say so)
+      std::copy(final_obs, final_obs + obs_dim_,
+                &result_.observations[static_cast<std::size_t>(e) * obs_dim_]);
+      return;
+    }
+    resetEnv(e);
+    senseEnv(e);
+  }
+  observeRow(e);
+}
+
+void BatchedEnv::observeRow(int e) {
+  float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+  task_->observe(e, envs_[e]->rootState(), obs);
+  if (randomizer_->noisesObservations()) randomizer_->noiseObservation(e, obs);
+}
+
+void BatchedEnv::resetEnv(int env) {
+  EnvPhysics& physics = *envs_[env];
+  physics.reset();
+  if (randomizer_->drawsAtReset()) randomizer_->resetEnv(env, rngs_[env], physics);
+  if (team_) {
+    placeTeamRobot(env);
+  } else if (world_) {
+    // The layout from the env's own stream: its start, the task's goal, the obstacles.
+    EnvLayout& layout = layouts_[env];
+    const double difficulty = curriculum_.drawDifficulty(env, rngs_[env]);
+    world_->drawLayout(rngs_[env], env, difficulty, drawer_, layout);
+    physics.moveRobot(layout.start);
+    physics.setObstacles(layout.obstacles);
+    given_up_ += static_cast<std::uint64_t>(layout.given_up);
+    if (layout.unmade) ++unmade_;
+    if (movers_) {
+      movers_given_up_ += static_cast<std::uint64_t>(movers_->reset(env, layout));
+      physics.setMovers(movers_->bodies(env));
+    }
+  }
+  result_.episode_steps[env] = 0;
+  task_->resetEnv(env, rngs_[env]);
+  collided_[env] = 0;
+  std::fill_n(actions_.begin() + static_cast<std::ptrdiff_t>(env) * actionDim(), actionDim(), 0.0f);
+  for (EnvSensor* sensor : sensors_) sensor->afterReset(env, sensedEnv(env));
+}
+
+SensedEnv BatchedEnv::sensedEnv(int env) const {
+  // The other robots of its world are seen as movers are, where they are now.
+  const std::vector<Obstacle>* moving = movers_ ? &movers_->bodies(env)
+                                        : team_ ? &team_->peers(env, 0.0)
+                                                : nullptr;
+  return {*envs_[env], layouts_[env], moving};
+}
+
+void BatchedEnv::senseEnv(int env) {
+  EnvSenses senses;
+  senses.scan = scan_ ? scan_->ranges(env) : nullptr;
+  senses.collided = collided_[env] != 0;
+  senses.collided_with_mover = collided_[env] == kHitMover;
+  senses.collided_with_robot = collided_[env] == kHitRobot;
+  senses.action = &actions_[static_cast<std::size_t>(env) * actionDim()];
+  task_->sense(env, senses);
+}
+
+const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
+                                    std::optional<std::uint64_t> seed,
+                                    const std::vector<std::uint32_t>& episode_steps) {
+  const int n = config_.numRows();
+  std::vector<std::uint8_t> selected(n, env_ids.empty() ? 1 : 0);
+  for (std::uint32_t id : env_ids) {
+    std::ostringstream s;
+    if (id >= static_cast<std::uint32_t>(n)) {
+      s << "env_ids: id " << id << " is out of range [0, " << n << ")";
+      throw InputError(s.str());
+    }
+    if (selected[id]) {
+      s << "env_ids: id " << id << " is listed twice";
+      throw InputError(s.str());
+    }
+    selected[id] = 1;
+  }
+  const std::size_t count = env_ids.empty() ? static_cast<std::size_t>(n) : env_ids.size();
+  if (!episode_steps.empty() && episode_steps.size() != count) {
+    throw InputError("episode_steps: expected " + std::to_string(count) +
+                     " values (one per reset env) or none, got " +
+                     std::to_string(episode_steps.size()));
+  }
+  const auto last_start = static_cast<std::uint32_t>(config_.maxEpisodeLength() - 2);
+  for (std::size_t k = 0; k < episode_steps.size(); ++k) {
+    if (episode_steps[k] > last_start) {
+      throw InputError("episode_steps[" + std::to_string(k) +
+                       "] = " + std::to_string(episode_steps[k]) +
+                       ": must be <= " + std::to_string(last_start) + " (max_episode_length - 2)");
+    }
+  }
+  for (EnvSensor* sensor : sensors_) sensor->forgetNewReadings();
+  // Robots reset together start free of each other, whatever they did before.
+  for (int e = 0; team_ && e < n; ++e) {
+    if (selected[e]) team_->forget(e);
+  }
+  for (int e = 0; e < n; ++e) {
+    if (!selected[e]) continue;
+    if (seed) {
+      rngs_[e] = Rng(*seed, e);
+      randomizer_->reseed(e, *seed);
+      for (EnvSensor* sensor : sensors_) sensor->reseed(e, *seed);
+      if (movers_) movers_->reseed(e, *seed);
+    }
+    resetEnv(e);
+  }
+  // Each sees the others where they started (the first ones placed saw the later ones not yet).
+  for (int e = 0; team_ && e < n; ++e) {
+    if (!selected[e]) continue;
+    for (EnvSensor* sensor : sensors_) sensor->afterReset(e, sensedEnv(e));
+  }
+  // Starting steps are given in env_ids order, which need not be ascending.
+  for (std::size_t i = 0; i < episode_steps.size(); ++i) {
+    const std::uint32_t id = env_ids.empty() ? static_cast<std::uint32_t>(i) : env_ids[i];
+    result_.episode_steps[id] = episode_steps[i];
+  }
+  // With observation noise only the reset envs observe anew: the others keep their noise.
+  const bool noisy = randomizer_->noisesObservations();
+  for (int e = 0; e < n; ++e) {
+    if (noisy && !selected[e]) continue;
+    float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
+    senseEnv(e);
+    task_->observe(e, envs_[e]->rootState(), obs);
+    if (noisy) randomizer_->noiseObservation(e, obs);
+  }
+  std::fill(result_.rewards.begin(), result_.rewards.end(), 0.0f);
+  std::fill(result_.terminated.begin(), result_.terminated.end(), 0);
+  std::fill(result_.truncated.begin(), result_.truncated.end(), 0);
+  result_.reset_env_ids.clear();
+  result_.final_observations.clear();
+  result_.outcomes.clear();
+  result_.divergences.clear();
+  return result_;
+}
+
+BatchSpec BatchedEnv::spec() const {
+  BatchSpec spec;
+  spec.num_envs = numEnvs();
+  spec.obs_dim = obsDim();
+  spec.action_dim = actionDim();
+  spec.action_low = actionLow();
+  spec.action_high = actionHigh();
+  spec.control_dt = controlDt();
+  spec.max_episode_length = maxEpisodeLength();
+  spec.task = task_->name();
+  spec.observation_names = task_->observationNames();
+  task_->observer().observationBounds(spec.observation_low, spec.observation_high);
+  if (randomizer_->noisesObservations()) {  // noise may take any value anywhere
+    std::fill(spec.observation_low.begin(), spec.observation_low.end(), -kInfinity);
+    std::fill(spec.observation_high.begin(), spec.observation_high.end(), kInfinity);
+  }
+  spec.action_names = actions_layout_->names;
+  spec.has_goals = task_->observer().hasGoal();
+  try {
+    const DiffDrive drive = DiffDrive::fromEnv(*this);
+    spec.wheel_radius = drive.wheelRadius();
+    spec.wheel_separation = drive.wheelSeparation();
+  } catch (const Error&) {
+    // No differential drive: its kinematics stay 0.
+  }
+  if (const auto* scan_task = capability<ScanObserving>(*task_)) {
+    spec.scan_beam_angles = scan_task->scanBeamAngles();
+    spec.scan_beam_width = scan_task->scanBeamWidth();
+    spec.scan_range = {scan_->spec().range_min, scan_->spec().range_max};
+  }
+  if (const auto* path_task = capability<PathObserving>(*task_)) {
+    spec.path_lookahead = path_task->pathLookahead();
+  }
+  return spec;
+}
+
+void BatchedEnv::checkEnv(int env) const {
+  if (env < 0 || env >= numEnvs()) {
+    std::ostringstream s;
+    s << "env " << env << " is out of range [0, " << numEnvs() << ")";
+    throw InputError(s.str());
+  }
+}
+
+double BatchedEnv::difficulty(int env) const {
+  checkEnv(env);
+  return curriculum_.difficulty(env);
+}
+
+EnvView BatchedEnv::view(int env) const {
+  checkEnv(env);
+  return EnvView(*this, env);
+}
+
+void BatchedEnv::setRootState(int env, const RootState& state) {
+  checkEnv(env);
+  const bool finite = state.position.allFinite() && state.orientation.coeffs().allFinite() &&
+                      state.com_linear_velocity.allFinite() && state.angular_velocity.allFinite();
+  if (!finite || state.orientation.norm() < 1e-6) {
+    throw InputError("root state of env " + std::to_string(env) +
+                     ": values must be finite and the orientation a non-zero quaternion");
+  }
+  envs_[env]->setRootState(state);
+  if (team_) team_->capture(env, *envs_[env]);  // the others see it there
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,78 @@
+#include "jetbot_rl/tasks/task_factory.h"
+
+#include "jetbot_rl/errors.h"
+
+namespace jetbot_rl {
+namespace {
+
+[[noreturn]] void wrongVariant(const TaskConfig& config, const char* choices) {
+  throwInvalid("reward_variant", "'" + enumName(config.reward_variant) + "'",
+               "the " + enumName(config.task) + " task takes " + choices);
+}
+
+}  // namespace
+
+void checkFieldRules(const TaskConfig& config) {
+  const RewardVariant v = config.reward_variant;
+  const bool any = v == RewardVariant::kDefault;
+  switch (config.task) {
+    case TaskKind::kCommand:
+      if (!any && v != RewardVariant::kExp && v != RewardVariant::kSum &&
+          v != RewardVariant::kProduct) {
+        wrongVariant(config, "exp, sum or product (or default)");
+      }
+      break;
+    case TaskKind::kNavigation:
+      if (!any && v != RewardVariant::kProgress && v != RewardVariant::kSparse) {
+        wrongVariant(config, "progress or sparse (or default)");
+      }
+      break;
+    case TaskKind::kVelocity:  // one reward: the variant is ignored
+      break;
+  }
+}
+
+std::unique_ptr<Task> makeTask(const TaskConfig& config) {
+  validateConfig(config);
+  switch (config.task) {
+    case TaskKind::kCommand:
+      return std::make_unique<CommandTask>(
+          config.reward_variant == RewardVariant::kSum       ? CommandTask::Variant::kSum
+          : config.reward_variant == RewardVariant::kProduct ? CommandTask::Variant::kProduct
+                                                             : CommandTask::Variant::kExp);
+    case TaskKind::kNavigation:
+      return std::make_unique<NavigationTask>(config.navigation,
+                                              config.reward_variant == RewardVariant::kSparse
+                                                  ? NavigationTask::Variant::kSparse
+                                                  : NavigationTask::Variant::kProgress);
+    case TaskKind::kVelocity:
+      break;
+  }
+  return std::make_unique<VelocityTask>();
+}
+
+bool observesScan(const std::string& task) {
+  return parseEnum<TaskKind>("task", task) == TaskKind::kNavigation;
+}
+
+std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec) {
+  switch (parseEnum<TaskKind>("task", spec.task)) {
+    case TaskKind::kCommand:
+      return std::make_unique<CommandObserver>();
+    case TaskKind::kNavigation:
+      if (spec.scan_beams < 1 || !(spec.range_min >= 0.0 && spec.range_min < spec.range_max)) {
+        throw ConfigError("the navigation task observes " + std::to_string(spec.scan_beams) +
+                          " scan beams over [" + std::to_string(spec.range_min) + ", " +
+                          std::to_string(spec.range_max) +
+                          "] m: it needs at least one beam and range_min < range_max");
+      }
+      return std::make_unique<NavigationObserver>(spec.scan_beams, spec.range_min, spec.range_max,
+                                                  spec.action_dim, spec.goal_radius, spec.path,
+                                                  spec.log_beams);
+    case TaskKind::kVelocity:
+      break;
+  }
+  return std::make_unique<VelocityObserver>();
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,59 @@
+// The WorldModel of a Gazebo world (world/gazebo_world): its upright boxes and cylinders stay exact
+// obstacles shared by every env; its cut at cut_height is the grid (/map, clearances, planner),
+// and the cells of its other shapes are their geometry (collisions and scans, as a map's cells).
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
+#include "jetbot_rl/world/world_model.h"
+
+namespace jetbot_rl {
+namespace {
+
+// Free cells around the world's geometry in its grid: room to start beside the outermost solid.
+constexpr double kGridMargin = 1.0;  // [m]
+
+}  // namespace
+
+void WorldModel::readGazeboWorld() {
+  const std::string& path = config_.gazebo_world;
+  auto world = std::make_shared<GazeboWorld>();
+  try {
+    *world = loadGazeboWorld(path);
+  } catch (const Error& e) {
+    throw ConfigError(std::string("world/gazebo_world: ") + e.what());
+  }
+  const double height = cutHeight(), resolution = config_.map_resolution;
+  const Eigen::AlignedBox2d area = cutArea(world->solids, height, resolution, kGridMargin);
+  if (area.isEmpty()) {
+    throwInvalid("world/gazebo_world", path,
+                 "none of its " + std::to_string(world->solids.size()) +
+                     " collisions crosses the cut at " + std::to_string(height) +
+                     " m (world/cut_height): the world would be empty");
+  }
+  map_ = cutSolids(world->solids, height, resolution, area, SolidKinds::kAll);
+  map_->yaml_path = path;
+  const OccupancyMap others =
+      cutSolids(world->solids, height, resolution, area, SolidKinds::kOthers);
+  obstacle_cells_.resize(others.data.size());
+  for (std::size_t i = 0; i < others.data.size(); ++i) obstacle_cells_[i] = others.data[i] != 0;
+  for (const WorldSolid& s : world->solids) {
+    if (s.upright && crossesHeight(s, height)) world_obstacles_.push_back(*s.upright);
+  }
+  gazebo_ = std::move(world);
+}
+
+std::string WorldModel::gazeboSolidNear(const Eigen::Vector2d& p, double reach) const {
+  std::string names;
+  int n = 0;
+  for (const WorldSolid& s : gazebo_->solids) {
+    if (!crossesHeight(s, cutHeight())) continue;
+    const double d = s.upright ? s.upright->distance(p) : s.bounds.exteriorDistance(p);
+    if (d >= reach) continue;
+    if (n++ < 3) names += (names.empty() ? "'" : ", '") + s.name + "'";
+  }
+  if (n == 0) return "near the edge of " + gazebo_->path + "'s grid";
+  return std::string(n > 3 ? "near " + std::to_string(n) + " collisions, first "
+                           : "inside or near ") +
+         names + " of " + gazebo_->path;
+}
+
+}  // namespace jetbot_rl

@@ -1,0 +1,115 @@
+// A Gazebo world file before sdformat reads it (sdf_prepass.h).
+#include "world/gazebo/sdf_prepass.h"
+
+#include <tinyxml2.h>
+
+#include <filesystem>
+#include <map>
+
+namespace jetbot_rl {
+namespace {
+
+/// The element printed without its name (attribute or <name>) and its own <pose>: what two
+/// repeats share.
+std::string shapeKey(const tinyxml2::XMLElement& e) {
+  tinyxml2::XMLDocument doc;
+  tinyxml2::XMLElement* copy = e.DeepClone(&doc)->ToElement();
+  copy->DeleteAttribute("name");
+  for (const char* tag : {"name", "pose"}) {
+    while (tinyxml2::XMLElement* c = copy->FirstChildElement(tag)) copy->DeleteChild(c);
+  }
+  tinyxml2::XMLPrinter printer(nullptr, /*compact=*/true);
+  copy->Accept(&printer);
+  return printer.CStr();
+}
+
+std::string nameOf(const tinyxml2::XMLElement& e) {
+  if (std::string(e.Name()) == "model") return e.Attribute("name") ? e.Attribute("name") : "";
+  const tinyxml2::XMLElement* n = e.FirstChildElement("name");
+  return n && n->GetText() ? n->GetText() : "";
+}
+
+bool hasPlacementFrame(const tinyxml2::XMLElement& e) {
+  return e.Attribute("placement_frame") || e.FirstChildElement("placement_frame");
+}
+
+}  // namespace
+
+std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats) {
+  repeats.clear();
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
+  tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
+  tinyxml2::XMLElement* world = sdf ? sdf->FirstChildElement("world") : nullptr;
+  if (!world) return "";
+  const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+  std::map<std::string, std::string> first;  // shape key -> the first model's name
+  for (tinyxml2::XMLElement* e = world->FirstChildElement(); e;) {
+    tinyxml2::XMLElement* next = e->NextSiblingElement();
+    const std::string tag = e->Name();
+    if (tag == "include") {  // the folded text is read from a string: no folder of its own
+      tinyxml2::XMLElement* uri = e->FirstChildElement("uri");
+      const std::string text = uri && uri->GetText() ? uri->GetText() : "";
+      if (!text.empty() && text.find("://") == std::string::npos && text[0] != '/') {
+        uri->SetText((folder / text).lexically_normal().c_str());
+      }
+    }
+    const std::string name = nameOf(*e);
+    if ((tag != "model" && tag != "include") || name.empty() || hasPlacementFrame(*e)) {
+      e = next;
+      continue;
+    }
+    const auto [it, is_first] = first.emplace(shapeKey(*e), name);
+    if (!is_first) {
+      tinyxml2::XMLElement* frame = doc.NewElement("frame");
+      frame->SetAttribute("name", name.c_str());
+      if (const tinyxml2::XMLElement* pose = e->FirstChildElement("pose")) {
+        frame->InsertEndChild(pose->DeepClone(&doc));
+      }
+      world->InsertAfterChild(e, frame);
+      world->DeleteChild(e);
+      repeats.push_back({name, it->second});
+    }
+    e = next;
+  }
+  if (repeats.empty()) return "";
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
+std::string sdfFileProblem(const std::string& path, const std::string& newest) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+    if (doc.ErrorID() == tinyxml2::XML_ERROR_FILE_NOT_FOUND ||
+        doc.ErrorID() == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED) {
+      return path + ": cannot be read";
+    }
+    return path + ":" + std::to_string(doc.ErrorLineNum()) + ": not XML: " + doc.ErrorStr();
+  }
+  const tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
+  if (!sdf) {
+    const tinyxml2::XMLElement* root = doc.RootElement();
+    return path + ": not an SDF file (its root element is <" +
+           (root ? std::string(root->Name()) : std::string()) + ">, not <sdf>)";
+  }
+  const char* version = sdf->Attribute("version");
+  const auto number = [](const std::string& v) {
+    const auto dot = v.find('.');
+    try {
+      return dot == std::string::npos
+                 ? -1.0
+                 : std::stoi(v.substr(0, dot)) * 1000.0 + std::stoi(v.substr(dot + 1));
+    } catch (const std::exception&) {
+      return -1.0;
+    }
+  };
+  const double v = version ? number(version) : -1.0;
+  if (v < 1000.0 || v > number(newest)) {
+    return path + ":" + std::to_string(sdf->GetLineNum()) + ": <sdf version=\"" +
+           (version ? version : "") + "\"> is not a version sdformat reads (1.0 to " + newest + ")";
+  }
+  return "";
+}
+
+}  // namespace jetbot_rl
