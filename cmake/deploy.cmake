@@ -1,17 +1,18 @@
 # The deploy node: a trained policy driving a robot (odometry, scan and goals in, cmd_vel out).
-#   jetbot_rl_deploy  the driver, its inputs and parameters (over jetbot_rl_ppo's Policy and the
+#   jetbot_rl_deploy  the driver, its inputs and parameters (over jetbot_rl_policy's Policy and the
 #                     core's task observers)
 add_library(jetbot_rl_deploy
   src/ros/deploy/deploy_driver.cpp
   src/ros/deploy/deploy_node.cpp
   src/ros/deploy/deploy_params.cpp
-  src/ros/deploy/goal_input.cpp
+  src/ros/deploy/map_input.cpp
+  src/ros/deploy/move_base_server.cpp
   src/ros/deploy/goal_pursuit.cpp
   src/ros/deploy/path_follower.cpp
   src/ros/deploy/planar_transform.cpp
   src/ros/deploy/scan_beams.cpp
 )
-target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_ppo jetbot_rl_ros_common)
+target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_policy jetbot_rl_ros_common)
 
 add_executable(jetbot_deploy_node src/nodes/jetbot_deploy_node.cpp)
 target_link_libraries(jetbot_deploy_node jetbot_rl_deploy)

@@ -6,7 +6,7 @@ add_library(jetbot_rl_eval
   src/eval/nav_benchmark.cpp
   src/eval/observation_means.cpp
 )
-target_link_libraries(jetbot_rl_eval PUBLIC jetbot_rl_ppo)
+target_link_libraries(jetbot_rl_eval PUBLIC jetbot_rl_policy)
 
 # A policy's mean reward per step on envs configured by YAML (e.g. perturbed physics), in-process.
 add_executable(jetbot_rl_evaluate src/nodes/evaluate_main.cpp)

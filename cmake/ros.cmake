@@ -6,6 +6,7 @@
 add_library(jetbot_rl_ros_common
   src/ros/common/bounded_deserialization.cpp
   src/ros/common/drop_counter.cpp
+  src/ros/common/geometry_conversion.cpp
   src/ros/common/inline_callback_queue.cpp
   src/ros/common/msg_conversion.cpp
   src/ros/common/msg_fields.cpp

@@ -50,7 +50,7 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim,
                                  const std::vector<int>& critic_hidden_dims, Activation activation,
                                  double init_noise_std)
     : ActorCriticImpl(input_dim, action_dim, [&] {
-        PpoConfig c;
+        NetworkConfig c;
         c.actor_hidden_dims = actor_hidden_dims;
         c.critic_hidden_dims = critic_hidden_dims;
         c.activation = activation;
@@ -58,7 +58,7 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim,
         return c;
       }()) {}
 
-ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const PpoConfig& c)
+ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& c)
     : input_dim_(input_dim), action_dim_(action_dim) {
   if (input_dim < 1 || action_dim < 1) {
     throw ConfigError("invalid model size: input " + std::to_string(input_dim) + ", action_dim " +

@@ -25,7 +25,10 @@ BatchSpec specFromYaml(const std::string& yaml, int obs_dim, int action_dim) {
   return spec;
 }
 
-void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
+}  // namespace
+
+void writeCheckpointMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m,
+                         const std::string& config_yaml) {
   a.write("format_version", c10::IValue(kFormatVersion));
   a.write("iteration", c10::IValue(m.iteration));
   a.write("env_steps", c10::IValue(m.env_steps));
@@ -34,11 +37,11 @@ void writeMeta(torch::serialize::OutputArchive& a, const CheckpointMeta& m) {
   a.write("learning_rate", c10::IValue(m.learning_rate));
   a.write("obs_dim", c10::IValue(static_cast<std::int64_t>(m.obs_dim)));
   a.write("action_dim", c10::IValue(static_cast<std::int64_t>(m.action_dim)));
-  a.write("config", c10::IValue(toYaml(m.config)));
+  a.write("config", c10::IValue(config_yaml));
   a.write("spec", c10::IValue(fieldsToYaml(m.spec)));
 }
 
-CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
+CheckpointMeta readCheckpointMeta(torch::serialize::InputArchive& a, std::string* config_yaml) {
   c10::IValue v;
   a.read("format_version", v);
   const std::int64_t version = v.toInt();
@@ -61,7 +64,8 @@ CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
   a.read("action_dim", v);
   m.action_dim = static_cast<int>(v.toInt());
   a.read("config", v);
-  m.config = fromYaml(v.toStringRef());
+  fieldsFromYaml(v.toStringRef(), m.config);  // the trainer's fields are not the policy's
+  if (config_yaml) *config_yaml = v.toStringRef();
   if (version >= 2) {
     a.read("spec", v);
     m.spec = specFromYaml(v.toStringRef(), m.obs_dim, m.action_dim);
@@ -69,7 +73,7 @@ CheckpointMeta readMeta(torch::serialize::InputArchive& a) {
   return m;
 }
 
-torch::serialize::InputArchive openArchive(const std::string& path) {
+torch::serialize::InputArchive openCheckpoint(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw Error("checkpoint " + path + " does not exist or is not a file");
   }
@@ -82,7 +86,8 @@ torch::serialize::InputArchive openArchive(const std::string& path) {
   return archive;
 }
 
-void checkSizes(const std::string& path, const CheckpointMeta& m, int input_dim, int action_dim) {
+void checkCheckpointSizes(const std::string& path, const CheckpointMeta& m, int input_dim,
+                          int action_dim) {
   const int input = policyInputDim(m.config, m.obs_dim, m.action_dim);
   if (input != input_dim || m.action_dim != action_dim) {
     throw Error("checkpoint " + path + " is for input " + std::to_string(input) + " (obs_dim " +
@@ -91,61 +96,20 @@ void checkSizes(const std::string& path, const CheckpointMeta& m, int input_dim,
   }
 }
 
-}  // namespace
-
-void saveCheckpoint(const std::string& path, Ppo& ppo, const CheckpointMeta& meta) {
-  torch::serialize::OutputArchive archive, model, optimizer, normalizer;
-  ppo.model()->save(model);
-  ppo.optimizer().save(optimizer);
-  ppo.normalizer()->save(normalizer);
-  archive.write("model", model);
-  archive.write("optimizer", optimizer);
-  archive.write("normalizer", normalizer);
-  writeMeta(archive, meta);
-  const std::string tmp = path + ".tmp";
-  try {
-    archive.save_to(tmp);
-  } catch (const c10::Error& e) {
-    throw Error("cannot write checkpoint " + tmp + ": " + e.what_without_backtrace());
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw Error("cannot rename " + tmp + " to " + path + ": " + ec.message());
-}
-
 CheckpointMeta readCheckpointMeta(const std::string& path) {
-  torch::serialize::InputArchive archive = openArchive(path);
+  torch::serialize::InputArchive archive = openCheckpoint(path);
   try {
-    return readMeta(archive);
+    return readCheckpointMeta(archive);
   } catch (const c10::Error& e) {
     throw Error("checkpoint " + path + " lacks metadata: " + e.what_without_backtrace());
   }
 }
 
-CheckpointMeta loadCheckpoint(const std::string& path, Ppo& ppo) {
-  torch::serialize::InputArchive archive = openArchive(path);
-  try {
-    const CheckpointMeta meta = readMeta(archive);
-    checkSizes(path, meta, ppo.model()->inputDim(), ppo.model()->actionDim());
-    torch::serialize::InputArchive model, optimizer, normalizer;
-    archive.read("model", model);
-    archive.read("optimizer", optimizer);
-    archive.read("normalizer", normalizer);
-    ppo.model()->load(model);
-    ppo.optimizer().load(optimizer);
-    ppo.normalizer()->load(normalizer);
-    ppo.setLearningRate(meta.learning_rate);
-    return meta;
-  } catch (const c10::Error& e) {
-    throw Error("cannot load checkpoint " + path + ": " + e.what_without_backtrace());
-  }
-}
-
 CheckpointMeta loadPolicy(const std::string& path, ActorCritic& model, ObsNormalizer& normalizer) {
-  torch::serialize::InputArchive archive = openArchive(path);
+  torch::serialize::InputArchive archive = openCheckpoint(path);
   try {
-    const CheckpointMeta meta = readMeta(archive);
-    checkSizes(path, meta, model->inputDim(), model->actionDim());
+    const CheckpointMeta meta = readCheckpointMeta(archive);
+    checkCheckpointSizes(path, meta, model->inputDim(), model->actionDim());
     torch::serialize::InputArchive model_archive, normalizer_archive;
     archive.read("model", model_archive);
     archive.read("normalizer", normalizer_archive);

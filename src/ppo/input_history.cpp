@@ -24,8 +24,8 @@ InputHistory::InputHistory(int num_envs, int obs_dim, int action_dim, int obs_le
   actions_ = torch::zeros({num_envs, action_length, action_dim});
 }
 
-std::unique_ptr<InputHistory> InputHistory::forConfig(const PpoConfig& c, int num_envs, int obs_dim,
-                                                      int action_dim) {
+std::unique_ptr<InputHistory> InputHistory::forConfig(const NetworkConfig& c, int num_envs,
+                                                      int obs_dim, int action_dim) {
   if (!hasHistory(c)) return nullptr;
   return std::make_unique<InputHistory>(num_envs, obs_dim, action_dim, c.obs_history_length,
                                         c.action_history_length);

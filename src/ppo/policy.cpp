@@ -10,7 +10,7 @@ namespace jetbot_rl {
 namespace ppo {
 
 Policy::Policy(const std::string& checkpoint) : meta_(readCheckpointMeta(checkpoint)) {
-  const PpoConfig& c = meta_.config;
+  const NetworkConfig& c = meta_.config;
   model_ = ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c);
   normalizer_ = ObsNormalizer(meta_.obs_dim, c.normalize_observations);
   loadPolicy(checkpoint, model_, normalizer_);

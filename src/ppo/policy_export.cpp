@@ -51,7 +51,7 @@ std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta,
 void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) const {
   if (!scaler_) throw Error("Policy::exportTorchScript before setActionLimits");
   torch::NoGradGuard no_grad;
-  const PpoConfig& c = meta_.config;
+  const NetworkConfig& c = meta_.config;
   torch::jit::Module module("JetbotPolicy");
   std::ostringstream code;
 

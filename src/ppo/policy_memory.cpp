@@ -8,7 +8,7 @@
 namespace jetbot_rl {
 namespace ppo {
 
-PolicyMemory::PolicyMemory(const PpoConfig& config, const ActorCritic& model, int num_envs,
+PolicyMemory::PolicyMemory(const NetworkConfig& config, const ActorCritic& model, int num_envs,
                            int obs_dim, int action_dim, bool with_critic)
     : num_envs_(num_envs),
       recurrent_(model->recurrent()),

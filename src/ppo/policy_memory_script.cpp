@@ -16,8 +16,8 @@ std::string columns(int64_t from, int64_t to) {
 
 }  // namespace
 
-MemoryScript memoryScript(const PpoConfig& c, const ActorCritic& model, int obs_dim, int action_dim,
-                          torch::jit::Module& module) {
+MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int obs_dim,
+                          int action_dim, torch::jit::Module& module) {
   MemoryScript script;
   // The hidden row: [started flag, observation slots, action slots] with a history (as
   // InputHistory::push computes them), then the RNN's state (as RecurrentMemory::step).

@@ -18,35 +18,21 @@ PpoConfig fromYaml(const std::string& yaml, PpoConfig config) {
   return config;
 }
 
-std::string networkYaml(const PpoConfig& config) {
-  return fieldsToYaml(config, [](const PpoConfig& c, auto&& v) { visitNetworkFields(c, v); });
-}
-
-bool sameArchitecture(const PpoConfig& a, const PpoConfig& b) {
+bool sameArchitecture(const NetworkConfig& a, const NetworkConfig& b) {
   // Without a recurrent layer its sizes shape nothing.
-  const auto shaping = [](PpoConfig c) {
+  const auto shaping = [](NetworkConfig c) {
     if (c.rnn_type == RnnType::kNone) {
-      c.rnn_hidden_size = PpoConfig().rnn_hidden_size;
-      c.rnn_num_layers = PpoConfig().rnn_num_layers;
+      c.rnn_hidden_size = NetworkConfig().rnn_hidden_size;
+      c.rnn_num_layers = NetworkConfig().rnn_num_layers;
     }
     return networkYaml(c);
   };
   return shaping(a) == shaping(b);
 }
 
-void copyArchitecture(const PpoConfig& from, PpoConfig& to) {
+void copyArchitecture(const NetworkConfig& from, PpoConfig& to) {
   fieldsFromYaml(networkYaml(from), to);
 }
-
-int policyInputDim(const PpoConfig& c, int obs_dim, int action_dim) {
-  return c.obs_history_length * obs_dim + c.action_history_length * action_dim;
-}
-
-bool hasHistory(const PpoConfig& c) {
-  return c.obs_history_length > 1 || c.action_history_length > 0;
-}
-
-bool hasMemory(const PpoConfig& c) { return hasHistory(c) || c.rnn_type != RnnType::kNone; }
 
 }  // namespace ppo
 }  // namespace jetbot_rl

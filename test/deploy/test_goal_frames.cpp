@@ -1,7 +1,9 @@
 // The deploy room's goal handling against a real master: goals checked against the map in the
 // map's own frame through tf while map -> odom moves (a localisation correcting its drift), a path
-// followed through a moving map -> odom, and a goal whose client disconnects ended.
+// followed through a moving map -> odom, a goal whose client disconnects ended, the goal marker
+// cleared when its goal ends and the footprint following the robot.
 #include <actionlib/client/simple_action_client.h>
+#include <geometry_msgs/PolygonStamped.h>
 #include <gtest/gtest.h>
 #include <move_base_msgs/MoveBaseAction.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -13,9 +15,12 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <vector>
 
-#include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/deploy/goal_pursuit.h"
+#include "jetbot_rl/ros/deploy/map_input.h"
+#include "jetbot_rl/ros/deploy/move_base_server.h"
 #include "jetbot_rl/ros/deploy/path_follower.h"
 
 namespace jetbot_rl {
@@ -58,10 +63,12 @@ class GoalFrames : public ::testing::Test {
   void SetUp() override {
     map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
     map_pub_.publish(roomWithABlock());
-    goals_ = std::make_unique<GoalInput>(
-        nh_, pnh_, "move_base", "~goal", "~outcome", "/map", [] { return std::string("odom"); },
-        [] {}, [] {});
-    ASSERT_TRUE(spinUntil([this] { return goals_->mapsReceived() > 0; })) << "no map";
+    map_ = std::make_unique<MapInput>(nh_, "/map");
+    MoveBaseServerParams p;
+    p.goal_topic = "~goal";
+    goals_ = std::make_unique<MoveBaseServer>(
+        nh_, pnh_, p, *map_, [] { return std::string("odom"); }, [] {}, [] {});
+    ASSERT_TRUE(spinUntil([this] { return map_->mapsReceived() > 0; })) << "no map";
     goals_->start();
     client_ = std::make_unique<Client>(nh_, "move_base", false);
     ASSERT_TRUE(spinUntil([this] { return client_->isServerConnected(); })) << "no server";
@@ -84,7 +91,7 @@ class GoalFrames : public ::testing::Test {
     ros::WallTime sent;
     ASSERT_TRUE(spinUntil([&] {
       try {
-        const auto held = goals_->tf().lookupTransform("map", "odom", ros::Time(0));
+        const auto held = map_->tf().lookupTransform("map", "odom", ros::Time(0));
         if (held.transform.translation.x == x && held.transform.translation.y == y &&
             held.transform.rotation.z == q.z()) {
           return true;
@@ -119,7 +126,8 @@ class GoalFrames : public ::testing::Test {
   ros::NodeHandle nh_, pnh_{"~"};
   ros::Publisher map_pub_;
   tf2_ros::TransformBroadcaster broadcaster_;
-  std::unique_ptr<GoalInput> goals_;
+  std::unique_ptr<MapInput> map_;
+  std::unique_ptr<MoveBaseServer> goals_;
   std::unique_ptr<Client> client_;
 };
 
@@ -156,7 +164,7 @@ TEST_F(GoalFrames, APathIsFollowedThroughAMovingMapToOdom) {
   config.lookahead = 0.5;
   config.blocked_distance = 0.0;
   config.replan_period = 1000.0;  // no re-plan: the plan must follow tf as it is
-  PathFollower follower(pnh_, config, goals_->tf());
+  PathFollower follower(pnh_, config, map_->tf());
   std::string why;
   ASSERT_TRUE(follower.setMap(occupancyMapOf(roomWithABlock()), "map", why)) << why;
   nav_msgs::Path::ConstPtr published;
@@ -195,14 +203,15 @@ TEST_F(GoalFrames, APathIsFollowedThroughAMovingMapToOdom) {
 }
 
 TEST_F(GoalFrames, APursuedGoalStaysOnTheMapAsMapToOdomMoves) {
-  DeployParams p;  // a second navigator, without a plan: the policy's goal is the goal itself
-  p.action_name = "pursuit";
-  p.goal_topic = "~pursuit_goal";
-  p.outcome_topic = "~pursuit_outcome";
+  MoveBaseServerParams server;  // a second navigator, without a plan: its goal is the goal
+  server.action_name = "pursuit";
+  server.goal_topic = "~pursuit_goal";
+  server.outcome_topic = "~pursuit_outcome";
+  GoalPursuitParams p;
   p.map_topic = "/map";
   p.carrot_distance = 0.0;
   GoalPursuit pursuit(
-      nh_, pnh_, p, 0.0, 0.1, [] { return std::string("odom"); }, [] {}, [] {});
+      nh_, pnh_, p, server, 0.0, 0.1, [] { return std::string("odom"); }, [] {}, [] {});
   setMapOdom(0.0, 0.0, 0.0);
   nav_msgs::Odometry odom;  // the robot at odom's origin, facing +x
   odom.header.frame_id = "odom";
@@ -236,6 +245,78 @@ TEST_F(GoalFrames, APursuedGoalStaysOnTheMapAsMapToOdomMoves) {
   })) << "the goal in odom stayed at ("
       << state.goal.x() << ", " << state.goal.y() << ")";
   EXPECT_EQ(mode, GoalPursuit::Mode::kPolicy);
+}
+
+TEST_F(GoalFrames, TheGoalMarkerIsClearedWhenItsGoalEnds) {
+  geometry_msgs::PoseStamped::ConstPtr shown;
+  int received = 0;
+  ros::Subscriber markers = pnh_.subscribe<geometry_msgs::PoseStamped>(
+      "current_goal", 10, [&](const geometry_msgs::PoseStamped::ConstPtr& m) {
+        shown = m;
+        ++received;
+      });
+  setMapOdom(0.0, 0.0, 0.0);
+  ASSERT_EQ(send(3.0, 0.0, "map"), State::ACTIVE) << client_->getState().getText();
+  ASSERT_TRUE(spinUntil([&] { return shown && shown->header.frame_id == "map"; }));
+  EXPECT_EQ(shown->pose.position.x, 3.0);
+  // Reached: RViz's arrow is replaced by a pose without a frame, which it does not draw.
+  int before = received;
+  goals_->succeed();
+  ASSERT_TRUE(spinUntil([&] { return received > before; }));
+  EXPECT_EQ(shown->header.frame_id, "");
+  EXPECT_TRUE(spinUntil([&] { return client_->getState() == State::SUCCEEDED; }));
+  // Aborted: the same.
+  ASSERT_EQ(send(2.5, 0.5, "map"), State::ACTIVE) << client_->getState().getText();
+  ASSERT_TRUE(spinUntil([&] { return shown->header.frame_id == "map"; }));
+  before = received;
+  goals_->abort("aborted: by the test");
+  ASSERT_TRUE(spinUntil([&] { return received > before; }));
+  EXPECT_EQ(shown->header.frame_id, "");
+  // A refused goal was never shown: nothing is cleared for it.
+  before = received;
+  EXPECT_EQ(send(1.5, 0.0, "map"), State::ABORTED);  // in the block
+  ros::WallDuration(0.3).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(received, before);
+}
+
+TEST_F(GoalFrames, TheFootprintFollowsTheRobot) {
+  MoveBaseServerParams server;  // a navigator with plans (a carrot): it shows its footprint
+  server.action_name = "footprint_pursuit";
+  server.goal_topic = "~footprint_goal";
+  server.outcome_topic = "~footprint_outcome";
+  GoalPursuitParams p;
+  p.map_topic = "/map";
+  GoalPursuit pursuit(
+      nh_, pnh_, p, server, 0.0, 0.1, [] { return std::string("odom"); }, [] {}, [] {});
+  std::vector<geometry_msgs::PolygonStamped::ConstPtr> footprints;
+  ros::Subscriber sub = pnh_.subscribe<geometry_msgs::PolygonStamped>(
+      "footprint", 10,
+      [&](const geometry_msgs::PolygonStamped::ConstPtr& m) { footprints.push_back(m); });
+  nav_msgs::Odometry odom;
+  odom.header.frame_id = "odom";
+  odom.child_frame_id = "robot/base_link";
+  odom.pose.pose.orientation.w = 1.0;
+  MeasuredState state;
+  PlanarTwist twist;
+  // A moving robot's control steps (repeated until the subscription is connected): each
+  // footprint has the odometry's stamp.
+  for (int k = 0; k < 3; ++k) {
+    odom.header.stamp = ros::Time(100.0 + k);
+    odom.pose.pose.position.x = 0.5 * k;
+    state.root = rootStateOf(odom);
+    ASSERT_TRUE(spinUntil([&] {
+      EXPECT_EQ(pursuit.step(odom, nullptr, state, twist), GoalPursuit::Mode::kStand);
+      return !footprints.empty() && footprints.back()->header.stamp == odom.header.stamp;
+    })) << "no footprint stamped "
+        << odom.header.stamp;
+    const geometry_msgs::PolygonStamped& f = *footprints.back();
+    EXPECT_EQ(f.header.frame_id, "robot/base_link");  // tf places it where the robot is then
+    ASSERT_EQ(f.polygon.points.size(), 24u);
+    for (const geometry_msgs::Point32& q : f.polygon.points) {
+      EXPECT_NEAR(std::hypot(q.x, q.y), 0.1, 1e-6);  // round the robot's origin
+    }
+  }
 }
 
 TEST_F(GoalFrames, AGoalWhoseClientDisconnectsEnds) {

@@ -13,6 +13,7 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/env/env_setup.h"
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
 #include "jetbot_rl/ros/env_node/robot_state_output.h"
 #include "jetbot_rl/ros/env_node/scan_output.h"

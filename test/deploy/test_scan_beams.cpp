@@ -114,7 +114,7 @@ BatchSpec trainedWithBeams() {
 }
 
 TEST(ScanBeamsOf, TheCheckpointsBeamsAndParametersThatAgreeWithThem) {
-  DeployParams p;
+  DriverParams p;
   ScanBeams beams = scanBeamsOf(trainedWithBeams(), p, "nav.pt");
   EXPECT_EQ(beams.angles, (std::vector<double>{-1.0, 0.0, 1.0}));
   EXPECT_EQ(beams.width, 0.5);
@@ -127,7 +127,7 @@ TEST(ScanBeamsOf, TheCheckpointsBeamsAndParametersThatAgreeWithThem) {
 }
 
 TEST(ScanBeamsOf, ParametersThatDisagreeWithTheCheckpointAreRefusedNamingThem) {
-  DeployParams p;
+  DriverParams p;
   p.scan_range = {0.12, 12.0};
   try {
     scanBeamsOf(trainedWithBeams(), p, "nav.pt");
@@ -164,7 +164,7 @@ TEST(ScanBeamsOf, ACheckpointWithoutItsBeamsNeedsTheParameters) {
   BatchSpec old_spec = trainedWithBeams();
   old_spec.scan_beam_angles.clear();
   old_spec.scan_range.clear();
-  DeployParams p;
+  DriverParams p;
   try {
     scanBeamsOf(old_spec, p, "old.pt");
     FAIL() << "accepted a checkpoint without beams and no parameters";

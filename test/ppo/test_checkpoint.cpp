@@ -10,9 +10,9 @@
 #include <unordered_map>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -122,7 +122,8 @@ TEST_F(CheckpointTest, MetadataRoundTrip) {
   EXPECT_DOUBLE_EQ(m.learning_rate, trained->learningRate());
   EXPECT_EQ(m.obs_dim, kObs);
   EXPECT_EQ(m.action_dim, kAct);
-  EXPECT_EQ(toYaml(m.config), toYaml(testConfig()));
+  EXPECT_EQ(toYaml(readCheckpointConfig(path)), toYaml(testConfig()));
+  EXPECT_EQ(networkYaml(m.config), networkYaml(testConfig()));
 }
 
 TEST_F(CheckpointTest, TheEnvsSpecWithItsScanBeamsRoundTrips) {

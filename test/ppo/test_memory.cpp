@@ -9,10 +9,10 @@
 #include <fstream>
 
 #include "jetbot_rl/errors.h"
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 
 namespace jetbot_rl {
 namespace ppo {

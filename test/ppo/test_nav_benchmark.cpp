@@ -8,8 +8,8 @@
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/eval/nav_benchmark.h"
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/ppo/ppo_config.h"
+#include "jetbot_rl/ppo/network_config.h"
 #include "jetbot_rl/ppo/recurrent_memory.h"
 
 namespace jetbot_rl {
@@ -47,7 +47,7 @@ class ActorCriticImpl : public torch::nn::Module {
                   const std::vector<int>& critic_hidden_dims, Activation activation,
                   double init_noise_std);
   /// The same with config's widths, activation, noise and recurrent layer.
-  ActorCriticImpl(int input_dim, int action_dim, const PpoConfig& config);
+  ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& config);
 
   /// Samples actions (no gradients); uses torch's default generator. With an RNN, `state` is
   /// advanced by the step (its rows zeroed first where an episode starts).

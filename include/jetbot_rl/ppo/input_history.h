@@ -5,7 +5,7 @@
 #include <functional>
 #include <memory>
 
-#include "jetbot_rl/ppo/ppo_config.h"
+#include "jetbot_rl/ppo/network_config.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -24,8 +24,8 @@ class InputHistory {
  public:
   InputHistory(int num_envs, int obs_dim, int action_dim, int obs_length, int action_length);
   /// The history `config` asks for (its obs_ and action_history_length), or null without one.
-  static std::unique_ptr<InputHistory> forConfig(const PpoConfig& config, int num_envs, int obs_dim,
-                                                 int action_dim);
+  static std::unique_ptr<InputHistory> forConfig(const NetworkConfig& config, int num_envs,
+                                                 int obs_dim, int action_dim);
 
   /// Input width: obs_length x obs_dim + action_length x action_dim.
   int inputDim() const { return obs_length_ * obs_dim_ + action_length_ * action_dim_; }

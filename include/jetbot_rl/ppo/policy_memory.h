@@ -9,7 +9,7 @@
 
 #include "jetbot_rl/ppo/actor_critic.h"
 #include "jetbot_rl/ppo/input_history.h"
-#include "jetbot_rl/ppo/ppo_config.h"
+#include "jetbot_rl/ppo/network_config.h"
 
 namespace torch {
 namespace jit {
@@ -25,14 +25,14 @@ namespace ppo {
  * history (InputHistory) and its recurrent states, and which envs start over at their next step.
  * The one place they are stepped, for learning (Ppo: the actor's and the critic's states) and
  * acting (Policy: the actor's); the TorchScript export writes the same steps
- * (memoryScript()). Without memory (PpoConfig::hasMemory false) a step is the normalised
+ * (memoryScript()). Without memory (hasMemory false) a step is the normalised
  * observation.
  */
 class PolicyMemory {
  public:
   /// For `model` (its recurrent layers) and `num_envs` envs, all starting over; `with_critic`
   /// keeps the critic's recurrent state too (learning).
-  PolicyMemory(const PpoConfig& config, const ActorCritic& model, int num_envs, int obs_dim,
+  PolicyMemory(const NetworkConfig& config, const ActorCritic& model, int num_envs, int obs_dim,
                int action_dim, bool with_critic);
 
   int numEnvs() const { return num_envs_; }
@@ -86,7 +86,7 @@ struct MemoryScript {
 };
 
 /// The memory steps of PolicyMemory::begin() and end() for one policy, as TorchScript.
-MemoryScript memoryScript(const PpoConfig& config, const ActorCritic& model, int obs_dim,
+MemoryScript memoryScript(const NetworkConfig& config, const ActorCritic& model, int obs_dim,
                           int action_dim, torch::jit::Module& module);
 
 }  // namespace ppo

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "jetbot_rl/ppo/ppo_config.h"
+#include "jetbot_rl/ppo/network_config.h"
 
 namespace jetbot_rl {
 namespace ppo {

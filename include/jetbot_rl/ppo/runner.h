@@ -6,9 +6,9 @@
 #include <string>
 
 #include "jetbot_rl/env/vec_env.h"
-#include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 #include "jetbot_rl/ppo/training_logger.h"
 
 namespace jetbot_rl {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/common/private_topic.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
 #include "jetbot_rl/tasks/command_task.h"
@@ -76,21 +77,6 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBea
   return observer;
 }
 
-RootState rootStateOf(const nav_msgs::Odometry& odometry) {
-  const auto& pose = odometry.pose.pose;
-  const auto& v = odometry.twist.twist;
-  RootState state;
-  state.position = {pose.position.x, pose.position.y, pose.position.z};
-  state.orientation = Eigen::Quaterniond(pose.orientation.w, pose.orientation.x, pose.orientation.y,
-                                         pose.orientation.z)
-                          .normalized();
-  state.com_linear_velocity =
-      state.orientation * Eigen::Vector3d(v.linear.x, v.linear.y, v.linear.z);
-  state.angular_velocity =
-      state.orientation * Eigen::Vector3d(v.angular.x, v.angular.y, v.angular.z);
-  return state;
-}
-
 DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                            const TaskObserver& observer, const DeployParams& p,
                            const PolicyRun& run, const ScanBeams& beams,
@@ -101,19 +87,19 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
       beams_(beams),
       kinematics_(kinematics),
       drops_(nh, ros::this_node::getName() + ": deploy input", "dropped input"),
-      odom_(nh, p.odom_topic, "odometry", p.odom_timeout, checkOdometry, drops_) {
+      odom_(nh, p.driver.odom_topic, "odometry", p.driver.odom_timeout, checkOdometry, drops_) {
   if (!run.twist && !kinematics_) throw Error("DeployDriver: wheel actions need kinematics");
   if (observer.scanBeams() != static_cast<int>(beams_.angles.size())) {
     throw ConfigError("the policy observes " + std::to_string(observer.scanBeams()) +
                       " scan beams; " + std::to_string(beams_.angles.size()) + " are known");
   }
   last_action_.assign(static_cast<std::size_t>(policy.actionDim()), 0.0f);
-  cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.cmd_vel_topic, 10);
+  cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.driver.cmd_vel_topic, 10);
   status_pub_ = nh.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   std::string inputs = odom_.topic();
   if (observer.scanBeams() > 0) {
     scan_ = std::make_unique<FreshInput<sensor_msgs::LaserScan>>(
-        nh, p.scan_topic, "scan", p.scan_timeout,
+        nh, p.driver.scan_topic, "scan", p.driver.scan_timeout,
         [this](const sensor_msgs::LaserScan& scan) {
           std::string error;
           return resampleScan(scan, beams_, ranges_, error) ? "" : "refused: " + error;
@@ -123,7 +109,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
   }
   if (observer.hasGoal()) {
     pursuit_ = std::make_unique<GoalPursuit>(
-        nh, pnh, p, run.path_lookahead, footprint_radius,
+        nh, pnh, p.pursuit, p.server, run.path_lookahead, footprint_radius,
         [this] { return odom_.latest() ? odom_.latest()->header.frame_id : std::string(); },
         [this] { policy_.resetMemory(); },  // each goal is an episode
         [this] {                            // a cancel stops the robot at once
@@ -133,8 +119,8 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     inputs += " and " + pursuit_->describe();
   }
   if (observer.takesCommand()) {
-    command_sub_ =
-        nh.subscribe(resolvePrivateTopic(pnh, p.command_topic), 10, &DeployDriver::onCommand, this);
+    command_sub_ = nh.subscribe(resolvePrivateTopic(pnh, p.driver.command_topic), 10,
+                                &DeployDriver::onCommand, this);
     inputs += " and commands on " + command_sub_.getTopic();
   }
   timer_ =

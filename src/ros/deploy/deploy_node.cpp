@@ -20,7 +20,7 @@ namespace {
 
 /// Wheel targets -> Twist kinematics: the parameters; one given as 0 from robot_description.
 /// `limits`: the policy's wheel velocity bounds [rad/s].
-DiffDrive makeKinematics(const ros::NodeHandle& nh, const DeployParams& p,
+DiffDrive makeKinematics(const ros::NodeHandle& nh, const DriverParams& p,
                          const std::vector<double>& limits) {
   if (p.wheel_radius > 0.0 && p.wheel_separation > 0.0) {
     return DiffDrive(p.wheel_radius, p.wheel_separation, {p.dof_names.at(0), 0, 1.0, limits.at(0)},
@@ -47,14 +47,16 @@ int runDeployNode() {
 int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
   torch::set_num_threads(1);
   const std::optional<DeployParams> params = loadParams<DeployParams>(pnh, [](DeployParams& p) {
-    if (std::filesystem::is_directory(p.checkpoint)) {
-      p.checkpoint = (std::filesystem::path(p.checkpoint) / "checkpoints/best.pt").string();
+    std::string& checkpoint = p.driver.checkpoint;
+    if (std::filesystem::is_directory(checkpoint)) {
+      checkpoint = (std::filesystem::path(checkpoint) / "checkpoints/best.pt").string();
     }
   });
   if (!params) return 1;
+  const DriverParams& driver_params = params->driver;
   std::unique_ptr<ppo::Policy> policy;
   try {
-    policy = std::make_unique<ppo::Policy>(params->checkpoint);
+    policy = std::make_unique<ppo::Policy>(driver_params.checkpoint);
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
@@ -63,21 +65,22 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
   PolicyRun run;
   ScanBeams beams;
   std::optional<DiffDrive> kinematics;
-  double footprint_radius = params->footprint_radius;
+  double footprint_radius = params->pursuit.footprint_radius;
   try {
-    run = policyRunOf(*policy, params->checkpoint);
+    run = policyRunOf(*policy, driver_params.checkpoint);
     if (observesScan(policy->meta().spec.task)) {
-      beams = scanBeamsOf(policy->meta().spec, *params, params->checkpoint);
+      beams = scanBeamsOf(policy->meta().spec, driver_params, driver_params.checkpoint);
     }
     const std::string& trained_task = policy->meta().spec.task;
-    if (!params->task.empty() && params->task != trained_task) {
-      throwInvalid("task", "'" + params->task + "'",
+    if (!driver_params.task.empty() && driver_params.task != trained_task) {
+      throwInvalid("task", "'" + driver_params.task + "'",
                    "the checkpoint was trained on task '" + trained_task + "'");
     }
-    observer =
-        observerOf(policy->meta().spec, beams, params->xy_goal_tolerance, params->checkpoint);
-    if (!run.twist) kinematics = makeKinematics(nh, *params, run.action_high);
-    const bool plans = observer->hasGoal() && GoalPursuit::plansPaths(*params, run.path_lookahead);
+    observer = observerOf(policy->meta().spec, beams, params->pursuit.xy_goal_tolerance,
+                          driver_params.checkpoint);
+    if (!run.twist) kinematics = makeKinematics(nh, driver_params, run.action_high);
+    const bool plans =
+        observer->hasGoal() && GoalPursuit::plansPaths(params->pursuit, run.path_lookahead);
     if (plans && footprint_radius == 0.0) {
       if (!nh.hasParam("robot_description")) {
         throwInvalid("footprint_radius", 0.0,

@@ -2,7 +2,8 @@
 
 namespace jetbot_rl {
 
-void checkFieldRules(const DeployParams& p) {
+void checkFieldRules(const DeployParams& params) {
+  const DriverParams& p = params.driver;
   if (p.checkpoint.empty()) {
     throwInvalid("checkpoint", "''", "name a checkpoint file or a run directory");
   }

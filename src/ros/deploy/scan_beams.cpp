@@ -6,7 +6,7 @@
 
 namespace jetbot_rl {
 
-ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
+ScanBeams scanBeamsOf(const BatchSpec& trained, const DriverParams& p,
                       const std::string& checkpoint) {
   ScanBeams beams;
   if (trained.scan_beam_angles.empty() || trained.scan_range.size() != 2) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "jetbot_rl/ros/common/geometry_conversion.h"
+
 namespace jetbot_rl {
 namespace {
 
@@ -42,20 +44,6 @@ std_msgs::ColorRGBA envColour(int env, double lighten) {
   c.b = static_cast<float>(b + (1 - b) * lighten);
   c.a = 1.0f;
   return c;
-}
-
-void setPose(geometry_msgs::Pose& pose, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
-  pose.position.x = p.x();
-  pose.position.y = p.y();
-  pose.position.z = p.z();
-  pose.orientation.x = q.x();
-  pose.orientation.y = q.y();
-  pose.orientation.z = q.z();
-  pose.orientation.w = q.w();
-}
-
-Eigen::Quaterniond yawQuaternion(double yaw) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
 }
 
 visualization_msgs::Marker marker(const std::string& ns, int id, int type,

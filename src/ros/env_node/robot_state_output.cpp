@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "jetbot_rl/ros/common/geometry_conversion.h"
+
 namespace jetbot_rl {
 namespace {
 
@@ -34,14 +36,7 @@ void updateOdometry(const BatchedEnv& env, int env_index, const ros::Time& stamp
                     nav_msgs::Odometry& odom) {
   odom.header.stamp = stamp;
   const RootState root = env.view(env_index).rootState();  // in the env's frame: odom's
-  geometry_msgs::Pose& pose = odom.pose.pose;
-  pose.position.x = root.position.x();
-  pose.position.y = root.position.y();
-  pose.position.z = root.position.z();
-  pose.orientation.x = root.orientation.x();
-  pose.orientation.y = root.orientation.y();
-  pose.orientation.z = root.orientation.z();
-  pose.orientation.w = root.orientation.w();
+  setPose(odom.pose.pose, root.position, root.orientation);
   const BodyTwist twist =
       env.view(env_index).rootTwist();  // in the root link frame: child_frame_id's
   toMsg(twist.linear, odom.twist.twist.linear);

@@ -3,20 +3,9 @@
 #include <algorithm>
 #include <string>
 
-namespace jetbot_rl {
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 
-void toTransform(const Eigen::Isometry3d& pose, geometry_msgs::Transform& t) {
-  const Eigen::Vector3d p = pose.translation();
-  // Bullet's single-precision rotations are orthonormal to 1e-7: normalised here to double
-  const Eigen::Quaterniond q = Eigen::Quaterniond(pose.rotation()).normalized();
-  t.translation.x = p.x();
-  t.translation.y = p.y();
-  t.translation.z = p.z();
-  t.rotation.x = q.x();
-  t.rotation.y = q.y();
-  t.rotation.z = q.z();
-  t.rotation.w = q.w();
-}
+namespace jetbot_rl {
 
 TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool link_tf)
     : envs_(std::clamp(envs, 0, env.numEnvs())), link_tf_(link_tf) {

@@ -48,10 +48,6 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint);
 std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
                                          double goal_radius, const std::string& checkpoint);
 
-/// The robot's state as the task's observer takes it from an odometry message: the pose in the
-/// odometry frame, the twist (given in the child frame) rotated into it, as RootState keeps it.
-RootState rootStateOf(const nav_msgs::Odometry& odometry);
-
 /**
  * The deploy node's driver, one for every task: the robot's inputs the task's observer needs
  * (odometry always; a scan resampled to the policy's beams and goals for navigation; a command

@@ -7,12 +7,9 @@
 
 namespace jetbot_rl {
 
-/// Private parameters of jetbot_deploy_node: a trained policy driving a robot (odometry, and a
-/// scan and goals for navigation, in; cmd_vel out). Defaults suit the stock Jetbot's ROS 2 driver
-/// (dusty-nv/jetbot_ros). What the policy was trained with (task, control rate, action bounds,
-/// whether the actions are wheel targets or a twist, the observed scan beams) comes from the
-/// checkpoint; these are the robot's side only (no simulation parameter, no reward).
-struct DeployParams {
+/// The driver's parameters (DeployDriver, runDeploy): the checkpoint, the robot's topics and
+/// kinematics, the scan's beams.
+struct DriverParams {
   std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
   std::string task;        ///< The task the policy was trained on; "": the checkpoint's.
   std::string odom_topic = "odom";                ///< nav_msgs/Odometry of the robot.
@@ -26,12 +23,26 @@ struct DeployParams {
   double wheel_separation = 0.1016;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  // ---- a task with a goal (navigation) ----
-  std::string scan_topic = "scan";                    ///< sensor_msgs/LaserScan of the robot.
+  std::string scan_topic = "scan";  ///< sensor_msgs/LaserScan of the robot.
+  double scan_timeout = 0.5;        ///< An older scan stops the robot [s, wall].
+  /// The policy's beams, only for a checkpoint written before checkpoints held them: their
+  /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
+  /// trained scanner's [range_min, range_max] [m]; given with a newer checkpoint they must agree.
+  int scan_beams = 0;
+  std::vector<double> scan_angles;
+  std::vector<double> scan_range;
+};
+
+/// The move_base action server's parameters (MoveBaseServer).
+struct MoveBaseServerParams {
   std::string goal_topic = "/move_base_simple/goal";  ///< geometry_msgs/PoseStamped (RViz).
   std::string outcome_topic = "~outcome";             ///< std_msgs/String: what became of a goal.
-  double scan_timeout = 0.5;                          ///< An older scan stops the robot [s, wall].
   std::string action_name = "move_base";              ///< The move_base_msgs/MoveBaseAction server.
+};
+
+/// A goal's pursuit's parameters (GoalPursuit, its MapInput and PathFollower): tolerances,
+/// recoveries, the map and the paths planned on it.
+struct GoalPursuitParams {
   double xy_goal_tolerance = 0.2;    ///< A goal is reached within this of the robot's origin [m].
   double yaw_goal_tolerance = 0.1;   ///< ... then turned to within this of its heading [rad].
   double turn_speed = 3.0;           ///< A turn in place's top rate [rad/s].
@@ -43,12 +54,6 @@ struct DeployParams {
   double recovery_backoff = 0.15;     ///< A recovery backs off this far [m].
   int max_planning_retries = 2;       ///< A recovery's failed plan is tried again this often.
   double carrot_distance = 0.6;  ///< With a map, a policy without a path: its goal this far along.
-  /// The policy's beams, only for a checkpoint written before checkpoints held them: their
-  /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
-  /// trained scanner's [range_min, range_max] [m]; given with a newer checkpoint they must agree.
-  int scan_beams = 0;
-  std::vector<double> scan_angles;
-  std::vector<double> scan_range;
   std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
   // ---- a policy that follows a global path (trained with nav/path) ----
   double footprint_radius = 0.0;      ///< The robot's footprint [m]; 0: robot_description's.
@@ -59,97 +64,113 @@ struct DeployParams {
   double path_replan_period = 1.0;     ///< At most one re-plan per this [s, wall].
 };
 
+/// Private parameters of jetbot_deploy_node: a trained policy driving a robot (odometry, and a
+/// scan and goals for navigation, in; cmd_vel out). Defaults suit the stock Jetbot's ROS 2 driver
+/// (dusty-nv/jetbot_ros). What the policy was trained with (task, control rate, action bounds,
+/// whether the actions are wheel targets or a twist, the observed scan beams) comes from the
+/// checkpoint; these are the robot's side only (no simulation parameter, no reward). Grouped by
+/// the component that takes them; one flat list of parameters (visitFields), read, validated and
+/// echoed once at start-up.
+struct DeployParams {
+  DriverParams driver;          ///< The driver's.
+  MoveBaseServerParams server;  ///< The move_base action's (a task with a goal).
+  GoalPursuitParams pursuit;    ///< A goal's pursuit's (a task with a goal).
+};
+
 template <typename C, typename V>
 IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
-  v("checkpoint", c.checkpoint, AnyValue{"", "required"},
+  v("checkpoint", c.driver.checkpoint, AnyValue{"", "required"},
     "Checkpoint file, or a run directory (its checkpoints/best.pt).");
-  v("task", c.task, AnyValue{"", "empty: the checkpoint's"},
+  v("task", c.driver.task, AnyValue{"", "empty: the checkpoint's"},
     "The task the policy was trained on; given, it must be the checkpoint's.");
-  v("odom_topic", c.odom_topic, AnyValue{}, "nav_msgs/Odometry of the robot.");
-  v("cmd_vel_topic", c.cmd_vel_topic, AnyValue{}, "geometry_msgs/Twist the robot's driver takes.");
-  v("command_topic", c.command_topic, AnyValue{},
+  v("odom_topic", c.driver.odom_topic, AnyValue{}, "nav_msgs/Odometry of the robot.");
+  v("cmd_vel_topic", c.driver.cmd_vel_topic, AnyValue{},
+    "geometry_msgs/Twist the robot's driver takes.");
+  v("command_topic", c.driver.command_topic, AnyValue{},
     "Command task: geometry_msgs/Vector3, the command (x, y) in the odometry frame.");
-  v("odom_timeout", c.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
-  v("wheel_radius", c.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
+  v("odom_timeout", c.driver.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
+  v("wheel_radius", c.driver.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
     "Wheel radius for wheel targets -> Twist: the driver's (stock Jetbot: 0.0603 m wheels).");
-  v("wheel_separation", c.wheel_separation, atLeast(0.0, "m", "0: from robot_description"),
+  v("wheel_separation", c.driver.wheel_separation, atLeast(0.0, "m", "0: from robot_description"),
     "Wheel separation for wheel targets -> Twist: the driver's (stock Jetbot: 0.1016 m).");
-  v("dof_names", c.dof_names, NameList{},
+  v("dof_names", c.driver.dof_names, NameList{},
     "The two wheel joints in the policy's action order (used with robot_description).");
-  v("scan_topic", c.scan_topic, AnyValue{}, "Navigation: the robot's sensor_msgs/LaserScan.");
-  v("goal_topic", c.goal_topic, AnyValue{},
+  v("scan_topic", c.driver.scan_topic, AnyValue{},
+    "Navigation: the robot's sensor_msgs/LaserScan.");
+  v("goal_topic", c.server.goal_topic, AnyValue{},
     "Navigation: geometry_msgs/PoseStamped goals (RViz's 2D Nav Goal), transformed into the "
     "odometry frame with tf2.");
-  v("outcome_topic", c.outcome_topic, AnyValue{},
+  v("outcome_topic", c.server.outcome_topic, AnyValue{},
     "Navigation: std_msgs/String, what became of each goal (accepted, reached, refused: ...).");
-  v("scan_timeout", c.scan_timeout, positive("s, wall"),
+  v("scan_timeout", c.driver.scan_timeout, positive("s, wall"),
     "Navigation: an older scan stops the robot.");
-  v("action_name", c.action_name, AnyValue{},
+  v("action_name", c.server.action_name, AnyValue{},
     "Navigation: the move_base_msgs/MoveBaseAction server's name (actionlib), resolved in the "
     "node's namespace as move_base's is.");
-  v("xy_goal_tolerance", c.xy_goal_tolerance, positiveUpTo(100.0, "m"),
+  v("xy_goal_tolerance", c.pursuit.xy_goal_tolerance, positiveUpTo(100.0, "m"),
     "Navigation: a goal is reached within this of the robot's odometry origin (move_base's local "
     "planners' name; the task's goal test).");
-  v("yaw_goal_tolerance", c.yaw_goal_tolerance,
+  v("yaw_goal_tolerance", c.pursuit.yaw_goal_tolerance,
     Range<double>{0.0, 7.0, true, false, "rad", ">= pi: any heading"},
     "Navigation: once within xy_goal_tolerance the robot turns in place to the goal's heading "
     "within this; the goal SUCCEEDS then.");
-  v("turn_speed", c.turn_speed, positiveUpTo(10.0, "rad/s"),
+  v("turn_speed", c.pursuit.turn_speed, positiveUpTo(10.0, "rad/s"),
     "Navigation: the top rate of a turn in place (towards the way, to the goal's heading); the "
     "turn slows down proportionally (4 rad/s per rad) within 0.75 rad of its end.");
-  v("goal_timeout", c.goal_timeout, atLeast(0.0, "s, wall", "0: never"),
+  v("goal_timeout", c.pursuit.goal_timeout, atLeast(0.0, "s, wall", "0: never"),
     "Navigation: a goal not reached by then is ABORTED (timed out).");
-  v("controller_patience", c.controller_patience, positive("s, wall"),
+  v("controller_patience", c.pursuit.controller_patience, positive("s, wall"),
     "Navigation: inputs stale this long ABORT the goal (stale inputs); the robot stands while "
     "they are.");
-  v("oscillation_timeout", c.oscillation_timeout, atLeast(0.0, "s, wall", "0: never"),
+  v("oscillation_timeout", c.pursuit.oscillation_timeout, atLeast(0.0, "s, wall", "0: never"),
     "Navigation: a robot that has not moved oscillation_distance for this long is stuck: it "
     "backs off, plans again and turns to the way (a recovery), and the goal is ABORTED after "
     "max_recoveries.");
-  v("oscillation_distance", c.oscillation_distance, positiveUpTo(100.0, "m"),
+  v("oscillation_distance", c.pursuit.oscillation_distance, positiveUpTo(100.0, "m"),
     "Navigation: moving this far from where the robot last made progress is progress.");
-  v("max_recoveries", c.max_recoveries, inRange(0, 1000),
+  v("max_recoveries", c.pursuit.max_recoveries, inRange(0, 1000),
     "Navigation: recoveries of a stuck robot, or of one whose re-plan finds no way, before its "
     "goal is ABORTED.");
-  v("recovery_backoff", c.recovery_backoff, positiveUpTo(10.0, "m"),
+  v("recovery_backoff", c.pursuit.recovery_backoff, positiveUpTo(10.0, "m"),
     "Navigation: a recovery backs off this far (at 0.1 m/s), then plans again.");
-  v("max_planning_retries", c.max_planning_retries, inRange(0, 1000),
+  v("max_planning_retries", c.pursuit.max_planning_retries, inRange(0, 1000),
     "Navigation with a map: a recovery's plan that finds no way is tried again this often, once "
     "per path_replan_period with the robot standing, before the next recovery (move_base's "
     "name).");
-  v("carrot_distance", c.carrot_distance, atLeast(0.0, "m", "0: the goal itself"),
+  v("carrot_distance", c.pursuit.carrot_distance, atLeast(0.0, "m", "0: the goal itself"),
     "Navigation with a map, a policy that observes no path: a path is planned and the policy's "
     "goal is the point this far along it (a carrot), so that goals behind walls are reached.");
-  v("scan_beams", c.scan_beams, inRange(0, 100000, "", "0: the checkpoint's"),
+  v("scan_beams", c.driver.scan_beams, inRange(0, 100000, "", "0: the checkpoint's"),
     "Navigation: the policy's beam count; only a checkpoint written before checkpoints held "
     "their beams needs it (with scan_angles and scan_range; given, it must agree).");
-  v("scan_angles", c.scan_angles,
+  v("scan_angles", c.driver.scan_angles,
     EachValue<double>{Range<double>{-10.0, 10.0, false, false, "rad"}},
     "Navigation: [first, last] angle in the scanner's frame of the beams the robot's scan is "
     "resampled to. Empty: the checkpoint's (given, it must agree with them); only a checkpoint "
     "written before checkpoints held their beams needs it, with scan_beams evenly spread.");
-  v("scan_range", c.scan_range, EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
+  v("scan_range", c.driver.scan_range,
+    EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
     "Navigation: [range_min, range_max] readings are clamped into and divided by the max of. "
     "Empty: the checkpoint's (likewise).");
-  v("map_topic", c.map_topic, AnyValue{"", "empty: none"},
+  v("map_topic", c.pursuit.map_topic, AnyValue{"", "empty: none"},
     "Navigation: nav_msgs/OccupancyGrid (map_server's /map), looked up in its header's frame "
     "through tf2; a goal off its free cells is refused. A policy that follows a path plans on it "
     "(required then).");
-  v("footprint_radius", c.footprint_radius, atLeast(0.0, "m", "0: robot_description's"),
+  v("footprint_radius", c.pursuit.footprint_radius, atLeast(0.0, "m", "0: robot_description's"),
     "Path: the robot's footprint radius the map is inflated by; 0: robot_description's, as "
     "training takes it.");
-  v("path_clearance", c.path_clearance, atLeast(0.0, "m"),
+  v("path_clearance", c.pursuit.path_clearance, atLeast(0.0, "m"),
     "Path: the clearance beyond the footprint a path keeps where there is room (the training's "
     "nav/path_clearance).");
-  v("path_clearance_cost", c.path_clearance_cost, atLeast(0.0),
+  v("path_clearance_cost", c.pursuit.path_clearance_cost, atLeast(0.0),
     "Path: what a cell at the footprint costs beyond its length, per cell length (the training's "
     "nav/path_clearance_cost).");
-  v("path_replan_distance", c.path_replan_distance, positiveUpTo(100.0, "m"),
+  v("path_replan_distance", c.pursuit.path_replan_distance, positiveUpTo(100.0, "m"),
     "Path: the robot farther than this from the path re-plans from where it is.");
-  v("path_blocked_distance", c.path_blocked_distance, atLeast(0.0, "m", "0: off"),
+  v("path_blocked_distance", c.pursuit.path_blocked_distance, atLeast(0.0, "m", "0: off"),
     "Path: a scan point the map does not hold within the footprint of the path this far ahead "
     "re-plans around what the scan sees.");
-  v("path_replan_period", c.path_replan_period, positive("s, wall"),
+  v("path_replan_period", c.pursuit.path_replan_period, positive("s, wall"),
     "Path: at most one re-plan per this.");
 }
 

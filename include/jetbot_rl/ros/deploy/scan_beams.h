@@ -22,7 +22,7 @@ struct ScanBeams {
 /// scan_angles and scan_range, when given, must agree with them. A checkpoint written before it
 /// held its beams takes them from those parameters (scan_beams evenly spread over scan_angles),
 /// which it then needs. ConfigError naming the parameter and both values.
-ScanBeams scanBeamsOf(const BatchSpec& trained, const DeployParams& p,
+ScanBeams scanBeamsOf(const BatchSpec& trained, const DriverParams& p,
                       const std::string& checkpoint);
 
 /// The readings of `scan` at the policy's `beams` into `ranges`, as the simulated task reads its

@@ -3,15 +3,11 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/node_handle.h>
 
+#include "jetbot_rl/ros/common/geometry_conversion.h"
 #include "jetbot_rl/ros/env_node/robot_names.h"
 #include "jetbot_rl/world/occupancy_map.h"
 
 namespace jetbot_rl {
-
-/// The OccupancyGrid map_server would serve for `map` (info from the YAML, cells as its loader
-/// makes them), in frame `frame_id`, stamped `stamp`.
-nav_msgs::OccupancyGrid toOccupancyGrid(const OccupancyMap& map, const std::string& frame_id,
-                                        const ros::Time& stamp);
 
 /// Latches map and map_metadata (in the node's namespace, after robot_prefix) once, as map_server
 /// does, in env 0's map frame ("<prefix>env_0/map"; tf places every env's map frame at its origin).

@@ -1,4 +1,4 @@
-#include "jetbot_rl/ros/deploy/goal_input.h"
+#include "jetbot_rl/ros/deploy/move_base_server.h"
 
 #include <move_base_msgs/MoveBaseActionGoal.h>
 #include <ros/console.h>
@@ -10,7 +10,6 @@
 
 #include "jetbot_rl/ros/common/peer_links.h"
 #include "jetbot_rl/ros/common/private_topic.h"
-#include "jetbot_rl/ros/deploy/planar_transform.h"
 
 namespace jetbot_rl {
 namespace {
@@ -25,29 +24,16 @@ bool finitePose(const geometry_msgs::Pose& p) {
 
 }  // namespace
 
-OccupancyMap occupancyMapOf(const nav_msgs::OccupancyGrid& grid) {
-  OccupancyMap map;
-  const auto& info = grid.info;
-  map.resolution = info.resolution;
-  map.origin_x = info.origin.position.x;
-  map.origin_y = info.origin.position.y;
-  map.origin_yaw = tf2::getYaw(info.origin.orientation);
-  map.width = static_cast<int>(info.width);
-  map.height = static_cast<int>(info.height);
-  map.data = grid.data;
-  return map;
-}
-
-GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& action_name,
-                     const std::string& goal_topic, const std::string& outcome_topic,
-                     const std::string& map_topic, OdomFrame odom_frame,
-                     std::function<void()> accepted, std::function<void()> canceled)
-    : odom_frame_(std::move(odom_frame)),
+MoveBaseServer::MoveBaseServer(ros::NodeHandle& nh, ros::NodeHandle& pnh,
+                               const MoveBaseServerParams& p, const MapInput& map,
+                               OdomFrame odom_frame, std::function<void()> accepted,
+                               std::function<void()> canceled)
+    : map_(map),
+      odom_frame_(std::move(odom_frame)),
       accepted_(std::move(accepted)),
       canceled_(std::move(canceled)),
-      action_name_(nh.resolveName(action_name)),
-      tf_listener_(tf_buffer_) {
-  outcome_pub_ = nh.advertise<std_msgs::String>(resolvePrivateTopic(pnh, outcome_topic), 10);
+      action_name_(nh.resolveName(p.action_name)) {
+  outcome_pub_ = nh.advertise<std_msgs::String>(resolvePrivateTopic(pnh, p.outcome_topic), 10);
   // actionlib's ActionServer rather than its SimpleActionServer: the goal's id names its client.
   server_ = std::make_unique<Server>(
       nh, action_name_, [this](Server::GoalHandle h) { onActionGoal(h); },
@@ -56,42 +42,47 @@ GoalInput::GoalInput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::strin
   action_goal_pub_ = nh.advertise<move_base_msgs::MoveBaseActionGoal>(action_name_ + "/goal", 1);
   current_goal_pub_ = pnh.advertise<geometry_msgs::PoseStamped>("current_goal", 1, true);
   goal_sub_ =
-      nh.subscribe(resolvePrivateTopic(pnh, goal_topic), 10, &GoalInput::onSimpleGoal, this);
-  if (!map_topic.empty()) map_sub_ = nh.subscribe(map_topic, 1, &GoalInput::onMap, this);
+      nh.subscribe(resolvePrivateTopic(pnh, p.goal_topic), 10, &MoveBaseServer::onSimpleGoal, this);
 }
 
-GoalInput::~GoalInput() {
+MoveBaseServer::~MoveBaseServer() {
   if (active_) active_->setAborted(move_base_msgs::MoveBaseResult(), "shut down");
 }
 
-void GoalInput::start() {
+void MoveBaseServer::start() {
   if (started_) return;
   server_->start();
   started_ = true;
   ROS_INFO("the move_base action %s takes goals", action_name_.c_str());
 }
 
-void GoalInput::clear() {
+void MoveBaseServer::clear() {
+  if (goal_) {
+    // RViz keeps the last pose it was sent: one without a frame takes the ended goal's place.
+    geometry_msgs::PoseStamped none;
+    none.header.stamp = ros::Time::now();
+    current_goal_pub_.publish(none);
+  }
   goal_.reset();
   goal_in_map_.reset();
   active_.reset();
   client_.clear();
 }
 
-void GoalInput::succeed() {
+void MoveBaseServer::succeed() {
   if (active_) active_->setSucceeded(move_base_msgs::MoveBaseResult(), "reached");
   clear();
   report("reached");
 }
 
-void GoalInput::abort(const std::string& why) {
+void MoveBaseServer::abort(const std::string& why) {
   ROS_WARN("goal ended: %s; the robot stops", why.c_str());
   if (active_) active_->setAborted(move_base_msgs::MoveBaseResult(), why);
   clear();
   report(why);
 }
 
-bool GoalInput::clientGone(std::string& why) const {
+bool MoveBaseServer::clientGone(std::string& why) const {
   if (client_.empty()) return false;
   // A client subscribes to the action's status, feedback and result: gone from all three, it is
   // gone (a mission script stopped with Ctrl-C or killed), and nothing would cancel its goal.
@@ -104,7 +95,7 @@ bool GoalInput::clientGone(std::string& why) const {
   return true;
 }
 
-void GoalInput::feedback(const nav_msgs::Odometry& odom) {
+void MoveBaseServer::feedback(const nav_msgs::Odometry& odom) {
   if (!active_) return;
   move_base_msgs::MoveBaseFeedback f;
   f.base_position.header = odom.header;
@@ -112,7 +103,7 @@ void GoalInput::feedback(const nav_msgs::Odometry& odom) {
   active_->publishFeedback(f);
 }
 
-void GoalInput::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
+void MoveBaseServer::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
   if (!started_) {
     ROS_WARN("goal on %s refused: not ready (no odometry, scan or map yet)",
              goal_sub_.getTopic().c_str());
@@ -125,7 +116,7 @@ void GoalInput::onSimpleGoal(const geometry_msgs::PoseStamped::ConstPtr& msg) {
   action_goal_pub_.publish(goal);
 }
 
-void GoalInput::onCancel(Server::GoalHandle handle) {
+void MoveBaseServer::onCancel(Server::GoalHandle handle) {
   // Goals are taken or ended as they come, so only the active one can be canceled.
   if (!active_ || *active_ != handle) return;
   active_->setCanceled(move_base_msgs::MoveBaseResult(), "canceled");  // PREEMPTED
@@ -135,52 +126,16 @@ void GoalInput::onCancel(Server::GoalHandle handle) {
   report("canceled");
 }
 
-void GoalInput::report(const std::string& outcome) {
+void MoveBaseServer::report(const std::string& outcome) {
   std_msgs::String msg;
   msg.data = outcome;
   outcome_pub_.publish(msg);
 }
 
-void GoalInput::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
-  if (msg->data.size() != static_cast<std::size_t>(msg->info.width) * msg->info.height ||
-      !(msg->info.resolution > 0.0f)) {
-    ROS_WARN("map on %s ignored: %zu cells for %u x %u at resolution %g",
-             map_sub_.getTopic().c_str(), msg->data.size(), msg->info.width, msg->info.height,
-             msg->info.resolution);
-    return;
-  }
-  map_ = occupancyMapOf(*msg);
-  map_frame_ = msg->header.frame_id;
-  ++maps_received_;
-}
-
-bool GoalInput::onFreeCell(const Eigen::Vector2d& goal, std::string& why) const {
-  if (!map_) return true;
-  int x = 0, y = 0;
-  if (!map_->cellOf(goal, x, y)) {
-    why = "outside the map";
-    return false;
-  }
-  if (!map_->isFree(x, y)) {
-    why = map_->at(x, y) == -1 ? "on an unknown cell of the map" : "in an obstacle of the map";
-    return false;
-  }
-  return true;
-}
-
-std::optional<Eigen::Vector2d> GoalInput::fromMap(const Eigen::Vector2d& q,
-                                                  const std::string& frame) const {
-  Eigen::Isometry2d frame_map;
-  std::string why;
-  if (!lookupPlanar(tf_buffer_, frame, map_frame_, frame_map, why)) return std::nullopt;
-  return frame_map * q;
-}
-
-bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,
-                          Eigen::Vector2d& out, double& yaw, std::string& why) const {
+bool MoveBaseServer::transform(const geometry_msgs::PoseStamped& msg, const std::string& frame,
+                               Eigen::Vector2d& out, double& yaw, std::string& why) const {
   try {
-    const geometry_msgs::PoseStamped in_frame =
-        tf_buffer_.transform(msg, frame, ros::Duration(0.2));
+    const geometry_msgs::PoseStamped in_frame = map_.tf().transform(msg, frame, ros::Duration(0.2));
     out = Eigen::Vector2d(in_frame.pose.position.x, in_frame.pose.position.y);
     yaw = tf2::getYaw(in_frame.pose.orientation);
     return true;
@@ -191,7 +146,7 @@ bool GoalInput::transform(const geometry_msgs::PoseStamped& msg, const std::stri
   }
 }
 
-void GoalInput::onActionGoal(Server::GoalHandle handle) {
+void MoveBaseServer::onActionGoal(Server::GoalHandle handle) {
   if (active_) {
     // A new goal preempts the current one (PREEMPTED), as move_base's does.
     active_->setCanceled(move_base_msgs::MoveBaseResult(), "preempted by a new goal");
@@ -208,7 +163,7 @@ void GoalInput::onActionGoal(Server::GoalHandle handle) {
   take(handle.getGoal()->target_pose);
 }
 
-void GoalInput::take(const geometry_msgs::PoseStamped& target) {
+void MoveBaseServer::take(const geometry_msgs::PoseStamped& target) {
   const auto refuse = [this](const std::string& why) { abort("refused: " + why); };
   if (!finitePose(target.pose)) return refuse("its pose is not finite");
   const auto& q = target.pose.orientation;
@@ -221,11 +176,11 @@ void GoalInput::take(const geometry_msgs::PoseStamped& target) {
   double yaw = 0.0, map_yaw = 0.0;
   std::string why;
   if (!transform(target, frame, goal, yaw, why)) return refuse(why);
-  if (map_) {
+  if (map_.map()) {
     // The map's cells are looked up in the map's own frame: a drifting map -> odom is followed.
-    const std::string& map_frame = map_frame_.empty() ? frame : map_frame_;
+    const std::string& map_frame = map_.mapFrame().empty() ? frame : map_.mapFrame();
     if (!transform(target, map_frame, in_map, map_yaw, why)) return refuse(why);
-    if (!onFreeCell(in_map, why)) {
+    if (!map_.onFreeCell(in_map, why)) {
       return refuse("(" + std::to_string(in_map.x()) + ", " + std::to_string(in_map.y()) + ") in " +
                     map_frame + " is " + why);
     }
