@@ -140,5 +140,6 @@ endforeach()
 # ---- the docs: parameter tables, config files and launch defaults against the C++ defaults ----
 add_rostest(test/docs/param_docs.test DEPENDENCIES jetbot_rl_param_docs)
 add_rostest(test/launch/task_defaults.test)
+add_rostest(test/launch/rviz_configs.test)
 add_rostest(test/python/python_navigation.test)
 add_rostest(test/python/python_team.test)
