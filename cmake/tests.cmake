@@ -127,6 +127,7 @@ endforeach()
 # ---- sim-to-real: a policy trained with randomisation drives the env's robot view (deploy node) ----
 foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation closed_loop_path
     closed_loop_move_base
+    move_base_client
     closed_loop_memory
     deploy_node)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
