@@ -16,7 +16,6 @@ import math
 import sys
 import time
 
-import actionlib
 import numpy as np
 import rospy
 from actionlib_msgs.msg import GoalStatus
@@ -25,6 +24,7 @@ from move_base_msgs.msg import MoveBaseAction
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan
 
+from jetbot_rl.action_client import SimpleActionClient, clock_hint, wait_for_server
 from jetbot_rl.move_base_goal import move_base_goal
 
 
@@ -105,9 +105,12 @@ def main():
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node('move_base_goals', anonymous=True)
     rec = Recorder(args)
-    client = actionlib.SimpleActionClient(args.action, MoveBaseAction)
-    if not client.wait_for_server(rospy.Duration(60.0)):
-        print('no action server %s' % args.action, file=sys.stderr)
+    client = SimpleActionClient(args.action, MoveBaseAction)
+    # In wall time, after the first /clock: actionlib's wait_for_server would compute its deadline
+    # from the time 0 a node has before its first /clock under /use_sim_time.
+    if not wait_for_server(client, 60.0):
+        print('no action server %s after 60 s%s' % (rospy.resolve_name(args.action), clock_hint()),
+              file=sys.stderr)
         return 1
     wait(lambda: rec.map is not None and rec.odom is not None, 'map and odometry')
     points = free_points(rec.map, args.clearance)
@@ -125,8 +128,15 @@ def main():
         rec.touched = False
         sent = time.monotonic()
         client.send_goal(goal)
-        client.wait_for_result(rospy.Duration(args.timeout))
+        ended = client.wait_for_result(rospy.Duration(args.timeout))
         took = time.monotonic() - sent
+        if not ended:
+            # One goal at a time: a goal left running would be preempted by the next, its end
+            # reported nowhere (the client tracks its newest goal only).
+            client.cancel_goal()
+            if not client.wait_for_result(rospy.Duration(10.0)):
+                print('goal %d has not ended 10 s after its cancel' % (k + 1), file=sys.stderr)
+                return 1
         state = client.get_state()
         plan = next((q for q in rec.plans[plans:] if q.poses), None)
         length = 0.0
@@ -140,8 +150,6 @@ def main():
               % (k + 1, x, y, heading, STATES.get(state, str(state)), took,
                  length, math.hypot(x - p.x, y - p.y), ratio, ', touched' if rec.touched else '',
                  client.get_goal_status_text()), flush=True)
-        if state not in (GoalStatus.SUCCEEDED, GoalStatus.ABORTED):
-            client.cancel_goal()
     succeeded = [r for r in rows if r[0]]
     ratios = [r[2] for r in succeeded if not math.isnan(r[2])]
     print('FIGURE: move_base goals: %d of %d SUCCEEDED (%.0f %%), %d with a touch, time over the '

@@ -128,6 +128,7 @@ endforeach()
 # ---- sim-to-real: a policy trained with randomisation drives the env's robot view (deploy node) ----
 foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigation closed_loop_path
     closed_loop_move_base
+    move_base_client
     closed_loop_memory
     deploy_node)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
@@ -144,5 +145,6 @@ endforeach()
 # ---- the docs: parameter tables, config files and launch defaults against the C++ defaults ----
 add_rostest(test/docs/param_docs.test DEPENDENCIES jetbot_rl_param_docs)
 add_rostest(test/launch/task_defaults.test)
+add_rostest(test/launch/rviz_configs.test)
 add_rostest(test/python/python_navigation.test)
 add_rostest(test/python/python_team.test)

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """world_view.launch gazebo_world:=worlds/furnished_room.world: /jetbot/map is the room cut at the
 scanner's height (its extent, walls, table legs, the counter's L with its notch free, the table
-tops above the cut), /jetbot/world_geometry shows its shapes, and the scan sees the closed room."""
+tops above the cut), /jetbot/world_geometry shows its shapes, the scan sees the closed room, and
+the two robots start apart (issue 50: at one point, the tribot hid the Jetbot in RViz)."""
 import math
 import unittest
 
@@ -10,6 +11,8 @@ import rostest
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan
 from visualization_msgs.msg import Marker, MarkerArray
+
+from jetbot_rl_test.world_view import start_apart
 
 TIMEOUT = 30.0
 
@@ -25,6 +28,9 @@ class TestGazeboWorld(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_gazebo_world')
+
+    def test_apart_at_the_start(self):
+        start_apart(self)
 
     def test_map_is_the_room_cut_at_the_scanner(self):
         grid = rospy.wait_for_message('/jetbot/map', OccupancyGrid, TIMEOUT)

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """launch/world_view.launch: the Jetbot with its RPLIDAR-like block and the tribot with its
-TurtleBot3-form Gazebo block, in realtime mode in the office map, keep their names apart
-(robot_prefix jetbot/ and tribot/: topics, frames), scan as their Gazebo blocks say, and drive
-by hand through cmd_vel."""
+TurtleBot3-form Gazebo block, in realtime mode in the office map, start apart, keep their names
+apart (robot_prefix jetbot/ and tribot/: topics, frames), scan as their Gazebo blocks say, and
+drive by hand through cmd_vel."""
 import math
 import unittest
 
@@ -13,6 +13,8 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import OccupancyGrid, Odometry
 from sensor_msgs.msg import LaserScan
 
+from jetbot_rl_test.world_view import start_apart
+
 TIMEOUT = 30.0
 
 
@@ -20,6 +22,9 @@ class TestWorldView(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_world_view')
+
+    def test_apart_at_the_start(self):
+        start_apart(self)
 
     def test_each_robot_scans_as_its_gazebo_block_says(self):
         jetbot = rospy.wait_for_message('/jetbot/env_0/scan', LaserScan, TIMEOUT)
