@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Trains the policies shipped in policies/ (policies/README.md), each exactly as its row there
 # says, and keeps of each run directory what a user plays, deploys and reads in policies/<name>/:
-# checkpoints/best.pt, exported/ (TorchScript and meta.yaml), config.yaml and summary.yaml.
+# checkpoints/best.pt, exported/ (TorchScript), config.yaml and summary.yaml.
 # Deterministic: the same build trains the same policies bit for bit. Needs a sourced workspace
 # (devel/setup.bash).
 #   bash scripts/train_shipped_policies.sh [NAME ...]   (none: all of them)
