@@ -11,6 +11,7 @@
 #include <ros/ros.h>
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/Marker.h>
 
 #include <cmath>
 #include <functional>
@@ -249,35 +250,54 @@ TEST_F(GoalFrames, APursuedGoalStaysOnTheMapAsMapToOdomMoves) {
 
 TEST_F(GoalFrames, TheGoalMarkerIsClearedWhenItsGoalEnds) {
   geometry_msgs::PoseStamped::ConstPtr shown;
-  int received = 0;
-  ros::Subscriber markers = pnh_.subscribe<geometry_msgs::PoseStamped>(
+  visualization_msgs::Marker::ConstPtr arrow;
+  int received = 0, arrows = 0;
+  ros::Subscriber poses = pnh_.subscribe<geometry_msgs::PoseStamped>(
       "current_goal", 10, [&](const geometry_msgs::PoseStamped::ConstPtr& m) {
         shown = m;
         ++received;
+      });
+  ros::Subscriber markers = pnh_.subscribe<visualization_msgs::Marker>(
+      "current_goal_marker", 10, [&](const visualization_msgs::Marker::ConstPtr& m) {
+        arrow = m;
+        ++arrows;
       });
   setMapOdom(0.0, 0.0, 0.0);
   ASSERT_EQ(send(3.0, 0.0, "map"), State::ACTIVE) << client_->getState().getText();
   ASSERT_TRUE(spinUntil([&] { return shown && shown->header.frame_id == "map"; }));
   EXPECT_EQ(shown->pose.position.x, 3.0);
-  // Reached: RViz's arrow is replaced by a pose without a frame, which it does not draw.
-  int before = received;
+  ASSERT_TRUE(spinUntil([&] { return arrow && arrow->action == visualization_msgs::Marker::ADD; }));
+  EXPECT_EQ(arrow->header.frame_id, "map");
+  EXPECT_EQ(arrow->pose.position.x, 3.0);
+  // Reached: the pose is replaced by one without a frame, and RViz's arrow is deleted (a Pose
+  // display would keep the last pose it could place).
+  int before = received, arrows_before = arrows;
   goals_->succeed();
-  ASSERT_TRUE(spinUntil([&] { return received > before; }));
+  ASSERT_TRUE(spinUntil([&] { return received > before && arrows > arrows_before; }));
   EXPECT_EQ(shown->header.frame_id, "");
+  EXPECT_EQ(arrow->action, visualization_msgs::Marker::DELETE);
+  EXPECT_EQ(arrow->header.frame_id, "map");  // a frame RViz's tf filter knows
+  EXPECT_EQ(arrow->ns + std::to_string(arrow->id), "goal0");
   EXPECT_TRUE(spinUntil([&] { return client_->getState() == State::SUCCEEDED; }));
   // Aborted: the same.
   ASSERT_EQ(send(2.5, 0.5, "map"), State::ACTIVE) << client_->getState().getText();
-  ASSERT_TRUE(spinUntil([&] { return shown->header.frame_id == "map"; }));
+  ASSERT_TRUE(spinUntil([&] {
+    return shown->header.frame_id == "map" && arrow->action == visualization_msgs::Marker::ADD;
+  }));
   before = received;
+  arrows_before = arrows;
   goals_->abort("aborted: by the test");
-  ASSERT_TRUE(spinUntil([&] { return received > before; }));
+  ASSERT_TRUE(spinUntil([&] { return received > before && arrows > arrows_before; }));
   EXPECT_EQ(shown->header.frame_id, "");
+  EXPECT_EQ(arrow->action, visualization_msgs::Marker::DELETE);
   // A refused goal was never shown: nothing is cleared for it.
   before = received;
+  arrows_before = arrows;
   EXPECT_EQ(send(1.5, 0.0, "map"), State::ABORTED);  // in the block
   ros::WallDuration(0.3).sleep();
   ros::spinOnce();
   EXPECT_EQ(received, before);
+  EXPECT_EQ(arrows, arrows_before);
 }
 
 TEST_F(GoalFrames, TheFootprintFollowsTheRobot) {

@@ -79,6 +79,15 @@ class TestRvizConfigs(unittest.TestCase):
                     checked += 1
         self.assertGreaterEqual(checked, 3)
 
+    def test_the_navigator_goal_is_a_marker_rviz_can_delete(self):
+        """RViz's Pose display keeps the last pose it could place; a Marker display takes the
+        deploy node's DELETE of an ended goal off the screen."""
+        config = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config', 'navigate.rviz')
+        displays = yaml.safe_load(open(config))['Visualization Manager']['Displays']
+        topics = {d['Class']: d.get('Marker Topic', d.get('Topic')) for d in displays
+                  if 'current_goal' in str(d.get('Marker Topic', d.get('Topic', '')))}
+        self.assertEqual(topics, {'rviz/Marker': '/navigate/current_goal_marker'})
+
 
 if __name__ == '__main__':
     rostest.rosrun('jetbot_rl', 'test_rviz_configs', TestRvizConfigs)

@@ -5,6 +5,7 @@
 #include <std_msgs/String.h>
 #include <tf2/utils.h>
 #include <tf2_geometry_msgs/tf2_geometry_msgs.h>
+#include <visualization_msgs/Marker.h>
 
 #include <cmath>
 
@@ -13,6 +14,24 @@
 
 namespace jetbot_rl {
 namespace {
+
+/// The goal's arrow for RViz (`action` ADD at `goal`, or DELETE): a Marker display takes a
+/// DELETE off the screen, where a Pose display keeps the last pose it could place.
+visualization_msgs::Marker goalMarker(const geometry_msgs::PoseStamped& goal, int action) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = goal.header.frame_id;  // stamp 0: tf's latest, as for a latched goal
+  m.ns = "goal";
+  m.id = 0;
+  m.type = visualization_msgs::Marker::ARROW;
+  m.action = action;
+  m.pose = goal.pose;
+  m.scale.x = 0.4;  // [m] length
+  m.scale.y = m.scale.z = 0.08;
+  m.color.r = 1.0f;
+  m.color.g = 0.67f;
+  m.color.a = 1.0f;
+  return m;
+}
 
 bool finitePose(const geometry_msgs::Pose& p) {
   for (double x : {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
@@ -41,6 +60,7 @@ MoveBaseServer::MoveBaseServer(ros::NodeHandle& nh, ros::NodeHandle& pnh,
   // A simple goal becomes an action goal on the server's own goal topic, as move_base sends it.
   action_goal_pub_ = nh.advertise<move_base_msgs::MoveBaseActionGoal>(action_name_ + "/goal", 1);
   current_goal_pub_ = pnh.advertise<geometry_msgs::PoseStamped>("current_goal", 1, true);
+  goal_marker_pub_ = pnh.advertise<visualization_msgs::Marker>("current_goal_marker", 1, true);
   goal_sub_ =
       nh.subscribe(resolvePrivateTopic(pnh, p.goal_topic), 10, &MoveBaseServer::onSimpleGoal, this);
 }
@@ -58,10 +78,13 @@ void MoveBaseServer::start() {
 
 void MoveBaseServer::clear() {
   if (goal_) {
-    // RViz keeps the last pose it was sent: one without a frame takes the ended goal's place.
+    // move_base's topic gets a pose without a frame in the ended goal's place; RViz's Pose
+    // display keeps drawing the last pose it could place, so the arrow is a Marker, deleted.
     geometry_msgs::PoseStamped none;
     none.header.stamp = ros::Time::now();
     current_goal_pub_.publish(none);
+    none.header.frame_id = shown_frame_;  // RViz's tf filter passes a DELETE in a known frame
+    goal_marker_pub_.publish(goalMarker(none, visualization_msgs::Marker::DELETE));
   }
   goal_.reset();
   goal_in_map_.reset();
@@ -189,6 +212,8 @@ void MoveBaseServer::take(const geometry_msgs::PoseStamped& target) {
   goal_ = goal;
   goal_yaw_ = yaw;
   current_goal_pub_.publish(target);
+  goal_marker_pub_.publish(goalMarker(target, visualization_msgs::Marker::ADD));
+  shown_frame_ = target.header.frame_id;
   accepted_();
   ROS_INFO("new goal (%.2f, %.2f) in %s", goal.x(), goal.y(), frame.c_str());
   report("accepted");

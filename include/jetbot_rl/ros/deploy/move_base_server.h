@@ -28,9 +28,11 @@ namespace jetbot_rl {
  * frame (its header's) and checked against its free cells there; a goal that fails is ABORTED at
  * once ("refused: why"). What became of each goal (accepted, reached, refused: ..., no path: ...,
  * aborted: ..., canceled, preempted) is also published as a std_msgs/String, and the goal being
- * pursued on ~current_goal (as move_base does; RViz shows it), which a PoseStamped with an empty
- * frame_id clears when the goal ends. A goal whose client disconnects (its node exits or dies:
- * its connections to the action's topics close) is ABORTED and the robot stops.
+ * pursued on ~current_goal (as move_base does; a PoseStamped with an empty frame_id follows when
+ * the goal ends) and as an arrow on ~current_goal_marker, deleted when the goal ends (RViz's Pose
+ * display keeps the last pose it could place; a Marker display takes a DELETE off the screen). A
+ * goal whose client disconnects (its node exits or dies: its connections to the action's topics
+ * close) is ABORTED and the robot stops.
  */
 class MoveBaseServer {
  public:
@@ -79,7 +81,8 @@ class MoveBaseServer {
   void onCancel(Server::GoalHandle handle);
   /// Validates the current goal's target and takes it, or aborts it ("refused: why").
   void take(const geometry_msgs::PoseStamped& target);
-  /// Forgets the current goal; one shown on ~current_goal is cleared there.
+  /// Forgets the current goal; one shown on ~current_goal and ~current_goal_marker is cleared
+  /// there.
   void clear();
   void report(const std::string& outcome);
   /// `msg` in `frame` (x, y, yaw), or false with `why`.
@@ -93,11 +96,12 @@ class MoveBaseServer {
   std::unique_ptr<Server> server_;
   std::optional<Server::GoalHandle> active_;  // the goal pursued
   std::string client_;  // the node that sent it, while connected to the action; "": none
-  ros::Publisher outcome_pub_, action_goal_pub_, current_goal_pub_;
+  ros::Publisher outcome_pub_, action_goal_pub_, current_goal_pub_, goal_marker_pub_;
   ros::Subscriber goal_sub_;
   bool started_ = false;
   std::optional<Eigen::Vector2d> goal_, goal_in_map_;
   double goal_yaw_ = 0.0;
+  std::string shown_frame_;  // the frame of the goal shown on ~current_goal_marker
 };
 
 }  // namespace jetbot_rl
