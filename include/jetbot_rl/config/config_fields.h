@@ -325,7 +325,7 @@ std::string describeFields(const C& config) {
 }
 
 /// One "name: value" line per field that `visit(config, visitor)` names (a field list, or a part
-/// of one such as PpoConfig's visitNetworkFields), readable by fieldsFromYaml().
+/// of one such as NetworkConfig's visitNetworkFields), readable by fieldsFromYaml().
 template <typename C, typename Visit>
 std::string fieldsToYaml(const C& config, Visit&& visit) {
   std::ostringstream s;
