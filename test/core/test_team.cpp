@@ -30,16 +30,6 @@ double yawOf(const RootState& s) {
   return std::atan2(forward.y(), forward.x());
 }
 
-/// Puts row `row`'s robot at `p` [m] heading `yaw` [rad], at rest.
-void place(BatchedEnv& env, int row, const Eigen::Vector2d& p, double yaw) {
-  RootState s = env.view(row).rootState();
-  s.position.head<2>() = p;
-  s.orientation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-  s.com_linear_velocity.setZero();
-  s.angular_velocity.setZero();
-  env.setRootState(row, s);
-}
-
 TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
   const int n = 3, k = 5;
   const double radius = 1.2;
@@ -74,14 +64,14 @@ TEST(Team, RobotsSeeEachOtherInTheirScans) {
   const int ahead = static_cast<int>(std::lround(-scanner.min_angle / scanner.angleIncrement()));
   ASSERT_NEAR(scanner.min_angle + ahead * scanner.angleIncrement(), 0.0, 1e-6);
   const auto front = [&](int row) { return env.view(row).scan()[ahead]; };
-  place(env, 0, Eigen::Vector2d(-1.0, 0.0), 0.0);
-  place(env, 1, Eigen::Vector2d(0.0, 0.0), kPi);
+  test::place(env, 0, Eigen::Vector2d(-1.0, 0.0), 0.0);
+  test::place(env, 1, Eigen::Vector2d(0.0, 0.0), kPi);
   env.step(stop);
   // Robot 1 stands 1 m ahead of robot 0 (its footprint about 0.1 m), the wall 3 m ahead.
   const double gap = 1.0 - env.robot().footprintRadius();
   EXPECT_NEAR(front(0), gap, 0.1);
   EXPECT_NEAR(front(1), gap, 0.1);
-  place(env, 1, Eigen::Vector2d(-1.0, 1.5), kPi);  // out of the way
+  test::place(env, 1, Eigen::Vector2d(-1.0, 1.5), kPi);  // out of the way
   env.step(stop);
   EXPECT_GT(front(0), 2.5);
 }
@@ -89,8 +79,8 @@ TEST(Team, RobotsSeeEachOtherInTheirScans) {
 TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
   BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
   auto& task = dynamic_cast<NavigationTask&>(env.task());
-  place(env, 0, Eigen::Vector2d(-0.6, 0.0), 0.0);
-  place(env, 1, Eigen::Vector2d(0.6, 0.0), kPi);
+  test::place(env, 0, Eigen::Vector2d(-0.6, 0.0), 0.0);
+  test::place(env, 1, Eigen::Vector2d(0.6, 0.0), kPi);
   task.setGoal(0, Eigen::Vector2d(-0.6, 1.5));  // neither is reached on the way
   task.setGoal(1, Eigen::Vector2d(0.6, -1.5));
   std::vector<float> ahead(2 * env.actionDim(), 0.0f);
@@ -111,9 +101,9 @@ TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
 TEST(Team, ARobotThatDroveAwayLeavesNoStandInWhereItWas) {
   BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
   auto& task = dynamic_cast<NavigationTask&>(env.task());
-  place(env, 0, Eigen::Vector2d(-0.5, 0.0), 0.0);
-  place(env, 1, Eigen::Vector2d(-0.1, 0.0), 0.0);  // 0.4 m ahead of robot 0: near it
-  task.setGoal(0, Eigen::Vector2d(1.5, 1.5));      // neither is reached on the way
+  test::place(env, 0, Eigen::Vector2d(-0.5, 0.0), 0.0);
+  test::place(env, 1, Eigen::Vector2d(-0.1, 0.0), 0.0);  // 0.4 m ahead of robot 0: near it
+  task.setGoal(0, Eigen::Vector2d(1.5, 1.5));            // neither is reached on the way
   task.setGoal(1, Eigen::Vector2d(1.5, -1.5));
   const int dim = env.actionDim();
   std::vector<float> actions(2 * dim, 0.0f);
@@ -142,7 +132,7 @@ TEST(Team, ARobotThatDroveAwayLeavesNoStandInWhereItWas) {
 TEST(Team, ARobotStartsAnewClearOfTheOthersAndAloneWhenItsRowIsReset) {
   BatchedEnv env(lidar(), teamConfig(2, 3, 1.0), test::navigationTask());
   // Robot 1 of env 0 parked on robot 0's point: robot 0, reset, takes another point.
-  place(env, 1, Eigen::Vector2d(1.0, 0.0), 0.0);
+  test::place(env, 1, Eigen::Vector2d(1.0, 0.0), 0.0);
   const RootState other_env = env.view(4).rootState();
   const RootState robot2 = env.view(2).rootState();
   env.reset({0});

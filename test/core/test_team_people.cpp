@@ -44,16 +44,6 @@ std::vector<float> castAt(const BatchedEnv& env, int row, const std::vector<Obst
   return ranges;
 }
 
-/// Puts row `row`'s robot at `p` [m] heading `yaw` [rad], at rest.
-void place(BatchedEnv& env, int row, const Eigen::Vector2d& p, double yaw) {
-  RootState s = env.view(row).rootState();
-  s.position.head<2>() = p;
-  s.orientation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-  s.com_linear_velocity.setZero();
-  s.angular_velocity.setZero();
-  env.setRootState(row, s);
-}
-
 TEST(TeamWithPeople, RobotsAndPeopleShareAWorldAndAreBothSeen) {
   BatchedEnv env(test::lidarJetbot(), crowdConfig(4, 2), test::navigationTask());
   ASSERT_EQ(env.numEnvs(), 4 * kRobots);
@@ -104,14 +94,14 @@ TEST(TeamWithPeople, ARobotHitsAnotherRobotAndAPersonOfItsWorld) {
   BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
   // Robots 0 and 1 of world 0 face each other 0.6 m apart; robot 0 of world 1 stands 0.5 m
   // ahead of person 0 of its world, facing it.
-  place(env, 0, Eigen::Vector2d(-0.3, 0.0), 0.0);
-  place(env, 1, Eigen::Vector2d(0.3, 0.0), kPi);
+  test::place(env, 0, Eigen::Vector2d(-0.3, 0.0), 0.0);
+  test::place(env, 1, Eigen::Vector2d(0.3, 0.0), kPi);
   const Obstacle person = env.view(kRobots).movers()[0];
   ASSERT_TRUE(person.placed);
   Eigen::Vector2d way = env.movers()->waypoint(1, 0) - person.center;
   ASSERT_GT(way.norm(), 1e-6);
   way.normalize();
-  place(env, kRobots, person.center + 0.5 * way, std::atan2(-way.y(), -way.x()));
+  test::place(env, kRobots, person.center + 0.5 * way, std::atan2(-way.y(), -way.x()));
   std::vector<float> ahead(static_cast<std::size_t>(env.numEnvs()) * env.actionDim());
   for (std::size_t i = 0; i < ahead.size(); ++i) ahead[i] = env.actionHigh()[i % env.actionDim()];
   std::vector<int> outcome(env.numEnvs(), -1);

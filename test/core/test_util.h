@@ -170,5 +170,15 @@ inline std::vector<float> envObs(const BatchedEnv& batch, int env) {
                             o.begin() + (env + 1) * batch.obsDim());
 }
 
+/// Puts row `row`'s robot at `p` [m] heading `yaw` [rad], at rest.
+inline void place(BatchedEnv& env, int row, const Eigen::Vector2d& p, double yaw) {
+  RootState s = env.view(row).rootState();
+  s.position.head<2>() = p;
+  s.orientation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  s.com_linear_velocity.setZero();
+  s.angular_velocity.setZero();
+  env.setRootState(row, s);
+}
+
 }  // namespace test
 }  // namespace jetbot_rl
