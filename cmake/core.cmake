@@ -49,6 +49,7 @@ add_library(jetbot_rl_core
   src/core/sensors/scan_sensor.cpp
   src/core/tasks/command_task.cpp
   src/core/tasks/navigation_task.cpp
+  src/core/tasks/observer_spec.cpp
   src/core/tasks/task.cpp
   src/core/tasks/task_factory.cpp
   src/core/tasks/velocity_task.cpp

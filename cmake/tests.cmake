@@ -77,10 +77,10 @@ catkin_add_gtest(test_ros_adapter
 target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
 target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 
-# ---- the deploy node without a master: its scan handling, and the robot view's messages
-# observed as the simulated task observes ----
+# ---- the deploy node without a master: its scan handling, the robot view's messages observed
+# as the simulated task observes, and the settings it takes from the checkpoint ----
 catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.cpp
-  test/deploy/test_observer_agreement.cpp)
+  test/deploy/test_observer_agreement.cpp test/deploy/test_trained_settings.cpp)
 target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
 target_compile_definitions(test_deploy PRIVATE ${_robots})
 

@@ -5,7 +5,7 @@
     rosrun jetbot_rl generate_param_docs.py --check  # exit 1 when a table is stale
 
 A table sits between `<!-- BEGIN GENERATED PARAMS: ID -->` and `<!-- END GENERATED PARAMS: ID -->`;
-its rows come from `jetbot_rl_param_docs table ID` (name, type, default, rule, meaning of every
+its rows come from `jetbot_rl_param_docs tables` (run once; `table ID` gives one) (name, type, default, rule, meaning of every
 field, as the nodes validate and echo them).
 """
 import argparse
@@ -22,18 +22,24 @@ def docs_dir():
     return os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(__file__))), 'docs')
 
 
-def table(table_id, program):
-    return subprocess.run(program + ['table', table_id], check=True, stdout=subprocess.PIPE,
-                          universal_newlines=True).stdout
+def all_tables(program):
+    """{ID: table} from one run of the program (`tables`: "## ID" and its table, for each)."""
+    out = subprocess.run(program + ['tables'], check=True, stdout=subprocess.PIPE,
+                         universal_newlines=True).stdout
+    parts = re.split(r'^## (\w+)\n', out, flags=re.M)
+    return dict(zip(parts[1::2], parts[2::2]))
 
 
-def regenerate(text, program):
-    """`text` with every marked table rewritten, and the IDs found."""
+def regenerate(text, tables):
+    """`text` with every marked table rewritten from `tables` ({ID: table}), and the IDs found."""
     ids = []
 
     def replace(match):
         ids.append(match.group(2))
-        return match.group(1) + table(match.group(2), program) + match.group(4)
+        if match.group(2) not in tables:
+            sys.exit('unknown parameter table %s (not among jetbot_rl_param_docs tables)'
+                     % match.group(2))
+        return match.group(1) + tables[match.group(2)] + match.group(4)
 
     return MARKER.sub(replace, text), ids
 
@@ -46,13 +52,14 @@ def main():
                         help='the table program and its leading arguments')
     args = parser.parse_args()
     stale, seen = [], []
+    tables = all_tables(args.program)
     for name in sorted(os.listdir(args.docs)):
         if not name.endswith('.md'):
             continue
         path = os.path.join(args.docs, name)
         with open(path) as f:
             text = f.read()
-        new, ids = regenerate(text, args.program)
+        new, ids = regenerate(text, tables)
         seen += ids
         if new != text:
             stale.append(name)

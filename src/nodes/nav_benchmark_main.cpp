@@ -41,9 +41,9 @@ int main(int argc, char** argv) {
       checkpoint = std::filesystem::exists(latest) ? latest : checkpoint + "/checkpoints/best.pt";
     }
     ppo::Policy policy(checkpoint);
-    const bool path = NavigationObserver::observesPath(policy.meta().spec.observation_names);
-    const bool log_beams =
-        NavigationObserver::observesLogBeams(policy.meta().spec.observation_names);
+    ppo::requireObservationContract(policy.meta(), checkpoint);
+    const ObserverSpec& contract = policy.meta().spec.observer;
+    const bool path = contract.path_lookahead > 0.0;
     // A twist policy's top speed sets the episodes' time (a slow robot needs longer).
     const BatchSpec& trained = policy.meta().spec;
     const double episode_s = benchmarkEpisodeS(
@@ -53,8 +53,7 @@ int main(int argc, char** argv) {
     std::printf("%-14s %8s %8s %9s %8s %12s %13s\n", "world", "episodes", "success", "collision",
                 "timeout", "time_to_goal", "path/shortest");
     EnvSetup base = env_options.setup();
-    base.task.navigation.path = path;
-    base.task.navigation.log_beams = log_beams;
+    takeObservationContract(contract, base.task.navigation);
     base.env.seed = static_cast<std::uint64_t>(seed);
     const RobotModelConstPtr robot =
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());

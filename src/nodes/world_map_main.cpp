@@ -1,6 +1,7 @@
 // jetbot_rl_world_map WORLD OUT.yaml [--resolution R] [--cut-height H]: a Gazebo world's grid, cut
-// at H [m] (default 0.1) with cells of R [m] (default 0.05), written as map_server's YAML + PGM:
-// the map the env node serves on /map for world/gazebo_world, for map_server, AMCL or move_base.
+// at H [m] (default: kDefaultCutHeight, 0.1, as a world without a scanner) with cells of R [m]
+// (default 0.05), written as map_server's YAML + PGM: the map the env node serves on /map for
+// world/gazebo_world, for map_server, AMCL or move_base.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -16,8 +17,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   WorldConfig config;
-  config.gazebo_world = argv[1];
-  config.cut_height = 0.1;
+  config.gazebo_world = argv[1];  // cut_height 0: resolveCutHeight()'s default
   std::string error;
   const auto take = [&](const std::string& option, const std::string& value, std::string& why) {
     double* out = option == "--resolution"   ? &config.map_resolution
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   try {
     config.random_start = true;  // the spawn point need not be free to write the map
     config.start_clearance = 0.0;
+    validateConfig(config);  // the program's options are the boundary: WorldModel takes it as valid
     const WorldModel world(config, 0.0);
     writeMapYaml(*world.map(), argv[2]);
     std::printf("%s: %d x %d cells of %g m, origin (%g, %g), cut at %g m\n", argv[2],

@@ -13,7 +13,9 @@ namespace ppo {
 namespace {
 
 // 2: the env's spec ("spec"); format 1 files are read without it.
-constexpr std::int64_t kFormatVersion = 2;
+// 3: the spec's observation contract (spec.observer: log_beams, goal_radius, path_clearance,
+// footprint_radius, ...); format 2 files read it at its defaults.
+constexpr std::int64_t kFormatVersion = kObservationContractFormat;
 
 /// The env's spec as YAML (its field list: config_fields.h's format); a file written before a
 /// field existed reads it at its default. obs_dim and action_dim are the meta's.
@@ -49,6 +51,7 @@ CheckpointMeta readCheckpointMeta(torch::serialize::InputArchive& a, std::string
     throw Error("unsupported checkpoint format version " + std::to_string(version));
   }
   CheckpointMeta m;
+  m.format_version = version;
   a.read("iteration", v);
   m.iteration = v.toInt();
   a.read("env_steps", v);
@@ -71,6 +74,17 @@ CheckpointMeta readCheckpointMeta(torch::serialize::InputArchive& a, std::string
     m.spec = specFromYaml(v.toStringRef(), m.obs_dim, m.action_dim);
   }
   return m;
+}
+
+void requireObservationContract(const CheckpointMeta& meta, const std::string& path) {
+  if (meta.format_version >= kObservationContractFormat) return;
+  throw Error("checkpoint " + path + " (format " + std::to_string(meta.format_version) +
+              ") was written before checkpoints held the observation contract a robot builds its "
+              "observer from (scan beams and their scale, goal radius, path settings, the robot's "
+              "geometry): resume it for one iteration (train.launch resume:=RUN_DIR/checkpoints/"
+              "latest.pt iterations:=N+1, with the env parameters it was trained with), which "
+              "saves it in format " +
+              std::to_string(kObservationContractFormat));
 }
 
 torch::serialize::InputArchive openCheckpoint(const std::string& path) {

@@ -344,6 +344,7 @@ TEST_F(GazeboWorldTest, TheGridWrittenAsAMapReadsBackAsTheSameCells) {
 
 void expectRefused(const WorldConfig& config, const std::vector<std::string>& words) {
   try {
+    validateConfig(config);  // as the env does, once, before it builds its world
     WorldModel world(config, 0.1);
     FAIL() << "accepted " << config.gazebo_world;
   } catch (const ConfigError& e) {

@@ -194,6 +194,7 @@ TEST(LaserScanner, ARobotWithoutABlockHasNoScannerUnlessALinkIsGiven) {
 TEST(LaserScanner, BadValuesAreRefusedNamingTheFieldAndWhereTheyCameFrom) {
   const auto error = [](const ScannerConfig& config, const RobotModel& robot) -> std::string {
     try {
+      validateConfig(config);  // as the env does, once, before it resolves its scanner
       resolveScanner(config, robot, 1.0 / 60.0);
     } catch (const ConfigError& e) {
       return e.what();

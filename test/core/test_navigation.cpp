@@ -180,13 +180,14 @@ TEST(NavigationTask, TheSpecCarriesTheBeamsItObservesForARobotElsewhere) {
   t.task = TaskKind::kNavigation;
   t.navigation.beams = 12;  // every third sample
   const BatchSpec spec = BatchedEnv(test::jetbot(), c, makeTask(t)).spec();
-  ASSERT_EQ(spec.scan_beam_angles.size(), 12u);
-  for (int i = 0; i < 12; ++i) EXPECT_NEAR(spec.scan_beam_angles[i], -1.75 + 0.3 * i, 1e-12);
-  EXPECT_EQ(spec.scan_range, (std::vector<double>{0.05, 3.5}));
+  ASSERT_EQ(spec.observer.scan_beam_angles.size(), 12u);
+  for (int i = 0; i < 12; ++i)
+    EXPECT_NEAR(spec.observer.scan_beam_angles[i], -1.75 + 0.3 * i, 1e-12);
+  EXPECT_EQ(spec.observer.scan_range, (std::vector<double>{0.05, 3.5}));
   // A task that observes no scan says so, scanner or not.
   const BatchSpec velocity = BatchedEnv(test::jetbot(), c).spec();
-  EXPECT_TRUE(velocity.scan_beam_angles.empty());
-  EXPECT_TRUE(velocity.scan_range.empty());
+  EXPECT_TRUE(velocity.observer.scan_beam_angles.empty());
+  EXPECT_TRUE(velocity.observer.scan_range.empty());
 }
 
 TEST(NavigationTask, NeedsAScannerAndNoMoreBeamsThanItHas) {

@@ -36,27 +36,14 @@ EnvConfig config(TaskKind task) {
   return c;
 }
 
-/// The observer of `spec` as a robot elsewhere builds it (its beam angles and range).
-std::unique_ptr<TaskObserver> observerOf(const BatchSpec& spec) {
-  ObserverSpec o;
-  o.task = spec.task;
-  o.action_dim = spec.action_dim;
-  o.scan_beams = static_cast<int>(spec.scan_beam_angles.size());
-  o.log_beams = NavigationObserver::observesLogBeams(spec.observation_names);  // as the deploy node
-  if (!spec.scan_range.empty()) {
-    o.range_min = spec.scan_range[0];
-    o.range_max = spec.scan_range[1];
-  }
-  return makeObserver(o);
-}
-
 /// Env `e`'s scan read at the spec's beams (angles and sectors), as a robot's scan is read.
 std::vector<float> scanAtBeams(const BatchedEnv& env, int e, const BatchSpec& spec) {
   const ScannerSpec& s = *env.scanner();
   const ScanView view{env.view(e).scan(), s.samples, s.min_angle, s.angleIncrement()};
-  std::vector<float> ranges(spec.scan_beam_angles.size());
+  std::vector<float> ranges(spec.observer.scan_beam_angles.size());
   std::string error;
-  EXPECT_TRUE(readBeams(view, spec.scan_beam_angles, spec.scan_beam_width, ranges.data(), error))
+  EXPECT_TRUE(readBeams(view, spec.observer.scan_beam_angles, spec.observer.scan_beam_width,
+                        ranges.data(), error))
       << error;
   return ranges;
 }
@@ -65,7 +52,7 @@ std::vector<float> scanAtBeams(const BatchedEnv& env, int e, const BatchSpec& sp
 void expectTheSpecsObserverAgrees(const TaskConfig& t) {
   BatchedEnv env(test::jetbot(), config(t.task), makeTask(t));
   const BatchSpec spec = env.spec();
-  const std::unique_ptr<TaskObserver> observer = observerOf(spec);
+  const std::unique_ptr<TaskObserver> observer = makeObserver(spec);  // as a robot builds it
   ASSERT_EQ(observer->observationNames(), spec.observation_names);
   std::mt19937 gen(3);
   std::vector<float> actions(static_cast<std::size_t>(env.numEnvs()) * env.actionDim());
@@ -131,8 +118,6 @@ TEST(NavigationObserver, BeamsOnALogScaleTellNearRangesApart) {
   const NavigationObserver linear(2, 0.15, 3.5, 2, 0.2);
   const NavigationObserver log(2, 0.15, 3.5, 2, 0.2, false, true);
   EXPECT_EQ(log.observationNames().front(), "beam_log_0");
-  EXPECT_TRUE(NavigationObserver::observesLogBeams(log.observationNames()));
-  EXPECT_FALSE(NavigationObserver::observesLogBeams(linear.observationNames()));
   EXPECT_FLOAT_EQ(log.beamValue(0.15f), 0.0f);
   EXPECT_FLOAT_EQ(log.beamValue(3.5f), 1.0f);
   EXPECT_FLOAT_EQ(log.beamValue(-INFINITY), 0.0f);  // too close: range_min
@@ -171,12 +156,10 @@ TEST(NavigationObserver, ItsGoalTestIsTheTasksSuccess) {
   const Eigen::Vector2d goal(1.0, -0.5);
   test::NavigationFixture f(goal, c);
   ObserverSpec o;
-  o.task = "navigation";
-  o.scan_beams = 4;
-  o.range_min = 0.1;
-  o.range_max = 4.0;
+  o.scan_beam_angles = {-1.0, 0.0, 1.0, 2.0};
+  o.scan_range = {0.1, 4.0};
   o.goal_radius = 0.3;
-  const std::unique_ptr<TaskObserver> observer = makeObserver(o);
+  const std::unique_ptr<TaskObserver> observer = makeObserver("navigation", 2, o);
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> offset(-0.5, 0.5);
   int inside = 0;
@@ -194,13 +177,46 @@ TEST(NavigationObserver, ItsGoalTestIsTheTasksSuccess) {
   EXPECT_LT(inside, 1900);
 }
 
+TEST(ObservationContract, TheSpecHoldsWhatTheTaskObservesWithAndTheRobotsGeometry) {
+  TaskConfig t;
+  t.task = TaskKind::kNavigation;
+  t.navigation.log_beams = true;
+  t.navigation.path = true;
+  t.navigation.path_lookahead = 0.7;
+  t.navigation.path_clearance = 0.25;
+  t.navigation.path_clearance_cost = 3.0;
+  t.navigation.goal_radius = 0.15;
+  BatchedEnv env(test::jetbot(), config(t.task), makeTask(t));
+  const BatchSpec spec = env.spec();
+  const ObserverSpec& o = spec.observer;
+  EXPECT_TRUE(o.log_beams);
+  EXPECT_EQ(o.path_lookahead, 0.7);
+  EXPECT_EQ(o.path_clearance, 0.25);
+  EXPECT_EQ(o.path_clearance_cost, 3.0);
+  EXPECT_EQ(o.goal_radius, 0.15);
+  EXPECT_EQ(o.scan_range, (std::vector<double>{0.15, 3.5}));
+  EXPECT_EQ(o.footprint_radius, env.robot().footprintRadius());
+  EXPECT_GT(o.wheel_radius, 0.0);
+  EXPECT_GT(o.wheel_separation, o.wheel_radius);
+  // Built from the contract alone: the names the task observes, path and log scale included.
+  EXPECT_EQ(makeObserver(spec)->observationNames(), spec.observation_names);
+  EXPECT_EQ(spec.observation_names.front(), "beam_log_0");
+  // The contract sets a benchmark's or a tool's task as the policy was trained.
+  NavigationConfig again;
+  takeObservationContract(o, again);
+  EXPECT_EQ(fieldsToYaml(again), fieldsToYaml(t.navigation));
+  // Without a path, the path's settings are none of the contract.
+  t.navigation.path = false;
+  const BatchSpec no_path = BatchedEnv(test::jetbot(), config(t.task), makeTask(t)).spec();
+  EXPECT_EQ(no_path.observer.path_lookahead, 0.0);
+  EXPECT_EQ(no_path.observer.path_clearance, 0.0);
+}
+
 TEST(MakeObserver, RefusesAnUnknownTaskAndANavigationObserverWithoutBeams) {
   ObserverSpec o;
-  o.task = "dance";
-  EXPECT_THROW(makeObserver(o), ConfigError);
-  o.task = "navigation";
+  EXPECT_THROW(makeObserver("dance", 2, o), ConfigError);
   try {
-    makeObserver(o);
+    makeObserver("navigation", 2, o);
     FAIL() << "built a navigation observer without beams";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("0 scan beams"), std::string::npos) << e.what();

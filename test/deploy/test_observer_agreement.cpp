@@ -1,10 +1,10 @@
 // The deploy node reads a robot as the env node's robot view presents one, without a master:
 // env 0's odometry and LaserScan messages (filled as the env node fills them) turned into the
 // measured state (rootStateOf, resampleScan) and observed by the observer of the env's spec
-// (observerOf) give the simulated task's observation, for every task, step after step. One
-// difference is the robot's, not the code's: odometry gives the velocity of the base link's
-// origin, the simulated task observes the centre of mass's (lin_vel_b_*), which differ by
-// omega x (the COM's offset); those components are compared with the observation of the
+// (observerOf, from its observation contract) give the simulated task's observation, for every
+// task, step after step. One difference is the robot's, not the code's: odometry gives the velocity
+// of the base link's origin, the simulated task observes the centre of mass's (lin_vel_b_*), which
+// differ by omega x (the COM's offset); those components are compared with the observation of the
 // simulated state measured at the link's origin (test_task_observers.cpp proves the simulated
 // state's observation exact).
 #include <gtest/gtest.h>
@@ -50,14 +50,8 @@ class ObserverAgreement : public ::testing::TestWithParam<TaskKind> {};
 TEST_P(ObserverAgreement, TheRobotViewsMessagesObservedAsTheDeployNodeDoGiveTheTasksObservation) {
   const std::unique_ptr<BatchedEnv> batch = env(GetParam());
   const BatchSpec spec = batch->spec();
-  ScanBeams beams;
-  beams.angles = spec.scan_beam_angles;
-  beams.width = spec.scan_beam_width;  // 3 samples a beam: each the smallest of its sector
-  if (!spec.scan_range.empty()) {
-    beams.range_min = spec.scan_range[0];
-    beams.range_max = spec.scan_range[1];
-  }
-  const std::unique_ptr<TaskObserver> observer = observerOf(spec, beams, 0.2, "the env's spec");
+  const ScanBeams beams = scanBeamsOf(spec.observer);  // 3 samples a beam: the smallest of each
+  const std::unique_ptr<TaskObserver> observer = observerOf(spec, 0.2, "the env's spec");
   const RobotNames names(true);
   nav_msgs::Odometry odom = odometryFrame(*batch, 0, names);
   sensor_msgs::LaserScan scan = scanFrame(*batch, 0, names);
@@ -122,7 +116,7 @@ TEST(ObserverOf, ACheckpointWhoseObservationTheTaskDoesNotBuildIsRefusedNamingBo
   trained.action_dim = 2;
   trained.observation_names = {"lin_vel_b_x", "lin_vel_b_y"};  // another version's observation
   try {
-    observerOf(trained, ScanBeams(), 0.2, "old.pt");
+    observerOf(trained, 0.2, "old.pt");
     FAIL() << "accepted a policy trained on another observation";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("the policy of old.pt was trained on [lin_vel_b_x, "
@@ -132,35 +126,26 @@ TEST(ObserverOf, ACheckpointWhoseObservationTheTaskDoesNotBuildIsRefusedNamingBo
   }
 }
 
-TEST(ObserverOf, APolicyThatFollowsAGlobalPathObservesItWithTheLookAheadItsCheckpointHolds) {
-  ObserverSpec o;
-  o.task = "navigation";
-  o.scan_beams = 1;
-  o.range_min = 0.15;
-  o.range_max = 3.5;
-  o.path = true;
+TEST(ObserverOf, APathPolicysObserverComesFromItsContractWithTheGoalToleranceGiven) {
   BatchSpec trained;
   trained.task = "navigation";
   trained.action_dim = 2;
-  trained.observation_names = makeObserver(o)->observationNames();
-  ScanBeams beams;
-  beams.angles = {0.0};
-  beams.range_min = o.range_min;
-  beams.range_max = o.range_max;
-  // Written before checkpoints held the look-ahead: refused, saying what to do.
-  try {
-    observerOf(trained, beams, 0.2, "path.pt");
-    FAIL() << "accepted a path policy without its look-ahead";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("the policy of path.pt follows a global path, but its "
-                                         "checkpoint does not hold the look-ahead"),
-              std::string::npos)
-        << e.what();
-  }
-  trained.path_lookahead = 0.6;
-  const auto observer = observerOf(trained, beams, 0.2, "path.pt");
+  trained.observer.scan_beam_angles = {0.0};
+  trained.observer.scan_range = {0.15, 3.5};
+  trained.observer.path_lookahead = 0.6;
+  trained.observer.goal_radius = 0.2;
+  trained.observation_names = {"beam_0",         "goal_distance", "goal_cos",     "goal_sin",
+                               "path_remaining", "path_cos",      "path_sin",     "lin_vel_b_x",
+                               "ang_vel_z",      "last_action_0", "last_action_1"};
+  const auto observer = observerOf(trained, 0.5, "path.pt");
   EXPECT_EQ(observer->observationNames(), trained.observation_names);
-  EXPECT_TRUE(NavigationObserver::observesPath(observer->observationNames()));
+  MeasuredState at;
+  at.goal = Eigen::Vector2d(0.4, 0.0);
+  EXPECT_TRUE(observer->reached(at));  // within the 0.5 m given, not the 0.2 m trained
+  EXPECT_FALSE(observerOf(trained, 0.2, "path.pt")->reached(at));
+  // Without the path in its contract, the names are not the policy's: refused.
+  trained.observer.path_lookahead = 0.0;
+  EXPECT_THROW(observerOf(trained, 0.2, "path.pt"), ConfigError);
 }
 
 }  // namespace

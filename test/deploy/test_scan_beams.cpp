@@ -103,84 +103,17 @@ TEST(ResampleScan, SectorsTakeTheSmallestReadingAndAClockwiseScanReadsTheSame) {
   EXPECT_EQ(from_clockwise, ranges);
 }
 
-/// The spec of an env whose navigation task observed 3 beams.
-BatchSpec trainedWithBeams() {
-  BatchSpec spec;
-  spec.task = "navigation";
-  spec.scan_beam_angles = {-1.0, 0.0, 1.0};
-  spec.scan_range = {0.15, 3.5};
-  spec.scan_beam_width = 0.5;
-  return spec;
-}
-
-TEST(ScanBeamsOf, TheCheckpointsBeamsAndParametersThatAgreeWithThem) {
-  DriverParams p;
-  ScanBeams beams = scanBeamsOf(trainedWithBeams(), p, "nav.pt");
+TEST(ScanBeamsOf, TheContractsBeamsSectorsAndRange) {
+  ObserverSpec trained;
+  trained.scan_beam_angles = {-1.0, 0.0, 1.0};
+  trained.scan_range = {0.15, 3.5};
+  trained.scan_beam_width = 0.5;
+  const ScanBeams beams = scanBeamsOf(trained);
   EXPECT_EQ(beams.angles, (std::vector<double>{-1.0, 0.0, 1.0}));
   EXPECT_EQ(beams.width, 0.5);
   EXPECT_EQ(beams.range_min, 0.15);
   EXPECT_EQ(beams.range_max, 3.5);
-  p.scan_angles = {-1.0, 1.0};
-  p.scan_range = {0.15, 3.5};
-  p.scan_beams = 3;
-  EXPECT_EQ(scanBeamsOf(trainedWithBeams(), p, "nav.pt").angles, beams.angles);
-}
-
-TEST(ScanBeamsOf, ParametersThatDisagreeWithTheCheckpointAreRefusedNamingThem) {
-  DriverParams p;
-  p.scan_range = {0.12, 12.0};
-  try {
-    scanBeamsOf(trainedWithBeams(), p, "nav.pt");
-    FAIL() << "accepted another range than the checkpoint's";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(
-                  "scan_range = [0.12, 12]: the policy of nav.pt was trained with [0.15, 3.5] m"),
-              std::string::npos)
-        << e.what();
-  }
-  p.scan_range.clear();
-  p.scan_angles = {-kPi, kPi};
-  try {
-    scanBeamsOf(trainedWithBeams(), p, "nav.pt");
-    FAIL() << "accepted other angles than the checkpoint's";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("scan_angles = [-3.14159, 3.14159]"), std::string::npos)
-        << e.what();
-  }
-  p.scan_angles.clear();
-  p.scan_beams = 24;
-  try {
-    scanBeamsOf(trainedWithBeams(), p, "nav.pt");
-    FAIL() << "accepted another beam count than the checkpoint's";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(
-        std::string(e.what()).find("scan_beams = 24: the policy of nav.pt was trained with 3"),
-        std::string::npos)
-        << e.what();
-  }
-}
-
-TEST(ScanBeamsOf, ACheckpointWithoutItsBeamsNeedsTheParameters) {
-  BatchSpec old_spec = trainedWithBeams();
-  old_spec.scan_beam_angles.clear();
-  old_spec.scan_range.clear();
-  DriverParams p;
-  try {
-    scanBeamsOf(old_spec, p, "old.pt");
-    FAIL() << "accepted a checkpoint without beams and no parameters";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("scan_beams = 0: checkpoint old.pt does not hold"),
-              std::string::npos)
-        << e.what();
-  }
-  // Given: scan_beams evenly spread over [first, last].
-  p.scan_beams = 5;
-  p.scan_angles = {-2.0, 2.0};
-  p.scan_range = {0.2, 6.0};
-  const ScanBeams beams = scanBeamsOf(old_spec, p, "old.pt");
-  EXPECT_EQ(beams.angles, (std::vector<double>{-2.0, -1.0, 0.0, 1.0, 2.0}));
-  EXPECT_EQ(beams.range_min, 0.2);
-  EXPECT_EQ(beams.range_max, 6.0);
+  EXPECT_TRUE(scanBeamsOf(ObserverSpec()).angles.empty());  // a task without a scan
 }
 
 }  // namespace

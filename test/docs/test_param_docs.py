@@ -2,6 +2,7 @@
 """Code and docs cannot disagree: the parameter tables of docs/ are the generated ones, and every
 default written outside the C++ field lists (config/*.yaml, the launch files' arguments and their
 documented defaults) is the C++ default; every key of a parameter file is a parameter."""
+import functools
 import glob
 import os
 import re
@@ -35,6 +36,7 @@ DEFAULTS_FILES = {'config/jetbot_env.yaml': 'jetbot_env_node', 'config/ppo.yaml'
 DOCUMENTED = re.compile(r'\(empty: [^,()]*, ([^()]+)\)')
 
 
+@functools.lru_cache(maxsize=None)
 def run(*args):
     return subprocess.run(PROGRAM + list(args), check=True, stdout=subprocess.PIPE,
                           universal_newlines=True).stdout

@@ -65,8 +65,8 @@ class DeployedNavigation(unittest.TestCase):
             'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=' + name,
             '_checkpoint:=' + cls.run_dir, '_task:=navigation',
             '_odom_topic:=/env_0/odom',
-            '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel', '_map_topic:=/map',
-            '_wheel_radius:=0', '_wheel_separation:=0'] + list(args))
+            '_scan_topic:=/env_0/scan', '_cmd_vel_topic:=/env_0/cmd_vel',
+            '_map_topic:=/map'] + list(args))
 
     @classmethod
     def tearDownClass(cls):

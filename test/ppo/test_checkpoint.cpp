@@ -126,20 +126,30 @@ TEST_F(CheckpointTest, MetadataRoundTrip) {
   EXPECT_EQ(networkYaml(m.config), networkYaml(testConfig()));
 }
 
-TEST_F(CheckpointTest, TheEnvsSpecWithItsScanBeamsRoundTrips) {
+TEST_F(CheckpointTest, TheEnvsSpecWithItsObservationContractRoundTrips) {
   meta.spec = testSpec();
   meta.spec.task = "navigation";
-  meta.spec.scan_beam_angles = {-0.5, 0.1, 0.7};
-  meta.spec.scan_range = {0.15, 3.5};
+  ObserverSpec& o = meta.spec.observer;
+  o.scan_beam_angles = {-0.5, 0.1, 0.7};
+  o.scan_range = {0.15, 3.5};
+  o.scan_beam_width = 0.1;
+  o.log_beams = true;
+  o.goal_radius = 0.25;
+  o.path_lookahead = 0.6;
+  o.path_clearance = 0.35;
+  o.path_clearance_cost = 2.5;
+  o.wheel_radius = 0.03;
+  o.wheel_separation = 0.1125;
+  o.footprint_radius = 0.095;
   const std::string with_beams = tempPath("with_beams.pt");
   saveCheckpoint(with_beams, *trained, meta);
   const BatchSpec read = readCheckpointMeta(with_beams).spec;
   EXPECT_EQ(read.task, "navigation");
-  EXPECT_EQ(read.scan_beam_angles, meta.spec.scan_beam_angles);
-  EXPECT_EQ(read.scan_range, meta.spec.scan_range);
+  EXPECT_EQ(fieldsToYaml(read.observer), fieldsToYaml(o));  // every field of the contract
   EXPECT_EQ(read.action_high, meta.spec.action_high);
-  // A task without a scan (and a file written before the beams were saved) reads none.
-  EXPECT_TRUE(readCheckpointMeta(path).spec.scan_beam_angles.empty());
+  EXPECT_NO_THROW(requireObservationContract(readCheckpointMeta(with_beams), with_beams));
+  // A task without a scan reads none.
+  EXPECT_TRUE(readCheckpointMeta(path).spec.observer.scan_beam_angles.empty());
   // The export's meta.yaml carries them too.
   Policy policy(with_beams);
   const std::string exported = tempPath("exported_beams/policy.pt");
@@ -147,9 +157,26 @@ TEST_F(CheckpointTest, TheEnvsSpecWithItsScanBeamsRoundTrips) {
   std::unordered_map<std::string, std::string> extra{{"meta.yaml", ""}};
   torch::jit::load(exported, c10::nullopt, extra);
   EXPECT_NE(
-      extra["meta.yaml"].find("\nscan_beam_angles: [-0.5, 0.1, 0.7]\nscan_range: [0.15, 3.5]\n"),
+      extra["meta.yaml"].find("\nscan_beam_angles: [-0.5, 0.1, 0.7]\nscan_range: [0.15, 3.5]\n"
+                              "scan_beam_width: 0.1\nlog_beams: true\n"),
       std::string::npos)
       << extra["meta.yaml"];
+}
+
+TEST_F(CheckpointTest, AFileWrittenBeforeTheContractIsRefusedWhereTheContractIsNeeded) {
+  EXPECT_EQ(readCheckpointMeta(path).format_version, kObservationContractFormat);
+  CheckpointMeta old = readCheckpointMeta(path);
+  old.format_version = 2;  // as read from a file of format 2
+  try {
+    requireObservationContract(old, "old.pt");
+    FAIL() << "accepted a checkpoint without its observation contract";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint old.pt (format 2) was written before "
+                                         "checkpoints held the observation contract"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("resume it for one iteration"), std::string::npos);
+  }
 }
 
 TEST_F(CheckpointTest, SameOutputsAndNormaliserAfterReload) {

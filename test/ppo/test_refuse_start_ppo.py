@@ -2,7 +2,6 @@
 """jetbot_ppo_trainer and jetbot_policy_node refuse bad parameters at start-up: non-zero exit and
 a FATAL line naming the parameter and its value."""
 import os
-import subprocess
 import tempfile
 import unittest
 
@@ -18,47 +17,24 @@ URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot
 
 class TestRefuseStartPpo(unittest.TestCase):
     count = 0
-    trained = None
-    trained_navigation = None
-    trained_path = None
 
-    @classmethod
-    def checkpoint(cls):
-        """A velocity-task run of one iteration (trained once, in the trainer's process)."""
-        if cls.trained is None:
-            cls.trained = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_run_')
-            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                            'iterations:=1', 'num_envs:=4', 'run_dir:=' + cls.trained,
-                            'output:=log'], check=True, timeout=10 * RUN_TIMEOUT,
-                           stdout=subprocess.DEVNULL)
-        return cls.trained
+    @staticmethod
+    def shipped(name):
+        """A shipped policy's directory (policies/, what the quick starts play)."""
+        return os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies', name)
 
-    @classmethod
-    def navigation_checkpoint(cls):
-        """A navigation run of one iteration: its checkpoint holds the beams it observed."""
-        if cls.trained_navigation is None:
-            cls.trained_navigation = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_nav_')
-            arena = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'config',
-                                 'navigation_arena.yaml')  # 24 samples, no path
-            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                            'task:=navigation', 'iterations:=1', 'num_envs:=4',
-                            'task_config:=' + arena,
-                            'run_dir:=' + cls.trained_navigation, 'output:=log'], check=True,
-                           timeout=10 * RUN_TIMEOUT, stdout=subprocess.DEVNULL)
-        return cls.trained_navigation
+    def checkpoint(self):
+        """A velocity-task policy."""
+        return self.shipped('velocity')
 
-    @classmethod
-    def path_checkpoint(cls):
-        """A navigation run of one iteration that follows a global path (nav/path: the task's
-        defaults)."""
-        if cls.trained_path is None:
-            cls.trained_path = tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_path_')
-            subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                            'task:=navigation', 'iterations:=1', 'num_envs:=4',
-                            'run_dir:=' + cls.trained_path,
-                            'output:=log'], check=True, timeout=10 * RUN_TIMEOUT,
-                           stdout=subprocess.DEVNULL)
-        return cls.trained_path
+    def navigation_checkpoint(self):
+        """A navigation policy without a path (config/navigation_arena.yaml): its checkpoint
+        holds the beams it observed."""
+        return self.shipped('navigation_arena')
+
+    def path_checkpoint(self):
+        """A navigation policy that follows a global path (nav/path: the task's defaults)."""
+        return self.shipped('navigation')
 
     def refuses(self, node_type, params, *texts, lists=None):
         """`lists`: private parameters set on the server (a command line gives only scalars)."""
@@ -142,18 +118,16 @@ class TestRefuseStartPpo(unittest.TestCase):
                      {'checkpoint': self.checkpoint(), 'task': 'command'},
                      "task = 'command'", "trained on task 'velocity'")
 
-    def test_deploy_scan_range_not_the_checkpoints(self):
-        # config/navigation_arena.yaml's scanner reads 0.15-3.5 m: another range would misread it
+    def test_deploy_scan_parameters_come_from_the_checkpoint(self):
+        # The beams a policy observes are its checkpoint's (its observation contract): the
+        # parameters that once gave them are refused by name.
         self.refuses('jetbot_deploy_node',
                      {'checkpoint': self.navigation_checkpoint()},
-                     'scan_range = [0.12, 12]', 'was trained with [0.15, 3.5] m',
+                     'scan_range = (set): comes from the checkpoint now (its scan_range)',
                      lists={'scan_range': [0.12, 12.0]})
-
-    def test_deploy_scan_angles_not_the_checkpoints(self):
         self.refuses('jetbot_deploy_node',
-                     {'checkpoint': self.navigation_checkpoint()},
-                     'scan_angles = [-1.5, 1.5]', 'was trained with [-3.14159, 2.87979] rad',
-                     lists={'scan_angles': [-1.5, 1.5]})
+                     {'checkpoint': self.navigation_checkpoint(), 'scan_beams': 24},
+                     'scan_beams = (set): comes from the checkpoint now')
 
     def test_deploy_former_names(self):
         # A simulation parameter of the robot mode's time is refused by its name now.
@@ -169,14 +143,6 @@ class TestRefuseStartPpo(unittest.TestCase):
         self.refuses('jetbot_deploy_node',
                      {'checkpoint': self.path_checkpoint(), 'footprint_radius': 0.1},
                      "map_topic = ''", 'follows a global path, which is planned on a map')
-
-    def test_deploy_path_policy_without_a_footprint(self):
-        checkpoint = self.path_checkpoint()
-        if rospy.has_param('/robot_description'):  # train.launch leaves its robot on the master
-            rospy.delete_param('/robot_description')
-        self.refuses('jetbot_deploy_node',
-                     {'checkpoint': checkpoint, 'map_topic': '/map'},
-                     'footprint_radius = 0', 'robot_description, which is not set')
 
     def test_deploy_without_checkpoint(self):
         self.refuses('jetbot_deploy_node', {}, 'checkpoint')

@@ -1,6 +1,10 @@
 // ~get_randomization's answers on message types, without a master.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <type_traits>
+
+#include "jetbot_rl/ros/common/msg_fields.h"
 #include "jetbot_rl/ros/env_node/randomization_service.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
 
@@ -21,6 +25,27 @@ EnvConfig randomized(int num_envs) {
   c.motor.enabled = true;
   c.motor.trim = {0.8, 1.2};
   return c;
+}
+
+TEST(RandomizationService, TheMessageHoldsEveryFieldOfTheDrawAndItsOwnFourBesides) {
+  // The draw's field list is its one typing: the message has an array of every field's name,
+  // and besides them only what the answer itself says.
+  const std::vector<std::string> msg_fields =
+      msgFieldNames(ros::message_traits::Definition<EnvRandomization>::value());
+  std::vector<std::string> expected{"header", "step", "env_ids", "num_dofs"};
+  for (const std::string& name : fieldNames(RandomizationDraw())) expected.push_back(name);
+  std::vector<std::string> sorted = msg_fields;
+  std::sort(sorted.begin(), sorted.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(sorted, expected);
+  // Every scalar of the draw has a range of its name to be drawn from.
+  const std::vector<std::string> ranges = fieldNames(RandomizationConfig());
+  const RandomizationDraw draw;
+  visitFields(draw, [&](const char* name, const auto& value, const auto&, const char*) {
+    if (std::is_arithmetic_v<std::decay_t<decltype(value)>>) {
+      EXPECT_NE(std::find(ranges.begin(), ranges.end(), name), ranges.end()) << name;
+    }
+  });
 }
 
 TEST(RandomizationService, AnswersTheListedEnvsInOrder) {

@@ -24,16 +24,23 @@ BatchSpec sampleSpec() {
   s.observation_names = {"beam_0", "goal_cos", "ang_vel_z"};
   s.action_names = {"linear_x", "angular_z"};
   s.has_goals = true;
-  s.scan_beam_angles = {0.5};
-  s.scan_range = {0.15, 3.5};
+  s.observer.scan_beam_angles = {0.5};
+  s.observer.scan_range = {0.15, 3.5};
+  s.observer.scan_beam_width = 0.2;
+  s.observer.log_beams = true;
+  s.observer.goal_radius = 0.25;
+  s.observer.path_lookahead = 0.6;
+  s.observer.path_clearance = 0.35;
+  s.observer.path_clearance_cost = 2.5;
+  s.observer.footprint_radius = 0.095;
   s.action_low = {0.0f, -10.5f};
   s.action_high = {0.6f, 10.5f};
   s.control_dt = 0.05;
   s.max_episode_length = 400;
   s.observation_low = {0.25f, -1.0f, -std::numeric_limits<float>::infinity()};
   s.observation_high = {1.0f, 1.0f, std::numeric_limits<float>::infinity()};
-  s.wheel_radius = 0.03;
-  s.wheel_separation = 0.1;
+  s.observer.wheel_radius = 0.03;
+  s.observer.wheel_separation = 0.1;
   return s;
 }
 
@@ -54,6 +61,8 @@ TEST(SpecSchema, TheMessageConversionGoesBothWaysFieldForField) {
   EXPECT_EQ(msg.wheel_separation, 0.1);
   EXPECT_EQ(msg.observation_low[0], 0.25f);
   EXPECT_EQ(msg.scan_range, (std::vector<double>{0.15, 3.5}));
+  EXPECT_TRUE(msg.log_beams);
+  EXPECT_EQ(msg.footprint_radius, 0.095);
   EXPECT_EQ(fieldsToYaml(fromMsg(msg)), fieldsToYaml(spec));
 }
 
@@ -90,7 +99,7 @@ TEST(SpecSchema, DifferencesNameEveryFieldButNumEnvsAndCanKeepToThePolicysFields
   theirs.num_envs = 100;  // never a difference
   EXPECT_TRUE(specDifferences(mine, theirs, false, false).empty());
   theirs.control_dt = 0.1;
-  theirs.scan_range = {0.15, 12.0};
+  theirs.observer.scan_range = {0.15, 12.0};
   const std::vector<std::string> all = specDifferences(mine, theirs, false, false);
   ASSERT_EQ(all.size(), 2u);
   EXPECT_EQ(all[0], "scan_range: [0.15, 12] differs from [0.15, 3.5]");
@@ -100,7 +109,7 @@ TEST(SpecSchema, DifferencesNameEveryFieldButNumEnvsAndCanKeepToThePolicysFields
   EXPECT_EQ(bound[0], all[0]);
   // A field `mine` does not hold (a checkpoint written before it existed) is not compared.
   BatchSpec old = mine;
-  old.wheel_radius = 0.0;
+  old.observer.wheel_radius = 0.0;
   theirs = mine;
   EXPECT_EQ(specDifferences(old, theirs, false, false).size(), 1u);
   EXPECT_TRUE(specDifferences(old, theirs, false, true).empty());

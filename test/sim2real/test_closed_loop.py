@@ -40,8 +40,9 @@ class TestClosedLoop(unittest.TestCase):
             '_checkpoint:=' + run_dir, '_task:=' + task,
             '_odom_topic:=/env_0/odom', '_cmd_vel_topic:=/env_0/cmd_vel',
             '_command_topic:=/robot_command',
-            # the env's robot view converts cmd_vel with the URDF's wheels: take them from there
-            '_wheel_radius:=0', '_wheel_separation:=0'])
+            # no wheel parameters: the checkpoint's wheels, which the env's robot view converts
+            # cmd_vel with (the trained robot's URDF)
+        ])
 
     def odoms_after(self, start, seconds):
         """Odometry from `start` to `start + seconds` of simulation time."""

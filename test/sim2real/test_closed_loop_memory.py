@@ -100,8 +100,9 @@ class TestClosedLoopMemory(unittest.TestCase):
             '_checkpoint:=' + self.runs[policy],
             '_odom_topic:=/%s/env_0/odom' % robot, '_cmd_vel_topic:=/%s/env_0/cmd_vel' % robot,
             '_command_topic:=/%s_command' % robot,
-            # the env's robot view converts cmd_vel with the URDF's wheels: take them from there
-            '_wheel_radius:=0', '_wheel_separation:=0'])
+            # no wheel parameters: the checkpoint's wheels, which the env's robot view converts
+            # cmd_vel with (the trained robot's URDF)
+        ])
         results = []
         try:
             # The first command counts from when the policy first moves the robot; the second

@@ -1,19 +1,22 @@
 #!/usr/bin/python3
-"""jetbot_deploy_node fed by this test's own odometry publisher: a moving Twist while odometry is
+"""jetbot_deploy_node (the shipped velocity policy, a wheel radius given that overrides the
+checkpoint's with a warning) fed by this test's own odometry publisher: a moving Twist while odometry is
 fresh (its 1 Hz status OK, "driving"); zero Twists once it stops coming (odom_timeout; the status
 WARN, "standing: no fresh odometry ..."); non-finite odometry dropped, counted on /diagnostics,
 the robot kept stopped; moving again on fresh odometry; after SIGINT a zero Twist last and exit
 status 0 within 2 s."""
 import math
+import os
 import signal
 import subprocess
-import tempfile
 import threading
 import time
 import unittest
 
+import rospkg
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
@@ -23,6 +26,7 @@ from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
 NODE = '/deploy'
 ODOM_TIMEOUT = 0.3  # [s]
 NAN_ODOMS = 5
+DRIVER_WHEEL_RADIUS = 0.03015  # [m]: the stock Jetbot driver's (the simulated Jetbot's is 0.03)
 
 
 def is_zero(twist):
@@ -58,12 +62,10 @@ class OdometrySource(object):
 
 class TestDeployNode(unittest.TestCase):
     def test_deploy_node_faults(self):
-        run_dir = tempfile.mkdtemp(prefix='jetbot_rl_test_deploy_node_')
-        subprocess.run(['roslaunch', 'jetbot_rl', 'train.launch', 'in_process:=true',
-                        'iterations:=1', 'run_dir:=' + run_dir, 'output:=log'],
-                       check=True, timeout=10 * TIMEOUT, stdout=subprocess.DEVNULL)
-        twists, drops, states = EventList(), EventList(), EventList()
+        run_dir = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies', 'velocity')
+        twists, drops, states, logs = EventList(), EventList(), EventList(), EventList()
         rospy.Subscriber('/robot/cmd_vel', Twist, twists.append)
+        rospy.Subscriber('/rosout', Log, lambda m: logs.append(m) if m.name == NODE else None)
 
         def on_diagnostics(msg):
             for status in msg.status:
@@ -78,8 +80,18 @@ class TestDeployNode(unittest.TestCase):
         proc = subprocess.Popen([
             'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=' + NODE[1:],
             '_checkpoint:=' + run_dir, '_odom_topic:=/robot/odom',
-            '_cmd_vel_topic:=/robot/cmd_vel', '_odom_timeout:=%g' % ODOM_TIMEOUT])
+            '_cmd_vel_topic:=/robot/cmd_vel', '_odom_timeout:=%g' % ODOM_TIMEOUT,
+            '_wheel_radius:=%g' % DRIVER_WHEEL_RADIUS])
         try:
+            # The wheel radius given overrides the trained robot's, which the checkpoint holds:
+            # said once, at WARN, naming both; the separation not given is the checkpoint's.
+            wait_for(lambda: any(m.level == Log.WARN and 'overrides' in m.msg for m in logs),
+                     what="the node's warning of the wheel radius given")
+            warnings = [m.msg for m in logs if m.level == Log.WARN and 'overrides' in m.msg]
+            self.assertEqual(warnings, ['%s: wheel_radius = %g overrides the checkpoint\'s '
+                                        'wheel_radius = 0.03' % (NODE, DRIVER_WHEEL_RADIUS)])
+            self.assertTrue(any('wheel_radius %g m, wheel_separation 0.1125 m' % DRIVER_WHEEL_RADIUS
+                                in m.msg for m in logs), [m.msg for m in logs])
             wait_for(lambda: odom_pub.get_num_connections() > 0, what='the node to subscribe',
                      recheck=0.05)
             wait_for(lambda: twists, what='Twists (no odometry yet)')

@@ -59,7 +59,9 @@ IfConfig<C, RandomizationConfig> visitFields(C& c, V&& v) {
     "Gaussian noise on the observations: [] none, one std for all, or one per component.");
 }
 
-/// The values one env drew at its last reset (the defaults when randomisation is off).
+/// The values one env drew at its last reset (the defaults when randomisation is off): one type
+/// with one field list (below) for the draw (each scalar from RandomizationConfig's range of the
+/// same name, in the list's order), the env's physics, EnvRandomization.msg and its docs.
 struct RandomizationDraw {
   double mass_scale = 1.0;
   double wheel_friction = 1.0;
@@ -72,5 +74,25 @@ struct RandomizationDraw {
   std::vector<double> motor_dead_zone;  ///< Per dof [duty]; empty when the motor model is off.
   std::vector<double> motor_trim;       ///< Per dof; empty when the motor model is off.
 };
+
+/// The fields of RandomizationDraw, in the order they are drawn (docs/core.md, "Domain
+/// randomisation": changing it changes every randomised trajectory).
+template <typename C, typename V>
+IfConfig<C, RandomizationDraw> visitFields(C& c, V&& v) {
+  v("mass_scale", c.mass_scale, AnyValue{}, "Chassis (root body) mass and inertia factor.");
+  v("wheel_friction", c.wheel_friction, AnyValue{}, "Wheel-ground friction coefficient.");
+  v("drive_gain_scale", c.drive_gain_scale, AnyValue{}, "Factor on drive_gain.");
+  v("effort_limit_scale", c.effort_limit_scale, AnyValue{}, "Factor on every dof's effort limit.");
+  v("wheel_radius_scale", c.wheel_radius_scale, AnyValue{},
+    "Factor on the wheels' collision shapes.");
+  v("initial_yaw", c.initial_yaw, AnyValue{"rad"}, "Heading at the reset.");
+  v("initial_speed", c.initial_speed, AnyValue{"m/s"}, "Forward speed at the reset.");
+  v("action_delay_steps", c.action_delay_steps, AnyValue{"control steps"},
+    "Control steps before a target takes effect.");
+  v("motor_dead_zone", c.motor_dead_zone, AnyValue{"duty"},
+    "Per dof (motor model): |duty| below it stops the wheel; empty when the model is off.");
+  v("motor_trim", c.motor_trim, AnyValue{},
+    "Per dof (motor model): factor on the duty; empty when the model is off.");
+}
 
 }  // namespace jetbot_rl

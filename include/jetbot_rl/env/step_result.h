@@ -1,12 +1,16 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/tasks/observer_spec.h"
 
 namespace jetbot_rl {
+
+class TaskObserver;
 
 /// An env that was reset on its own because its physics diverged.
 struct Divergence {
@@ -49,17 +53,9 @@ struct BatchSpec {
   std::vector<std::string> action_names;  ///< One per action component (the dof names).
   /// The task has goals: its episodes end in success or collision as well as time-outs.
   bool has_goals = false;
-  /// The robot's cmd_vel kinematics (DiffDrive); 0 when it is no differential drive [m].
-  double wheel_radius = 0.0, wheel_separation = 0.0;
-  /// The scan beams the observation holds (navigation): their angles [rad, in the scanner's frame],
-  /// and the scanner's [range_min, range_max] [m] they are clamped into and divided by. Empty
-  /// when the task observes no scan.
-  std::vector<double> scan_beam_angles, scan_range;
-  /// Each beam's sector [rad]: the smallest reading in [angle, angle + width); 0: the nearest
-  /// sample (and in checkpoints written before sectors).
-  double scan_beam_width = 0.0;
-  /// A task that observes a global path: the observed point's distance along it [m]; 0: none.
-  double path_lookahead = 0.0;
+  /// The observation contract: the scan, goal and path settings and the robot's geometry the
+  /// observation depends on (makeObserver() builds the observer from this spec).
+  ObserverSpec observer;
 };
 
 /// The fields of BatchSpec a trained policy is bound to: an env it acts on must have the same
@@ -72,16 +68,7 @@ IfConfig<C, BatchSpec> visitPolicyBoundFields(C& c, V&& v) {
   v("observation_names", c.observation_names, AnyValue{}, "One per observation component.");
   v("action_names", c.action_names, AnyValue{},
     "One per action component: the dof names, or linear_x, angular_z (a twist).");
-  v("scan_beam_angles", c.scan_beam_angles, AnyValue{"rad"},
-    "The scan beams the observation holds, in the scanner's frame (empty: no scan observed).");
-  v("scan_range", c.scan_range, AnyValue{"m"},
-    "The scanner's [range_min, range_max] the beams are clamped into and divided by the max of.");
-  v("scan_beam_width", c.scan_beam_width, AnyValue{"rad"},
-    "Each beam's sector: the beam is the smallest reading in [angle, angle + width); 0: the "
-    "sample nearest to its angle.");
-  v("path_lookahead", c.path_lookahead, AnyValue{"m"},
-    "A task that observes a global path (nav/path): the observed point's distance along it past "
-    "the robot (nav/path_lookahead); 0: no path observed.");
+  visitObservationFields(c.observer, v);
 }
 
 /// Every field of BatchSpec (EnvSpec.msg names the same).
@@ -102,10 +89,7 @@ IfConfig<C, BatchSpec> visitFields(C& c, V&& v) {
   v("has_goals", c.has_goals, AnyValue{},
     "The task has goals: its episodes end in success (OUTCOME_SUCCESS) or collision as well as "
     "time-outs.");
-  v("wheel_radius", c.wheel_radius, AnyValue{"m"},
-    "The cmd_vel kinematics' wheel radius; 0: the robot is no differential drive.");
-  v("wheel_separation", c.wheel_separation, AnyValue{"m"},
-    "The cmd_vel kinematics' wheel separation; 0: the robot is no differential drive.");
+  visitGoalAndRobotFields(c.observer, v);
 }
 
 /// The action names of action_space twist (v [m/s], omega [rad/s]).
@@ -117,9 +101,13 @@ inline const std::vector<std::string>& twistActionNames() {
 inline bool actsByTwist(const BatchSpec& spec) { return spec.action_names == twistActionNames(); }
 
 /// Sizes that fit: num_envs, obs_dim and action_dim >= 1, as many names and bounds as
-/// components, max_episode_length >= 2, control_dt > 0, scan_range two values with the beams;
+/// components, max_episode_length >= 2, control_dt > 0, the observer's rules (observer_spec.h);
 /// ConfigError naming the field and its value.
 void checkFieldRules(const BatchSpec& spec);
+
+/// The observer of the policy trained on `spec` (its task, action size and observation
+/// contract): what a robot elsewhere observes with. ConfigError naming what the contract lacks.
+std::unique_ptr<TaskObserver> makeObserver(const BatchSpec& spec);
 
 /// One line "FIELD: THEIRS differs from MINE" per field of `theirs` that differs from `mine`,
 /// over every field but num_envs, or only the policy-bound ones; a field `mine` does not hold (at

@@ -21,7 +21,8 @@ namespace jetbot_rl {
 class MoverSet {
  public:
   /// ConfigError naming movers/num_people or movers/num_carts when there is no world, no
-  /// bounded region, or too little free space for them.
+  /// bounded region, or too little free space for them. `config` is valid (the env validates
+  /// its EnvConfig once).
   MoverSet(const MoverConfig& config, const WorldModel& world, int num_envs, std::uint64_t seed);
 
   const MoverConfig& config() const { return config_; }

@@ -36,7 +36,8 @@ struct ScannerSpec {
 /// The scanner `config` gives on `robot`, whose control step is `control_dt` [s]: nothing when
 /// it is disabled or names no link and the robot declares no ray sensor. Throws ConfigError
 /// naming the field (scan/link not in the URDF, samples < 1, min >= max, range_min < 0) and its
-/// value, and where a value came from (the Gazebo block) when that is what is wrong.
+/// value, and where a value came from (the Gazebo block) when that is what is wrong. `config`'s
+/// own rules are checked at the boundary (EnvConfig::validate()).
 std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const RobotModel& robot,
                                           double control_dt);
 

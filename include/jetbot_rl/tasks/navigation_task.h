@@ -8,6 +8,7 @@
 
 #include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/planning/path_tracker.h"
+#include "jetbot_rl/tasks/observer_spec.h"
 #include "jetbot_rl/tasks/task.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/tasks/task_observer.h"
@@ -80,6 +81,10 @@ IfConfig<C, NavigationConfig> visitFields(C& c, V&& v) {
     "What a cell at the footprint costs beyond its length, per cell length (0 at path_clearance).");
 }
 
+/// Sets what of `config` the observation contract `spec` fixes (a policy trained on it observes
+/// that way): beams, log_beams, goal_radius, path and its look-ahead, clearance and cost.
+void takeObservationContract(const ObserverSpec& spec, NavigationConfig& config);
+
 /**
  * The navigation task's observation: K scan beams (each clamped into [range_min, range_max] and
  * divided by range_max), the goal's distance and direction (cos, sin) in the robot frame, the
@@ -92,6 +97,9 @@ class NavigationObserver : public TaskObserver {
   /// `log_beams`: beams on a log scale (nav/log_beams).
   NavigationObserver(int beams, double range_min, double range_max, int action_dim,
                      double goal_radius, bool path = false, bool log_beams = false);
+  /// The observer of an observation contract (its beams, range, scale, goal radius, path) with
+  /// `action_dim` last actions; ConfigError without beams or with an invalid range.
+  NavigationObserver(const ObserverSpec& spec, int action_dim);
 
   std::vector<std::string> observationNames() const override;
   void observationBounds(std::vector<float>& low, std::vector<float>& high) const override;
@@ -104,10 +112,6 @@ class NavigationObserver : public TaskObserver {
   /// clamped into [range_min, range_max], divided by range_max (or on a log scale, log_beams).
   float beamValue(float range) const;
   int actionDim() const { return action_dim_; }
-  /// True when a policy's `observation_names` hold a global path's (trained with nav/path).
-  static bool observesPath(const std::vector<std::string>& observation_names);
-  /// True when a policy's `observation_names` hold beams on a log scale (nav/log_beams).
-  static bool observesLogBeams(const std::vector<std::string>& observation_names);
 
  private:
   int beams_, action_dim_;
@@ -126,14 +130,11 @@ class NavigationObserver : public TaskObserver {
  * collision_penalty on a collision and step_cost per step; reaching the goal or colliding
  * terminates the episode. Needs a laser scanner.
  */
-class NavigationTask : public Task,
-                       public ScanObserving,
-                       public PathObserving,
-                       public WorldDrawing,
-                       public ArrowDrawing {
+class NavigationTask : public Task, public WorldDrawing, public ArrowDrawing {
  public:
   enum class Variant { kProgress, kSparse };
 
+  /// `config` is valid (makeTask() validates its TaskConfig).
   explicit NavigationTask(const NavigationConfig& config = NavigationConfig(),
                           Variant variant = Variant::kProgress);
 
@@ -151,9 +152,7 @@ class NavigationTask : public Task,
   bool terminated(int env, const RootState& state) const override;
   Outcome outcome(int env) const override { return static_cast<Outcome>(outcome_.at(env)); }
   std::vector<std::string> arrowNames() const override;
-  std::vector<double> scanBeamAngles() const override;
-  double scanBeamWidth() const override { return beam_width_; }
-  double pathLookahead() const override { return config_.path ? config_.path_lookahead : 0.0; }
+  void describeObservation(ObserverSpec& spec) const override;
   Eigen::Vector2d arrowDirection(int env, int arrow) const override;
 
   /// Env `env`'s path to its goal (nav/path): the start, where it turns, the goal [m]; without

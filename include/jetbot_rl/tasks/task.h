@@ -12,6 +12,7 @@ namespace jetbot_rl {
 
 struct ScannerSpec;
 class TaskObserver;
+struct ObserverSpec;
 class WorldModel;
 
 /// What a task may use of the batch it runs in, given once before any per-env call.
@@ -65,8 +66,8 @@ struct RootState {
 
 /**
  * Observation, reward and termination of an RL task, apart from the stepping code: what every
- * task has. What only some tasks do (take a command, observe a scan, draw into the world, draw
- * arrows) are capabilities a task opts into by deriving from them (task_capabilities.h).
+ * task has. What only some tasks do (take a command, draw into the world, draw arrows) are
+ * capabilities a task opts into by deriving from them (task_capabilities.h).
  *
  * Called concurrently for different envs from the stepping threads: an implementation keeps
  * per-env state in per-env slots only.
@@ -81,6 +82,10 @@ class Task {
   virtual const TaskObserver& observer() const = 0;
   /// One name per observation component (the observer's).
   std::vector<std::string> observationNames() const;
+  /// Writes the task's part of the observation contract (observer_spec.h: its scan beams, their
+  /// range and scale, goal radius, path settings) into `spec`, from which makeObserver() builds
+  /// the observer the task observes with; after attach(). The env writes the robot's part.
+  virtual void describeObservation(ObserverSpec& spec) const { (void)spec; }
   /// Checks what the task needs of the batch (ConfigError naming what is missing) and keeps
   /// what it uses; called once, before resize().
   virtual void attach(const TaskContext& context) { (void)context; }

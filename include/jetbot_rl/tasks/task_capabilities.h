@@ -26,26 +26,6 @@ class Commandable {
   virtual void setCommand(int env, const std::vector<double>& command, bool hold) = 0;
 };
 
-/// A task whose observation holds beams of the laser scan.
-class ScanObserving {
- public:
-  virtual ~ScanObserving() = default;
-  /// Angles [rad, in the scanner's frame] of the scan beams the observation holds, in order: the
-  /// geometry a robot elsewhere resamples its own scan to.
-  virtual std::vector<double> scanBeamAngles() const = 0;
-  /// Each beam's sector [rad]: beam i is the smallest reading in [angle_i, angle_i + width)
-  /// (readBeams(), scan_reading.h); 0: the sample nearest to each beam.
-  virtual double scanBeamWidth() const = 0;
-};
-
-/// A task that may observe a global path to its goal (navigation with nav/path).
-class PathObserving {
- public:
-  virtual ~PathObserving() = default;
-  /// The observed point's distance along the path past the robot [m]; 0: it observes no path.
-  virtual double pathLookahead() const = 0;
-};
-
 /// A task that places something in an env's world at each reset (a goal kept free of obstacles).
 class WorldDrawing {
  public:

@@ -7,6 +7,7 @@
 #include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/tasks/command_task.h"
 #include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/observer_spec.h"
 #include "jetbot_rl/tasks/task.h"
 #include "jetbot_rl/tasks/task_observer.h"
 #include "jetbot_rl/tasks/velocity_task.h"
@@ -65,13 +66,11 @@ void checkFieldRules(const TaskConfig& config);
 /// Builds the configured task (ConfigError for a reward variant it does not take).
 std::unique_ptr<Task> makeTask(const TaskConfig& config);
 
-/// True when task `task` observes a laser scan (its observer needs ObserverSpec's beams);
-/// ConfigError naming `task` for an unknown one.
-bool observesScan(const std::string& task);
-
-/// The observer of task `spec.task` for a robot elsewhere (the same code the simulated task
-/// observes with); ConfigError naming `task` for an unknown one, or a navigation observer
-/// without its beams or range.
-std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec);
+/// The observer of task `task` with `action_dim` last actions and the observation contract
+/// `observer` (the same code the simulated task observes with; BatchSpec's makeObserver() passes
+/// a spec's). ConfigError naming `task` for an unknown one, or a navigation contract without its
+/// beams or range.
+std::unique_ptr<TaskObserver> makeObserver(const std::string& task, int action_dim,
+                                           const ObserverSpec& observer);
 
 }  // namespace jetbot_rl

@@ -52,17 +52,4 @@ class TaskObserver {
   }
 };
 
-/// What an observer is built from on a robot: the task a policy was trained on and what of its
-/// env the observation depends on.
-struct ObserverSpec {
-  std::string task;          ///< velocity, command or navigation.
-  int action_dim = 2;        ///< The policy's action size (last actions observed).
-  int scan_beams = 0;        ///< Beams of the scan the policy observes.
-  double range_min = 0.0;    ///< The trained scanner's [range_min, range_max] [m]: readings are
-  double range_max = 0.0;    ///< clamped into it and divided by range_max.
-  double goal_radius = 0.2;  ///< A goal is reached within this [m].
-  bool path = false;         ///< Navigation: it observes a path (nav/path).
-  bool log_beams = false;    ///< Navigation: its beams on a log scale (nav/log_beams).
-};
-
 }  // namespace jetbot_rl

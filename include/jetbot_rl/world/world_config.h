@@ -55,6 +55,17 @@ struct WorldConfig {
   }
 };
 
+/// The cut of a world without a scanner to take the height of [m].
+constexpr double kDefaultCutHeight = 0.1;
+
+/// The height a Gazebo world is cut at, the one place its default is resolved: world/cut_height
+/// when given, else `scanner_height` (the scanner's above the ground; 0: none), else
+/// kDefaultCutHeight [m].
+inline double resolveCutHeight(const WorldConfig& c, double scanner_height) {
+  if (c.cut_height > 0.0) return c.cut_height;
+  return scanner_height > 0.0 ? scanner_height : kDefaultCutHeight;
+}
+
 template <typename C, typename V>
 IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
   const Range<double> length = positiveUpTo(1000.0, "m");

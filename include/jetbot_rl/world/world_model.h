@@ -65,7 +65,8 @@ class WorldModel {
  public:
   /// Loads the map (ConfigError naming the map's field or file) and checks that a start fits:
   /// ConfigError naming world/start_clearance (or world/map, world/region) when no free point
-  /// has the clearance. `robot_radius` [m]: the robot's footprint.
+  /// has the clearance. `robot_radius` [m]: the robot's footprint. `config` is valid
+  /// (validateConfig() at the boundary: the env's EnvConfig::validate(), a program's options).
   WorldModel(const WorldConfig& config, double robot_radius);
   /// The same with a map already loaded (a robot's /map) in place of world/map's file.
   WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap& map);
@@ -89,8 +90,9 @@ class WorldModel {
   const std::vector<Obstacle>& worldObstacles() const { return world_obstacles_; }
   /// The Gazebo world as read (world/gazebo_world), or null.
   const GazeboWorld* gazebo() const { return gazebo_.get(); }
-  /// The height the Gazebo world is cut at: world/cut_height, or 0.1 m when it is 0 [m].
-  double cutHeight() const { return config_.cut_height > 0.0 ? config_.cut_height : 0.1; }
+  /// The height the Gazebo world is cut at: world/cut_height, or kDefaultCutHeight when it is 0
+  /// (the env resolves 0 to its scanner's height before building the world) [m].
+  double cutHeight() const { return resolveCutHeight(config_, 0.0); }
   /// Where starts and obstacles are drawn, in the env frame (an empty box when unbounded).
   const Eigen::AlignedBox2d& region() const { return region_; }
 

@@ -19,7 +19,10 @@ const std::vector<FormerName>& formerNames() {
       {"wheel_velocity_limit", "checkpoint", "comes from the checkpoint now (its action bounds)"},
       {"twist_limits", "checkpoint", "comes from the checkpoint now (its action bounds)"},
       {"policy_actions", "checkpoint", "comes from the checkpoint now (its action names)"},
-      {"nav/beams", "scan_beams"},
+      {"nav/beams", "checkpoint", "comes from the checkpoint now (its scan_beam_angles)"},
+      {"scan_beams", "checkpoint", "comes from the checkpoint now (its scan_beam_angles)"},
+      {"scan_angles", "checkpoint", "comes from the checkpoint now (its scan_beam_angles)"},
+      {"scan_range", "checkpoint", "comes from the checkpoint now (its scan_range)"},
       {"nav/goal_radius", "xy_goal_tolerance"},
       {"goal_radius", "xy_goal_tolerance"},
   };

@@ -1,6 +1,7 @@
 #include <sstream>
 
 #include "jetbot_rl/env/step_result.h"
+#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {
@@ -34,10 +35,11 @@ void checkFieldRules(const BatchSpec& s) {
   sized("observation_high", s.observation_high.size(), s.obs_dim, "obs_dim");
   need(s.max_episode_length >= 2, "max_episode_length", text(s.max_episode_length), "must be >= 2");
   need(s.control_dt > 0.0, "control_dt", text(s.control_dt), "must be > 0");
-  need(s.scan_range.size() == (s.scan_beam_angles.empty() ? 0u : 2u), "scan_range",
-       text(s.scan_range),
-       "must be [range_min, range_max] with scan beams (" +
-           std::to_string(s.scan_beam_angles.size()) + " given), else empty");
+  checkFieldRules(s.observer);
+}
+
+std::unique_ptr<TaskObserver> makeObserver(const BatchSpec& spec) {
+  return makeObserver(spec.task, spec.action_dim, spec.observer);
 }
 
 std::vector<std::string> specDifferences(const BatchSpec& mine, const BatchSpec& theirs,

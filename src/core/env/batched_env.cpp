@@ -45,9 +45,8 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   const std::optional<ScannerSpec> scanner =
       resolveScanner(config_.scan, *robot_, config_.controlDt());
   if (config_.world.enabled()) {
-    if (config_.world.cut_height == 0.0 && scanner) {
-      config_.world.cut_height = scannerHeight(*robot_, *scanner);
-    }
+    config_.world.cut_height =
+        resolveCutHeight(config_.world, scanner ? scannerHeight(*robot_, *scanner) : 0.0);
   }
   scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_);
   const int n = config_.numRows();
@@ -348,21 +347,15 @@ BatchSpec BatchedEnv::spec() const {
   }
   spec.action_names = actions_layout_->names;
   spec.has_goals = task_->observer().hasGoal();
+  task_->describeObservation(spec.observer);
   try {
     const DiffDrive drive = DiffDrive::fromEnv(*this);
-    spec.wheel_radius = drive.wheelRadius();
-    spec.wheel_separation = drive.wheelSeparation();
+    spec.observer.wheel_radius = drive.wheelRadius();
+    spec.observer.wheel_separation = drive.wheelSeparation();
   } catch (const Error&) {
     // No differential drive: its kinematics stay 0.
   }
-  if (const auto* scan_task = capability<ScanObserving>(*task_)) {
-    spec.scan_beam_angles = scan_task->scanBeamAngles();
-    spec.scan_beam_width = scan_task->scanBeamWidth();
-    spec.scan_range = {scan_->spec().range_min, scan_->spec().range_max};
-  }
-  if (const auto* path_task = capability<PathObserving>(*task_)) {
-    spec.path_lookahead = path_task->pathLookahead();
-  }
+  spec.observer.footprint_radius = robot_->footprintRadius();
   return spec;
 }
 

@@ -218,7 +218,7 @@ void EnvPhysics::reset() {
   collided_ = hit_mover_ = hit_peer_ = false;
 }
 
-void EnvPhysics::randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin) {
+void EnvPhysics::randomize(const RandomizationDraw& draw, const std::vector<double>& wheel_spin) {
   const auto& bodies = model_.bodies();
   robot_->setBaseMass(static_cast<btScalar>(bodies[0].mass * draw.mass_scale));
   robot_->setBaseInertia(bodies[0].inertia * static_cast<btScalar>(draw.mass_scale));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "env/lean_dispatcher.h"
+#include "jetbot_rl/env/randomization.h"
 #include "jetbot_rl/tasks/task.h"
 #include "jetbot_rl/world/world_model.h"
 #include "robot/physics_model.h"
@@ -38,18 +39,6 @@ struct alignas(64) WorkerContext {
   btMultiBodyConstraintSolver solver;
 };
 
-/// One env's physical parameters drawn at a reset (docs/core.md, "Domain randomisation"); the
-/// defaults are the model's own values.
-struct PhysicalDraw {
-  double mass_scale = 1.0;  ///< Chassis (root body) mass and inertia factor.
-  double wheel_friction = PhysicsModel::kWheelFriction;  ///< Of the bodies a dof drives.
-  double drive_gain_scale = 1.0;                         ///< Factor on the drive gain.
-  double effort_limit_scale = 1.0;                       ///< Factor on every dof's effort limit.
-  double wheel_radius_scale = 1.0;  ///< Factor on the driven bodies' shapes (scalesWheels()).
-  double initial_yaw = 0.0;         ///< [rad] about the env's z axis through the root origin.
-  double initial_speed = 0.0;       ///< Forward (root +x) speed [m/s].
-};
-
 /**
  * One env's mutable physics state: its own Bullet world in the env's local frame, so that an env
  * never interacts with another and its trajectory does not depend on its origin or on the batch.
@@ -72,7 +61,7 @@ class EnvPhysics {
   /// After reset(): applies `draw` (mass, friction, drive, wheel size, heading and speed; bigger
   /// wheels lift the robot so that they start on the ground). `wheel_spin` [rad/m]: per dof, the
   /// joint velocity per m/s of forward speed at wheel_radius_scale 1 (empty: speed 0).
-  void randomize(const PhysicalDraw& draw, const std::vector<double>& wheel_spin);
+  void randomize(const RandomizationDraw& draw, const std::vector<double>& wheel_spin);
   /// Moves the robot by `offset` in the ground plane, keeping its heading and velocities (the
   /// world's start, after reset() and randomize()).
   void moveRobot(const Eigen::Vector2d& offset);

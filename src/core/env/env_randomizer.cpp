@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <type_traits>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/diff_drive.h"
@@ -29,6 +31,20 @@ void checkPerDof(const char* field, const std::vector<double>& ranges, int num_d
 int drawIn(const std::vector<int>& range, Rng& rng) {
   const int span = range[1] - range[0] + 1;
   return range[0] + std::min(span - 1, static_cast<int>(rng.uniform() * span));
+}
+
+/// RandomizationConfig's range named `name` (a draw field's name); Error for a field without one
+/// (the two field lists disagree).
+template <typename T>
+const std::vector<T>& rangeNamed(const RandomizationConfig& config, const char* name) {
+  const std::vector<T>* range = nullptr;
+  visitFields(config, [&](const char* field, const auto& value, const auto&, const char*) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::vector<T>>) {
+      if (std::string(field) == name) range = &value;
+    }
+  });
+  if (!range) throw Error(std::string("RandomizationConfig has no range ") + name + " to draw");
+  return *range;
 }
 
 }  // namespace
@@ -76,7 +92,7 @@ EnvRandomizer::EnvRandomizer(const EnvConfig& config, const PhysicsModel& model,
   }
 
   shapes_targets_ = action_noise_std_ > 0.0 || config_.action_delay_steps[1] > 0 || motor_.enabled;
-  if (draws_at_reset_) draws_.assign(num_envs_, Draw{});
+  if (draws_at_reset_) draws_.assign(num_envs_, RandomizationDraw{});
   if (motor_.enabled) {
     checkPerDof("motor_dead_zone", motor_.dead_zone, num_dofs_);
     checkPerDof("motor_trim", motor_.trim, num_dofs_);
@@ -101,16 +117,12 @@ void EnvRandomizer::reseed(int env, std::uint64_t seed) {
 // The order of the draws is documented in docs/core.md, "Domain randomisation": changing it changes
 // every randomised trajectory.
 void EnvRandomizer::resetEnv(int env, Rng& rng, EnvPhysics& world) {
-  Draw& d = draws_[env];
-  PhysicalDraw& p = d.physical;
-  p.mass_scale = drawIn(config_.mass_scale, rng);
-  p.wheel_friction = drawIn(config_.wheel_friction, rng);
-  p.drive_gain_scale = drawIn(config_.drive_gain_scale, rng);
-  p.effort_limit_scale = drawIn(config_.effort_limit_scale, rng);
-  p.wheel_radius_scale = drawIn(config_.wheel_radius_scale, rng);
-  p.initial_yaw = drawIn(config_.initial_yaw, rng);
-  p.initial_speed = drawIn(config_.initial_speed, rng);
-  d.delay = drawIn(config_.action_delay_steps, rng);
+  RandomizationDraw& p = draws_[env];
+  // Each scalar of the draw's field list from the configured range of its name, in that order.
+  visitFields(p, [&](const char* name, auto& value, const auto&, const char*) {
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_arithmetic_v<T>) value = drawIn(rangeNamed<T>(config_, name), rng);
+  });
   if (motor_.enabled) {
     for (int k = 0; k < num_dofs_; ++k) {
       const std::size_t i = static_cast<std::size_t>(env) * num_dofs_ + k;
@@ -142,7 +154,7 @@ void EnvRandomizer::shapeTargets(int env, float* t) {
                         high_[k]);
     }
   }
-  const int delay = draws_.empty() ? 0 : draws_[env].delay;
+  const int delay = draws_.empty() ? 0 : draws_[env].action_delay_steps;
   if (delay > 0) {
     // Slot (s mod capacity) holds the target of episode step s: read step s - delay's, then
     // write this one (the same slot when delay == capacity).
@@ -177,15 +189,7 @@ void EnvRandomizer::noiseObservation(int env, float* obs) {
 RandomizationDraw EnvRandomizer::values(int env) const {
   RandomizationDraw r;
   if (!draws_.empty()) {
-    const PhysicalDraw& p = draws_[env].physical;
-    r.mass_scale = p.mass_scale;
-    r.wheel_friction = p.wheel_friction;
-    r.drive_gain_scale = p.drive_gain_scale;
-    r.effort_limit_scale = p.effort_limit_scale;
-    r.wheel_radius_scale = p.wheel_radius_scale;
-    r.initial_yaw = p.initial_yaw;
-    r.initial_speed = p.initial_speed;
-    r.action_delay_steps = draws_[env].delay;
+    r = draws_[env];
   } else {
     r.wheel_friction = PhysicsModel::kWheelFriction;
   }

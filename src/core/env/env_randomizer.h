@@ -50,11 +50,6 @@ class EnvRandomizer {
   RandomizationDraw values(int env) const;
 
  private:
-  struct Draw {
-    PhysicalDraw physical;
-    int delay = 0;  // [control steps]
-  };
-
   int num_envs_, num_dofs_;
   RandomizationConfig config_;
   MotorModelConfig motor_;
@@ -65,7 +60,7 @@ class EnvRandomizer {
   double action_noise_std_;
   std::vector<double> obs_noise_std_;  // per component; empty: none
 
-  std::vector<Draw> draws_;               // per env, when drawsAtReset()
+  std::vector<RandomizationDraw> draws_;  // per env, when drawsAtReset() (motor values aside)
   std::vector<double> dead_zone_, trim_;  // per env and dof, when the motor draws
   std::vector<Rng> noise_;                // per env, when there is noise
   int delay_capacity_ = 0;                // largest delay [control steps]

@@ -76,7 +76,6 @@ double outward(const Obstacle& o, const Eigen::Vector2d& p, Eigen::Vector2d& nor
 MoverSet::MoverSet(const MoverConfig& config, const WorldModel& world, int num_envs,
                    std::uint64_t seed)
     : config_(config), world_(world), bodies_(num_envs), state_(num_envs), near_(num_envs) {
-  validateConfig(config_);
   const char* field = config_.num_people > 0 ? "movers/num_people" : "movers/num_carts";
   const int n = config_.count();
   if (!config_.region.empty()) {

@@ -28,7 +28,6 @@ void checkFieldRules(const ScannerConfig& c) {
 
 std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const RobotModel& robot,
                                           double control_dt) {
-  validateConfig(config);
   if (!config.enabled) return std::nullopt;
   const auto& ray = robot.gazebo().ray;
   ScannerSpec spec;

@@ -23,7 +23,41 @@ double yawOf(const RootState& state) {
   return std::atan2(forward.y(), forward.x());
 }
 
+/// ConfigError unless `spec` holds scan beams and a range for them.
+void checkScan(const ObserverSpec& spec) {
+  if (spec.scan_beam_angles.empty() || spec.scan_range.size() != 2 ||
+      !(spec.scan_range[0] >= 0.0 && spec.scan_range[0] < spec.scan_range[1])) {
+    throw ConfigError("the navigation task observes " +
+                      std::to_string(spec.scan_beam_angles.size()) + " scan beams over " +
+                      listText(spec.scan_range) +
+                      " m: it needs at least one beam (scan_beam_angles) and scan_range "
+                      "[range_min, range_max] with 0 <= range_min < range_max");
+  }
+}
+
+double checkedRange(const ObserverSpec& spec, std::size_t i) {
+  checkScan(spec);
+  return spec.scan_range[i];
+}
+
 }  // namespace
+
+void takeObservationContract(const ObserverSpec& spec, NavigationConfig& config) {
+  config.beams = static_cast<int>(spec.scan_beam_angles.size());
+  config.log_beams = spec.log_beams;
+  config.goal_radius = spec.goal_radius;
+  config.path = spec.path_lookahead > 0.0;
+  if (config.path) {
+    config.path_lookahead = spec.path_lookahead;
+    config.path_clearance = spec.path_clearance;
+    config.path_clearance_cost = spec.path_clearance_cost;
+  }
+}
+
+NavigationObserver::NavigationObserver(const ObserverSpec& spec, int action_dim)
+    : NavigationObserver(static_cast<int>(spec.scan_beam_angles.size()), checkedRange(spec, 0),
+                         checkedRange(spec, 1), action_dim, spec.goal_radius,
+                         spec.path_lookahead > 0.0, spec.log_beams) {}
 
 NavigationObserver::NavigationObserver(int beams, double range_min, double range_max,
                                        int action_dim, double goal_radius, bool path,
@@ -102,24 +136,13 @@ void NavigationObserver::observe(const MeasuredState& state, float* obs) const {
   for (int a = 0; a < action_dim_; ++a) obs[k++] = state.last_action ? state.last_action[a] : 0.0f;
 }
 
-bool NavigationObserver::observesPath(const std::vector<std::string>& observation_names) {
-  return std::find(observation_names.begin(), observation_names.end(), kPathNames[0]) !=
-         observation_names.end();
-}
-
-bool NavigationObserver::observesLogBeams(const std::vector<std::string>& observation_names) {
-  return !observation_names.empty() && observation_names.front() == "beam_log_0";
-}
-
 bool NavigationObserver::reached(const MeasuredState& state) const {
   return (state.goal - state.root.position.head<2>()).norm() < goal_radius_;
 }
 
 // Until attach() gives the scanner and the action size: a range of [0, 1] m and two actions.
 NavigationTask::NavigationTask(const NavigationConfig& config, Variant variant)
-    : config_(config), variant_(variant), observer_(config.beams, 0.0, 1.0, 2, config.goal_radius) {
-  validateConfig(config_);
-}
+    : config_(config), variant_(variant), observer_(config.beams, 0.0, 1.0, 2, config.goal_radius) {}
 
 void NavigationTask::attach(const TaskContext& context) {
   context_ = context;
@@ -146,10 +169,10 @@ void NavigationTask::attach(const TaskContext& context) {
   beam_width_ = scanner.samples > 1
                     ? scan_increment_ * static_cast<double>(scanner.samples) / config_.beams
                     : 0.0;
-  observer_ =
-      NavigationObserver(config_.beams, context.scanner->range_min, context.scanner->range_max,
-                         context.action_dim > 0 ? context.action_dim : 2, config_.goal_radius,
-                         config_.path, config_.log_beams);
+  // The observer of the contract the task writes: the one a robot elsewhere builds from it.
+  ObserverSpec spec;
+  describeObservation(spec);
+  observer_ = NavigationObserver(spec, context.action_dim > 0 ? context.action_dim : 2);
   if (config_.path && !context.world) {
     throwInvalid("nav/path", "true",
                  "plans on the env's world: give it one (world/arena_size, world/map or "
@@ -162,7 +185,18 @@ std::vector<std::string> NavigationTask::arrowNames() const {
   return {"goal"};
 }
 
-std::vector<double> NavigationTask::scanBeamAngles() const { return beam_angles_; }
+void NavigationTask::describeObservation(ObserverSpec& spec) const {
+  spec.scan_beam_angles = beam_angles_;
+  spec.scan_beam_width = beam_width_;
+  spec.scan_range.clear();
+  if (context_.scanner)
+    spec.scan_range = {context_.scanner->range_min, context_.scanner->range_max};
+  spec.log_beams = config_.log_beams;
+  spec.goal_radius = config_.goal_radius;
+  spec.path_lookahead = config_.path ? config_.path_lookahead : 0.0;
+  spec.path_clearance = config_.path ? config_.path_clearance : 0.0;
+  spec.path_clearance_cost = config_.path ? config_.path_clearance_cost : 0.0;
+}
 
 void NavigationTask::resize(int num_envs) {
   goals_.assign(num_envs, Eigen::Vector2d(config_.goal_distance[0], 0.0));

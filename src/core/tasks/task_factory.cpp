@@ -51,24 +51,13 @@ std::unique_ptr<Task> makeTask(const TaskConfig& config) {
   return std::make_unique<VelocityTask>();
 }
 
-bool observesScan(const std::string& task) {
-  return parseEnum<TaskKind>("task", task) == TaskKind::kNavigation;
-}
-
-std::unique_ptr<TaskObserver> makeObserver(const ObserverSpec& spec) {
-  switch (parseEnum<TaskKind>("task", spec.task)) {
+std::unique_ptr<TaskObserver> makeObserver(const std::string& task, int action_dim,
+                                           const ObserverSpec& observer) {
+  switch (parseEnum<TaskKind>("task", task)) {
     case TaskKind::kCommand:
       return std::make_unique<CommandObserver>();
     case TaskKind::kNavigation:
-      if (spec.scan_beams < 1 || !(spec.range_min >= 0.0 && spec.range_min < spec.range_max)) {
-        throw ConfigError("the navigation task observes " + std::to_string(spec.scan_beams) +
-                          " scan beams over [" + std::to_string(spec.range_min) + ", " +
-                          std::to_string(spec.range_max) +
-                          "] m: it needs at least one beam and range_min < range_max");
-      }
-      return std::make_unique<NavigationObserver>(spec.scan_beams, spec.range_min, spec.range_max,
-                                                  spec.action_dim, spec.goal_radius, spec.path,
-                                                  spec.log_beams);
+      return std::make_unique<NavigationObserver>(observer, action_dim);
     case TaskKind::kVelocity:
       break;
   }

@@ -124,7 +124,6 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
 
 WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const OccupancyMap* loaded)
     : config_(config), robot_radius_(robot_radius) {
-  validateConfig(config_);
   if (loaded) {
     map_ = *loaded;
   } else if (!config_.map.empty()) {

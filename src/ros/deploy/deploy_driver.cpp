@@ -11,8 +11,6 @@
 #include "jetbot_rl/ros/common/private_topic.h"
 #include "jetbot_rl/ros/common/publication_flush.h"
 #include "jetbot_rl/tasks/command_task.h"
-#include "jetbot_rl/tasks/navigation_task.h"
-#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {
@@ -43,31 +41,18 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
   }
   PolicyRun run;
   run.control_rate = 1.0 / spec.control_dt;
-  run.path_lookahead = spec.path_lookahead;
+  run.path_lookahead = spec.observer.path_lookahead;
   run.twist = actsByTwist(spec);
   run.action_high.assign(spec.action_high.begin(), spec.action_high.end());
   run.checkpoint = checkpoint;
   return run;
 }
 
-std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
-                                         double goal_radius, const std::string& checkpoint) {
-  ObserverSpec o;
-  o.path = NavigationObserver::observesPath(trained.observation_names);
-  o.log_beams = NavigationObserver::observesLogBeams(trained.observation_names);
-  if (o.path && !(trained.path_lookahead > 0.0)) {
-    throw ConfigError("the policy of " + checkpoint +
-                      " follows a global path, but its checkpoint does not hold the look-ahead "
-                      "it was trained with (path_lookahead; written before checkpoints held it): "
-                      "resume it for one iteration to save it again");
-  }
-  o.task = trained.task;
-  o.action_dim = trained.action_dim;
-  o.scan_beams = static_cast<int>(beams.angles.size());
-  o.range_min = beams.range_min;
-  o.range_max = beams.range_max;
-  o.goal_radius = goal_radius;
-  std::unique_ptr<TaskObserver> observer = makeObserver(o);
+std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_radius,
+                                         const std::string& checkpoint) {
+  BatchSpec spec = trained;
+  spec.observer.goal_radius = goal_radius;
+  std::unique_ptr<TaskObserver> observer = makeObserver(spec);
   const std::vector<std::string> names = observer->observationNames();
   if (names != trained.observation_names) {
     throw ConfigError("the " + trained.task + " task observes " + listText(names) +
@@ -80,7 +65,7 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBea
 DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                            const TaskObserver& observer, const DeployParams& p,
                            const PolicyRun& run, const ScanBeams& beams,
-                           const std::optional<DiffDrive>& kinematics, double footprint_radius)
+                           const std::optional<DiffDrive>& kinematics)
     : policy_(policy),
       observer_(observer),
       run_(run),
@@ -109,7 +94,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
   }
   if (observer.hasGoal()) {
     pursuit_ = std::make_unique<GoalPursuit>(
-        nh, pnh, p.pursuit, p.server, run.path_lookahead, footprint_radius,
+        nh, pnh, p.pursuit, p.server, run.path_lookahead, p.pursuit.footprint_radius,
         [this] { return odom_.latest() ? odom_.latest()->header.frame_id : std::string(); },
         [this] { policy_.resetMemory(); },  // each goal is an episode
         [this] {                            // a cancel stops the robot at once

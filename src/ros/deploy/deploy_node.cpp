@@ -12,13 +12,12 @@
 #include "jetbot_rl/ros/common/robot_description.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
 #include "jetbot_rl/ros/deploy/deploy_driver.h"
-#include "jetbot_rl/ros/deploy/goal_pursuit.h"
-#include "jetbot_rl/tasks/task_factory.h"
 
 namespace jetbot_rl {
 namespace {
 
-/// Wheel targets -> Twist kinematics: the parameters; one given as 0 from robot_description.
+/// Wheel targets -> Twist kinematics: the parameters (the checkpoint's where not given); where
+/// neither has them, robot_description's.
 /// `limits`: the policy's wheel velocity bounds [rad/s].
 DiffDrive makeKinematics(const ros::NodeHandle& nh, const DriverParams& p,
                          const std::vector<double>& limits) {
@@ -28,7 +27,8 @@ DiffDrive makeKinematics(const ros::NodeHandle& nh, const DriverParams& p,
   }
   if (!nh.hasParam("robot_description")) {
     throwInvalid(p.wheel_radius > 0.0 ? "wheel_separation" : "wheel_radius", 0.0,
-                 "0 takes it from robot_description, which is not set");
+                 "0 takes the checkpoint's, which has none (its robot is no differential "
+                 "drive), else robot_description's, which is not set");
   }
   return DiffDrive::fromRobot(*loadRobotDescription(nh), p.dof_names, limits, p.wheel_radius,
                               p.wheel_separation);
@@ -53,42 +53,31 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     }
   });
   if (!params) return 1;
-  const DriverParams& driver_params = params->driver;
+  DeployParams p = *params;
+  const std::string& checkpoint = p.driver.checkpoint;
   std::unique_ptr<ppo::Policy> policy;
   try {
-    policy = std::make_unique<ppo::Policy>(driver_params.checkpoint);
+    policy = std::make_unique<ppo::Policy>(checkpoint);
+    ppo::requireObservationContract(policy->meta(), checkpoint);
   } catch (const Error& e) {
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
   }
+  const BatchSpec& trained = policy->meta().spec;
   std::unique_ptr<TaskObserver> observer;
   PolicyRun run;
-  ScanBeams beams;
   std::optional<DiffDrive> kinematics;
-  double footprint_radius = params->pursuit.footprint_radius;
   try {
-    run = policyRunOf(*policy, driver_params.checkpoint);
-    if (observesScan(policy->meta().spec.task)) {
-      beams = scanBeamsOf(policy->meta().spec, driver_params, driver_params.checkpoint);
+    if (!p.driver.task.empty() && p.driver.task != trained.task) {
+      throwInvalid("task", "'" + p.driver.task + "'",
+                   "the checkpoint was trained on task '" + trained.task + "'");
     }
-    const std::string& trained_task = policy->meta().spec.task;
-    if (!driver_params.task.empty() && driver_params.task != trained_task) {
-      throwInvalid("task", "'" + driver_params.task + "'",
-                   "the checkpoint was trained on task '" + trained_task + "'");
+    for (const std::string& line : takeTrainedSettings(p, trained.observer)) {
+      ROS_WARN("%s: %s", pnh.getNamespace().c_str(), line.c_str());
     }
-    observer = observerOf(policy->meta().spec, beams, params->pursuit.xy_goal_tolerance,
-                          driver_params.checkpoint);
-    if (!run.twist) kinematics = makeKinematics(nh, driver_params, run.action_high);
-    const bool plans =
-        observer->hasGoal() && GoalPursuit::plansPaths(params->pursuit, run.path_lookahead);
-    if (plans && footprint_radius == 0.0) {
-      if (!nh.hasParam("robot_description")) {
-        throwInvalid("footprint_radius", 0.0,
-                     "0 takes it from robot_description, which is not set (paths on the map are "
-                     "planned for the robot's footprint)");
-      }
-      footprint_radius = loadRobotDescription(nh)->footprintRadius();
-    }
+    run = policyRunOf(*policy, checkpoint);
+    observer = observerOf(trained, p.pursuit.xy_goal_tolerance, checkpoint);
+    if (!run.twist) kinematics = makeKinematics(nh, p.driver, run.action_high);
   } catch (const ConfigError& e) {
     logParamError(pnh, e);
     return 1;
@@ -96,12 +85,19 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
   }
+  ROS_INFO(
+      "%s: the trained robot's settings in use: xy_goal_tolerance %g m, footprint_radius %g "
+      "m, path_clearance %g m, path_clearance_cost %g, wheel_radius %g m, wheel_separation "
+      "%g m",
+      pnh.getNamespace().c_str(), p.pursuit.xy_goal_tolerance, p.pursuit.footprint_radius,
+      p.pursuit.path_clearance, p.pursuit.path_clearance_cost, p.driver.wheel_radius,
+      p.driver.wheel_separation);
   ROS_INFO("policy from iteration %lld (%lld env steps) of task %s",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().spec.task.c_str());
   try {
-    DeployDriver driver(nh, pnh, *policy, *observer, *params, run, beams, kinematics,
-                        footprint_radius);
+    DeployDriver driver(nh, pnh, *policy, *observer, p, run, scanBeamsOf(trained.observer),
+                        kinematics);
     ros::AsyncSpinner spinner(1);
     spinner.start();
     waitForStop(stop);

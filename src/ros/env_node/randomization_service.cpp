@@ -4,9 +4,26 @@
 #include <vector>
 
 #include "jetbot_rl/ros/common/bounded_service.h"
+#include "jetbot_rl/ros/common/msg_fields.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
 
 namespace jetbot_rl {
+
+void appendDraw(const RandomizationDraw& draw, EnvRandomization& msg) {
+  // Field by field, by name: the draw's field list and the message's per-env arrays.
+  visitFields(draw, [&msg](const char* name, const auto& value, const auto&, const char*) {
+    bool found = false;
+    visitMsgFields(msg, [&](const std::string& field, auto& to) {
+      if (field != name) return;
+      appendField(field, to, value);
+      found = true;
+    });
+    if (!found) {
+      throw Error(std::string("EnvRandomization.msg has no field ") + name +
+                  " (RandomizationDraw has)");
+    }
+  });
+}
 
 void answerGetRandomization(const BatchedEnv& env, const GetRandomization::Request& req,
                             GetRandomization::Response& res) {
@@ -34,18 +51,8 @@ void answerGetRandomization(const BatchedEnv& env, const GetRandomization::Reque
   msg.num_dofs = 0;
   for (std::uint32_t id : ids) {
     const RandomizationDraw r = env.view(static_cast<int>(id)).randomization();
-    msg.mass_scale.push_back(r.mass_scale);
-    msg.wheel_friction.push_back(r.wheel_friction);
-    msg.drive_gain_scale.push_back(r.drive_gain_scale);
-    msg.effort_limit_scale.push_back(r.effort_limit_scale);
-    msg.wheel_radius_scale.push_back(r.wheel_radius_scale);
-    msg.initial_yaw.push_back(r.initial_yaw);
-    msg.initial_speed.push_back(r.initial_speed);
-    msg.action_delay_steps.push_back(static_cast<std::uint32_t>(r.action_delay_steps));
+    appendDraw(r, msg);
     msg.num_dofs = static_cast<std::uint32_t>(r.motor_trim.size());
-    msg.motor_dead_zone.insert(msg.motor_dead_zone.end(), r.motor_dead_zone.begin(),
-                               r.motor_dead_zone.end());
-    msg.motor_trim.insert(msg.motor_trim.end(), r.motor_trim.begin(), r.motor_trim.end());
   }
   res.success = true;
 }

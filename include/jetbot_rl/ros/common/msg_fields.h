@@ -75,4 +75,24 @@ void assignField(const std::string& name, To& to, const From& from) {
   throw Error("field " + name + ": the message's type and the struct's do not fit");
 }
 
+/// Appends `from` to the per-env array `to` where a message field and a struct field of one name
+/// meet: a number to a list of numbers (of any width), a list to a list (concatenated). Error
+/// naming `name` for types that cannot meet.
+template <class To, class From>
+void appendField(const std::string& name, To& to, const From& from) {
+  if constexpr (detail::IsVector<To>::value) {
+    using T = typename To::value_type;
+    if constexpr (std::is_arithmetic_v<T> && std::is_arithmetic_v<From>) {
+      to.push_back(static_cast<T>(from));
+      return;
+    } else if constexpr (detail::IsVector<From>::value) {
+      if constexpr (std::is_arithmetic_v<T> && std::is_arithmetic_v<typename From::value_type>) {
+        to.insert(to.end(), from.begin(), from.end());
+        return;
+      }
+    }
+  }
+  throw Error("field " + name + ": the message's type and the struct's do not fit");
+}
+
 }  // namespace jetbot_rl

@@ -40,13 +40,12 @@ struct PolicyRun {
 /// its env's spec (format 1).
 PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint);
 
-/// The observer of the task `trained` (a checkpoint's env spec) was trained on, with the policy's
-/// `beams` (none for a task without a scan) and goal test within `goal_radius` [m], and a global
-/// path when the policy observes one: the same code the simulated task observes with.
-/// ConfigError when its observation's names are not the ones the policy of `checkpoint` was
-/// trained on.
-std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBeams& beams,
-                                         double goal_radius, const std::string& checkpoint);
+/// The observer of the policy trained on `trained` (a checkpoint's env spec: its observation
+/// contract) with its goal test within `goal_radius` [m]: makeObserver(), the same code the
+/// simulated task observes with. ConfigError when its observation's names are not the ones the
+/// policy of `checkpoint` was trained on.
+std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_radius,
+                                         const std::string& checkpoint);
 
 /**
  * The deploy node's driver, one for every task: the robot's inputs the task's observer needs
@@ -62,13 +61,12 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, const ScanBea
  */
 class DeployDriver {
  public:
-  /// `beams`: the policy's scan beams (a task that observes a scan); `kinematics`: wheel targets
-  /// -> Twist for a policy with wheel actions; `footprint_radius` [m]: a policy that follows a
-  /// path plans for it.
+  /// `p`: with the checkpoint's settings taken (takeTrainedSettings()); `beams`: the policy's
+  /// scan beams (a task that observes a scan); `kinematics`: wheel targets -> Twist for a policy
+  /// with wheel actions.
   DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                const TaskObserver& observer, const DeployParams& p, const PolicyRun& run,
-               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics,
-               double footprint_radius = 0.0);
+               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics);
   /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
   void stop();
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/tasks/observer_spec.h"
 
 namespace jetbot_rl {
 
@@ -17,20 +18,15 @@ struct DriverParams {
   std::string command_topic = "~command";         ///< geometry_msgs/Vector3: command task's (x, y).
   double odom_timeout = 0.5;                      ///< Older odometry stops the robot [s, wall].
   /// Wheel radius [m] for wheel targets -> Twist: the driver's, which turns the Twist back into
-  /// wheel speeds (stock Jetbot: 0.0603 m wheels); 0: from robot_description.
-  double wheel_radius = 0.0603 / 2;
-  /// Wheel separation [m], the driver's (stock Jetbot: 0.1016); 0: from robot_description.
-  double wheel_separation = 0.1016;
+  /// wheel speeds (stock Jetbot: 0.0603 m wheels); 0: the checkpoint's (the trained robot's),
+  /// robot_description's where it has none.
+  double wheel_radius = 0.0;
+  /// Wheel separation [m], the driver's (stock Jetbot: 0.1016); 0: as wheel_radius.
+  double wheel_separation = 0.0;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
   std::string scan_topic = "scan";  ///< sensor_msgs/LaserScan of the robot.
   double scan_timeout = 0.5;        ///< An older scan stops the robot [s, wall].
-  /// The policy's beams, only for a checkpoint written before checkpoints held them: their
-  /// number (0: the checkpoint's), [first, last] angle [rad] in the scanner's frame and the
-  /// trained scanner's [range_min, range_max] [m]; given with a newer checkpoint they must agree.
-  int scan_beams = 0;
-  std::vector<double> scan_angles;
-  std::vector<double> scan_range;
 };
 
 /// The move_base action server's parameters (MoveBaseServer).
@@ -43,7 +39,8 @@ struct MoveBaseServerParams {
 /// A goal's pursuit's parameters (GoalPursuit, its MapInput and PathFollower): tolerances,
 /// recoveries, the map and the paths planned on it.
 struct GoalPursuitParams {
-  double xy_goal_tolerance = 0.2;    ///< A goal is reached within this of the robot's origin [m].
+  /// A goal is reached within this of the robot's origin [m]; 0: the checkpoint's goal_radius.
+  double xy_goal_tolerance = 0.0;
   double yaw_goal_tolerance = 0.1;   ///< ... then turned to within this of its heading [rad].
   double turn_speed = 3.0;           ///< A turn in place's top rate [rad/s].
   double goal_timeout = 120.0;       ///< A goal not reached by then is ABORTED [s, wall]; 0: never.
@@ -56,9 +53,10 @@ struct GoalPursuitParams {
   double carrot_distance = 0.6;  ///< With a map, a policy without a path: its goal this far along.
   std::string map_topic;  ///< nav_msgs/OccupancyGrid: goals off its free cells refused; "": none.
   // ---- a policy that follows a global path (trained with nav/path) ----
-  double footprint_radius = 0.0;      ///< The robot's footprint [m]; 0: robot_description's.
-  double path_clearance = 0.3;        ///< Paths keep this beyond the footprint where there is room.
-  double path_clearance_cost = 2.0;   ///< A cell at the footprint's cost beyond its length.
+  // The next three: 0 (footprint), < 0 (clearances): the checkpoint's.
+  double footprint_radius = 0.0;      ///< The robot's footprint [m].
+  double path_clearance = -1.0;       ///< Paths keep this beyond the footprint where there is room.
+  double path_clearance_cost = -1.0;  ///< A cell at the footprint's cost beyond its length.
   double path_replan_distance = 0.5;  ///< Farther from the path re-plans [m].
   double path_blocked_distance = 1.0;  ///< The path ahead checked against the scan [m]; 0: off.
   double path_replan_period = 1.0;     ///< At most one re-plan per this [s, wall].
@@ -68,9 +66,10 @@ struct GoalPursuitParams {
 /// scan and goals for navigation, in; cmd_vel out). Defaults suit the stock Jetbot's ROS 2 driver
 /// (dusty-nv/jetbot_ros). What the policy was trained with (task, control rate, action bounds,
 /// whether the actions are wheel targets or a twist, the observed scan beams) comes from the
-/// checkpoint; these are the robot's side only (no simulation parameter, no reward). Grouped by
-/// the component that takes them; one flat list of parameters (visitFields), read, validated and
-/// echoed once at start-up.
+/// checkpoint, and so do the trained robot's geometry, goal radius and path clearance unless given
+/// (takeTrainedSettings()); these are the robot's side only (no simulation parameter, no reward).
+/// Grouped by the component that takes them; one flat list of parameters (visitFields), read,
+/// validated and echoed once at start-up.
 struct DeployParams {
   DriverParams driver;          ///< The driver's.
   MoveBaseServerParams server;  ///< The move_base action's (a task with a goal).
@@ -89,10 +88,14 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
   v("command_topic", c.driver.command_topic, AnyValue{},
     "Command task: geometry_msgs/Vector3, the command (x, y) in the odometry frame.");
   v("odom_timeout", c.driver.odom_timeout, positive("s, wall"), "Older odometry stops the robot.");
-  v("wheel_radius", c.driver.wheel_radius, atLeast(0.0, "m", "0: from robot_description"),
-    "Wheel radius for wheel targets -> Twist: the driver's (stock Jetbot: 0.0603 m wheels).");
-  v("wheel_separation", c.driver.wheel_separation, atLeast(0.0, "m", "0: from robot_description"),
-    "Wheel separation for wheel targets -> Twist: the driver's (stock Jetbot: 0.1016 m).");
+  v("wheel_radius", c.driver.wheel_radius, atLeast(0.0, "m", "0: the checkpoint's"),
+    "Wheel radius for wheel targets -> Twist: the robot driver's, which turns the Twist back into "
+    "wheel speeds (stock Jetbot: 0.03015 m). 0: the trained robot's (the checkpoint's "
+    "wheel_radius), or robot_description's where the checkpoint has none; given, it overrides "
+    "the checkpoint's with a warning naming both.");
+  v("wheel_separation", c.driver.wheel_separation, atLeast(0.0, "m", "0: the checkpoint's"),
+    "Wheel separation for wheel targets -> Twist: the robot driver's (stock Jetbot: 0.1016 m); "
+    "0: as wheel_radius.");
   v("dof_names", c.driver.dof_names, NameList{},
     "The two wheel joints in the policy's action order (used with robot_description).");
   v("scan_topic", c.driver.scan_topic, AnyValue{},
@@ -107,9 +110,11 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
   v("action_name", c.server.action_name, AnyValue{},
     "Navigation: the move_base_msgs/MoveBaseAction server's name (actionlib), resolved in the "
     "node's namespace as move_base's is.");
-  v("xy_goal_tolerance", c.pursuit.xy_goal_tolerance, positiveUpTo(100.0, "m"),
+  v("xy_goal_tolerance", c.pursuit.xy_goal_tolerance,
+    inRange(0.0, 100.0, "m", "0: the checkpoint's goal_radius"),
     "Navigation: a goal is reached within this of the robot's odometry origin (move_base's local "
-    "planners' name; the task's goal test).");
+    "planners' name; the task's goal test). 0: the radius the policy was trained with; given, it "
+    "overrides it with a warning naming both.");
   v("yaw_goal_tolerance", c.pursuit.yaw_goal_tolerance,
     Range<double>{0.0, 7.0, true, false, "rad", ">= pi: any heading"},
     "Navigation: once within xy_goal_tolerance the robot turns in place to the goal's heading "
@@ -140,31 +145,21 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
   v("carrot_distance", c.pursuit.carrot_distance, atLeast(0.0, "m", "0: the goal itself"),
     "Navigation with a map, a policy that observes no path: a path is planned and the policy's "
     "goal is the point this far along it (a carrot), so that goals behind walls are reached.");
-  v("scan_beams", c.driver.scan_beams, inRange(0, 100000, "", "0: the checkpoint's"),
-    "Navigation: the policy's beam count; only a checkpoint written before checkpoints held "
-    "their beams needs it (with scan_angles and scan_range; given, it must agree).");
-  v("scan_angles", c.driver.scan_angles,
-    EachValue<double>{Range<double>{-10.0, 10.0, false, false, "rad"}},
-    "Navigation: [first, last] angle in the scanner's frame of the beams the robot's scan is "
-    "resampled to. Empty: the checkpoint's (given, it must agree with them); only a checkpoint "
-    "written before checkpoints held their beams needs it, with scan_beams evenly spread.");
-  v("scan_range", c.driver.scan_range,
-    EachValue<double>{Range<double>{0.0, 1000.0, false, false, "m"}},
-    "Navigation: [range_min, range_max] readings are clamped into and divided by the max of. "
-    "Empty: the checkpoint's (likewise).");
   v("map_topic", c.pursuit.map_topic, AnyValue{"", "empty: none"},
     "Navigation: nav_msgs/OccupancyGrid (map_server's /map), looked up in its header's frame "
     "through tf2; a goal off its free cells is refused. A policy that follows a path plans on it "
     "(required then).");
-  v("footprint_radius", c.pursuit.footprint_radius, atLeast(0.0, "m", "0: robot_description's"),
-    "Path: the robot's footprint radius the map is inflated by; 0: robot_description's, as "
-    "training takes it.");
-  v("path_clearance", c.pursuit.path_clearance, atLeast(0.0, "m"),
-    "Path: the clearance beyond the footprint a path keeps where there is room (the training's "
-    "nav/path_clearance).");
-  v("path_clearance_cost", c.pursuit.path_clearance_cost, atLeast(0.0),
-    "Path: what a cell at the footprint costs beyond its length, per cell length (the training's "
-    "nav/path_clearance_cost).");
+  v("footprint_radius", c.pursuit.footprint_radius, atLeast(0.0, "m", "0: the checkpoint's"),
+    "Path: the robot's footprint radius the map is inflated by. 0: the trained robot's (the "
+    "checkpoint's footprint_radius); given, it overrides it with a warning naming both.");
+  v("path_clearance", c.pursuit.path_clearance, atLeast(-1.0, "m", "< 0: the checkpoint's"),
+    "Path: the clearance beyond the footprint a path keeps where there is room. Negative: the "
+    "training's (the checkpoint's path_clearance, nav/path_clearance); given, it overrides it "
+    "with a warning naming both.");
+  v("path_clearance_cost", c.pursuit.path_clearance_cost,
+    atLeast(-1.0, "", "< 0: the checkpoint's"),
+    "Path: what a cell at the footprint costs beyond its length, per cell length. Negative: the "
+    "training's (nav/path_clearance_cost); given, it overrides it with a warning.");
   v("path_replan_distance", c.pursuit.path_replan_distance, positiveUpTo(100.0, "m"),
     "Path: the robot farther than this from the path re-plans from where it is.");
   v("path_blocked_distance", c.pursuit.path_blocked_distance, atLeast(0.0, "m", "0: off"),
@@ -174,7 +169,13 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "Path: at most one re-plan per this.");
 }
 
-/// checkpoint given; dof_names two wheel joints; scan_angles and scan_range none or two values.
+/// checkpoint given; dof_names two wheel joints.
 void checkFieldRules(const DeployParams& params);
+
+/// The settings of `params` that training knew and that are left unset (wheel geometry,
+/// footprint, goal tolerance, path clearance and cost) take the checkpoint's observation contract
+/// `trained`; one given anyway is kept, and for each that differs from the checkpoint's a line
+/// "PARAM = GIVEN overrides the checkpoint's FIELD = VALUE" is returned (the node warns of it).
+std::vector<std::string> takeTrainedSettings(DeployParams& params, const ObserverSpec& trained);
 
 }  // namespace jetbot_rl

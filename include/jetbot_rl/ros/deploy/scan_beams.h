@@ -5,8 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/env/step_result.h"
-#include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/tasks/observer_spec.h"
 
 namespace jetbot_rl {
 
@@ -18,12 +17,9 @@ struct ScanBeams {
   double width = 0.0;          ///< Each beam's sector [rad] (readBeams()); 0: the nearest sample.
 };
 
-/// The beams of the policy trained on `trained` (its checkpoint's env spec); scan_beams,
-/// scan_angles and scan_range, when given, must agree with them. A checkpoint written before it
-/// held its beams takes them from those parameters (scan_beams evenly spread over scan_angles),
-/// which it then needs. ConfigError naming the parameter and both values.
-ScanBeams scanBeamsOf(const BatchSpec& trained, const DriverParams& p,
-                      const std::string& checkpoint);
+/// The beams of a policy's observation contract (its checkpoint's spec.observer); none when it
+/// observes no scan.
+ScanBeams scanBeamsOf(const ObserverSpec& trained);
 
 /// The readings of `scan` at the policy's `beams` into `ranges`, as the simulated task reads its
 /// own scan (readBeams(), scan_reading.h: each beam the smallest reading of its sector, REP 117

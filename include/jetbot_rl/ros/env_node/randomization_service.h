@@ -14,6 +14,10 @@ namespace jetbot_rl {
 /// Answers a ~get_randomization request from `env`: the values each listed env (all when none
 /// are listed) drew at its last reset, stamped with the simulation time of the current state. An
 /// unknown or repeated id: success false with the reason, and no values.
+/// Appends one env's draw to `msg`'s per-env arrays, each field to the array of its name (the
+/// motor values num_dofs at a time); Error naming a field the message lacks.
+void appendDraw(const RandomizationDraw& draw, EnvRandomization& msg);
+
 void answerGetRandomization(const BatchedEnv& env, const GetRandomization::Request& req,
                             GetRandomization::Response& res);
 

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <vector>
+
+#include "jetbot_rl/config/config_fields.h"
+
+namespace jetbot_rl {
+
+/**
+ * The observation contract: what a policy's observation is made of beyond its names, so that a
+ * robot elsewhere builds the observer the policy was trained with (makeObserver(), task_factory.h)
+ * and drives the way training did, from the checkpoint alone. Nested in BatchSpec (EnvSpec.msg and
+ * the checkpoint carry it); each task writes its part (Task::describeObservation), the env the
+ * scanner's range and the robot's geometry. A sensor joins with its own terms (a camera: its
+ * image size, field of view and pose), 0 or empty where the task does not observe it.
+ */
+struct ObserverSpec {
+  /// The scan beams observed, in the scanner's frame, in observation order [rad]; empty: no scan.
+  std::vector<double> scan_beam_angles;
+  double scan_beam_width = 0.0;      ///< Each beam's sector [rad]; 0: the nearest sample.
+  std::vector<double> scan_range;    ///< [range_min, range_max] beams are clamped into [m].
+  bool log_beams = false;            ///< Beams on a log scale of range (nav/log_beams).
+  double goal_radius = 0.0;          ///< A goal is reached within this [m]; 0: no goal.
+  double path_lookahead = 0.0;       ///< A global path's observed point along it [m]; 0: no path.
+  double path_clearance = 0.0;       ///< Paths keep this beyond the footprint where there is room.
+  double path_clearance_cost = 0.0;  ///< A cell at the footprint's cost beyond its length.
+  double wheel_radius = 0.0;         ///< The cmd_vel kinematics [m]; 0: no differential drive.
+  double wheel_separation = 0.0;     ///< The cmd_vel kinematics [m]; 0: no differential drive.
+  double footprint_radius = 0.0;     ///< The robot's footprint, paths are planned for [m].
+};
+
+/// The fields that make the observation itself (a policy is bound to them, as to its names).
+template <typename C, typename V>
+IfConfig<C, ObserverSpec> visitObservationFields(C& c, V&& v) {
+  v("scan_beam_angles", c.scan_beam_angles, AnyValue{"rad"},
+    "The scan beams the observation holds, in the scanner's frame (empty: no scan observed).");
+  v("scan_range", c.scan_range, AnyValue{"m"},
+    "The scanner's [range_min, range_max] the beams are clamped into and divided by the max of.");
+  v("scan_beam_width", c.scan_beam_width, AnyValue{"rad"},
+    "Each beam's sector: the beam is the smallest reading in [angle, angle + width); 0: the "
+    "sample nearest to its angle.");
+  v("log_beams", c.log_beams, AnyValue{},
+    "The beams are observed on a log scale of range (nav/log_beams), not as range / range_max.");
+  v("path_lookahead", c.path_lookahead, AnyValue{"m"},
+    "A task that observes a global path (nav/path): the observed point's distance along it past "
+    "the robot (nav/path_lookahead); 0: no path observed.");
+}
+
+/// The fields of how goals end and of the robot the policy was trained on (a robot elsewhere
+/// takes them unless its parameters say otherwise).
+template <typename C, typename V>
+IfConfig<C, ObserverSpec> visitGoalAndRobotFields(C& c, V&& v) {
+  v("goal_radius", c.goal_radius, AnyValue{"m"},
+    "A task with goals: a goal is reached within this of the root link origin (nav/goal_radius); "
+    "0: no goal.");
+  v("path_clearance", c.path_clearance, AnyValue{"m"},
+    "A task that follows a path: the clearance beyond the footprint its paths keep where there "
+    "is room (nav/path_clearance).");
+  v("path_clearance_cost", c.path_clearance_cost, AnyValue{},
+    "A task that follows a path: what a cell at the footprint costs beyond its length, per cell "
+    "length (nav/path_clearance_cost).");
+  v("wheel_radius", c.wheel_radius, AnyValue{"m"},
+    "The cmd_vel kinematics' wheel radius; 0: the robot is no differential drive.");
+  v("wheel_separation", c.wheel_separation, AnyValue{"m"},
+    "The cmd_vel kinematics' wheel separation; 0: the robot is no differential drive.");
+  v("footprint_radius", c.footprint_radius, AnyValue{"m"},
+    "The robot's footprint radius (its collision shapes' extent about the root link origin), "
+    "which paths are planned for.");
+}
+
+/// Every field: the observation's, then the goals' and the robot's.
+template <typename C, typename V>
+IfConfig<C, ObserverSpec> visitFields(C& c, V&& v) {
+  visitObservationFields(c, v);
+  visitGoalAndRobotFields(c, v);
+}
+
+/// scan_range is [range_min, range_max] with 0 <= min < max when there are beams, else empty;
+/// ConfigError naming the field and its value.
+void checkFieldRules(const ObserverSpec& spec);
+
+}  // namespace jetbot_rl
