@@ -10,6 +10,7 @@ find_package(yaml-cpp REQUIRED)
 find_package(sdformat12 REQUIRED)
 add_library(jetbot_rl_core
   src/core/config/config_fields.cpp
+  src/core/config/file_checks.cpp
   src/core/config/former_names.cpp
   src/core/config/yaml_flatten.cpp
   src/core/env/action_layout.cpp

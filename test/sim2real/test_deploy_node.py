@@ -9,6 +9,7 @@ import math
 import os
 import signal
 import subprocess
+import tempfile
 import threading
 import time
 import unittest
@@ -16,7 +17,6 @@ import unittest
 import rospkg
 import rospy
 import rostest
-from rosgraph_msgs.msg import Log
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
@@ -63,9 +63,8 @@ class OdometrySource(object):
 class TestDeployNode(unittest.TestCase):
     def test_deploy_node_faults(self):
         run_dir = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies', 'velocity')
-        twists, drops, states, logs = EventList(), EventList(), EventList(), EventList()
+        twists, drops, states = EventList(), EventList(), EventList()
         rospy.Subscriber('/robot/cmd_vel', Twist, twists.append)
-        rospy.Subscriber('/rosout', Log, lambda m: logs.append(m) if m.name == NODE else None)
 
         def on_diagnostics(msg):
             for status in msg.status:
@@ -77,21 +76,30 @@ class TestDeployNode(unittest.TestCase):
         rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
         odom_pub = rospy.Publisher('/robot/odom', Odometry, queue_size=10)
         source = OdometrySource(odom_pub)
+        output = tempfile.NamedTemporaryFile(prefix='jetbot_rl_test_deploy_node_', suffix='.log')
         proc = subprocess.Popen([
             'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=' + NODE[1:],
             '_checkpoint:=' + run_dir, '_odom_topic:=/robot/odom',
             '_cmd_vel_topic:=/robot/cmd_vel', '_odom_timeout:=%g' % ODOM_TIMEOUT,
-            '_wheel_radius:=%g' % DRIVER_WHEEL_RADIUS])
+            '_wheel_radius:=%g' % DRIVER_WHEEL_RADIUS], stdout=output, stderr=subprocess.STDOUT,
+            env=dict(os.environ, ROSCONSOLE_STDOUT_LINE_BUFFERED='1'))  # INFO lines as they come
         try:
             # The wheel radius given overrides the trained robot's, which the checkpoint holds:
             # said once, at WARN, naming both; the separation not given is the checkpoint's.
-            wait_for(lambda: any(m.level == Log.WARN and 'overrides' in m.msg for m in logs),
+            # (read from its output: /rosout may connect after the start-up's lines)
+            def lines():
+                with open(output.name) as f:
+                    return f.read().splitlines()
+            wait_for(lambda: any('overrides' in line for line in lines()),
                      what="the node's warning of the wheel radius given")
-            warnings = [m.msg for m in logs if m.level == Log.WARN and 'overrides' in m.msg]
-            self.assertEqual(warnings, ['%s: wheel_radius = %g overrides the checkpoint\'s '
-                                        'wheel_radius = 0.03' % (NODE, DRIVER_WHEEL_RADIUS)])
-            self.assertTrue(any('wheel_radius %g m, wheel_separation 0.1125 m' % DRIVER_WHEEL_RADIUS
-                                in m.msg for m in logs), [m.msg for m in logs])
+            warnings = [line for line in lines() if 'overrides' in line]
+            self.assertEqual(len(warnings), 1, warnings)
+            self.assertIn('[ WARN]', warnings[0])
+            self.assertIn('%s: wheel_radius = %g overrides the checkpoint\'s wheel_radius = 0.03'
+                          % (NODE, DRIVER_WHEEL_RADIUS), warnings[0])
+            in_use = 'wheel_radius %g m, wheel_separation 0.1125 m' % DRIVER_WHEEL_RADIUS
+            wait_for(lambda: any(in_use in line for line in lines()),
+                     what="the node's line of the settings in use (%s)" % in_use)
             wait_for(lambda: odom_pub.get_num_connections() > 0, what='the node to subscribe',
                      recheck=0.05)
             wait_for(lambda: twists, what='Twists (no odometry yet)')

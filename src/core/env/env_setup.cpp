@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/config/yaml_flatten.h"
 
 namespace jetbot_rl {
@@ -15,6 +16,9 @@ std::unique_ptr<BatchedEnv> makeEnv(RobotModelConstPtr robot, const EnvSetup& se
 
 void readEnvSetupFiles(const std::vector<std::string>& paths, EnvSetup& setup) {
   for (const std::string& path : paths) {
+    if (const std::string problem = fileProblem(path); !problem.empty()) {
+      throw ConfigError("cannot read the parameter file " + path + ": it " + problem);
+    }
     std::ifstream file(path);
     std::ostringstream text;
     text << file.rdbuf();

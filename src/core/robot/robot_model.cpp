@@ -10,6 +10,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {
@@ -387,6 +388,9 @@ bool RobotModel::findLink(const std::string& link, int& body, Eigen::Isometry3d&
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,
                                                            const MeshResolver& resolver) {
+  if (const std::string problem = fileProblem(path); !problem.empty()) {
+    throw ModelError("cannot read URDF file '" + path + "': it " + problem);
+  }
   std::ifstream file(path);
   if (!file) throw ModelError("cannot read URDF file '" + path + "'");
   std::ostringstream text;

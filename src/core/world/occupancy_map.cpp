@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {
@@ -42,6 +43,9 @@ OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
   OccupancyMap map;
   map.yaml_path = path;
   YAML::Node doc;
+  if (const std::string problem = fileProblem(path); !problem.empty()) {
+    throw ConfigError("map YAML '" + path + "' cannot be read: it " + problem);
+  }
   try {
     doc = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
@@ -78,6 +82,9 @@ OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
       fs::path(image).is_absolute() ? fs::path(image) : fs::path(path).parent_path() / image;
   map.image_path = image_path.string();
 
+  if (const std::string problem = fileProblem(map.image_path); !problem.empty()) {
+    throwInvalid("image", "'" + map.image_path + "'", problem + in);
+  }
   int w = 0, h = 0, channels = 0;
   const std::unique_ptr<unsigned char, void (*)(void*)> pixels(
       stbi_load(map.image_path.c_str(), &w, &h, &channels, 0), stbi_image_free);

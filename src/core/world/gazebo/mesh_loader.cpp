@@ -8,6 +8,7 @@
 #include <assimp/Importer.hpp>
 #include <cmath>
 
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
 
 namespace jetbot_rl {
@@ -41,6 +42,9 @@ void collectVertices(const aiScene& scene, const aiNode& node, const aiMatrix4x4
 
 /// The vertices (or triangle corners) of the file at `path`; throws ModelError naming it.
 std::vector<Eigen::Vector3d> readMesh(const std::string& path, bool faces) {
+  if (const std::string problem = fileProblem(path); !problem.empty()) {
+    throw ModelError("mesh file '" + path + "' cannot be read: it " + problem);
+  }
   Assimp::Importer importer;
   // ROS tools (RViz, Gazebo) read COLLADA in its own axes; only its unit is applied.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

@@ -5,6 +5,11 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
+#include <system_error>
+#include <vector>
+
+#include "jetbot_rl/config/file_checks.h"
 
 namespace jetbot_rl {
 namespace {
@@ -33,7 +38,93 @@ bool hasPlacementFrame(const tinyxml2::XMLElement& e) {
   return e.Attribute("placement_frame") || e.FirstChildElement("placement_frame");
 }
 
+/// The SDF file a model folder stands for: its model.config's first <sdf>, else model.sdf.
+std::string modelFile(const std::filesystem::path& folder) {
+  tinyxml2::XMLDocument config;
+  const std::filesystem::path config_path = folder / "model.config";
+  if (fileProblem(config_path.string()).empty() &&
+      config.LoadFile(config_path.c_str()) == tinyxml2::XML_SUCCESS) {
+    const tinyxml2::XMLElement* model = config.FirstChildElement("model");
+    const tinyxml2::XMLElement* sdf = model ? model->FirstChildElement("sdf") : nullptr;
+    if (sdf && sdf->GetText()) return (folder / sdf->GetText()).string();
+  }
+  return (folder / "model.sdf").string();
+}
+
+class IncludeWalk {
+ public:
+  explicit IncludeWalk(const IncludeFinder& find) : find_(find) {}
+
+  /// "" when every include under `file` ends, else the problem.
+  std::string walk(const std::string& file) {
+    std::error_code error;
+    const std::string key = std::filesystem::weakly_canonical(file, error).string();
+    for (std::size_t k = 0; k < chain_.size(); ++k) {
+      if (chain_[k] != key) continue;
+      std::string text = "its includes come back to " + file + ": ";
+      for (std::size_t j = k; j < chain_.size(); ++j) text += chain_[j] + " includes ";
+      return text + file + " (a model cannot include itself)";
+    }
+    if (done_.count(key)) return "";
+    if (static_cast<int>(chain_.size()) >= kMaxIncludeDepth) {
+      return file + ": included " + std::to_string(chain_.size()) + " levels deep, more than " +
+             std::to_string(kMaxIncludeDepth);
+    }
+    if (++files_ > kMaxIncludedFiles) {
+      return "more than " + std::to_string(kMaxIncludedFiles) + " included files";
+    }
+    if (const std::string problem = fileProblem(file); !problem.empty()) {
+      return file + ": " + problem;
+    }
+    tinyxml2::XMLDocument doc;
+    if (doc.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) return "";  // sdformat says why
+    chain_.push_back(key);
+    const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
+    std::string problem = visit(doc.RootElement(), file, folder);
+    chain_.pop_back();
+    if (problem.empty()) done_.insert(key);
+    return problem;
+  }
+
+ private:
+  std::string visit(const tinyxml2::XMLElement* e, const std::string& file,
+                    const std::filesystem::path& folder) {
+    for (; e; e = e->NextSiblingElement()) {
+      if (std::string(e->Name()) == "include") {
+        const tinyxml2::XMLElement* uri = e->FirstChildElement("uri");
+        const std::string text = uri && uri->GetText() ? uri->GetText() : "";
+        std::string found;
+        if (!text.empty() && text.find("://") == std::string::npos && text[0] != '/') {
+          found = (folder / text).lexically_normal().string();
+        } else if (!text.empty()) {
+          found = text[0] == '/' ? text : find_(text);
+        }
+        if (found.empty()) continue;  // sdformat names what it cannot find
+        const std::string target = std::filesystem::is_directory(found) ? modelFile(found) : found;
+        const std::string problem = walk(target);
+        if (!problem.empty()) {
+          return file + ":" + std::to_string(e->GetLineNum()) + ": <include> of " + text + ": " +
+                 problem;
+        }
+        continue;
+      }
+      const std::string problem = visit(e->FirstChildElement(), file, folder);
+      if (!problem.empty()) return problem;
+    }
+    return "";
+  }
+
+  const IncludeFinder& find_;
+  std::vector<std::string> chain_;  // the files being walked, outermost first (canonical)
+  std::set<std::string> done_;      // files whose includes all end
+  int files_ = 0;
+};
+
 }  // namespace
+
+std::string includeProblem(const std::string& path, const IncludeFinder& find) {
+  return IncludeWalk(find).walk(path);
+}
 
 std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats) {
   repeats.clear();

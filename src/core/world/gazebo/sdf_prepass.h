@@ -3,6 +3,7 @@
 // What is done to a Gazebo world file before sdformat reads it: the XML checked (tinyxml2 names the
 // line sdformat only prints) and repeated models folded into frames.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,18 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
 /// (sdformat's), else what is wrong: "PATH:LINE: ..." for XML that does not parse, "PATH: ..."
 /// otherwise.
 std::string sdfFileProblem(const std::string& path, const std::string& newest);
+
+/// Turns an include's URI into a file or folder ("" when not found), as the world's loader does.
+using IncludeFinder = std::function<std::string(const std::string& uri)>;
+
+/// "" when the includes of the world at `path`, followed as sdformat follows them (a folder by its
+/// model.config's <sdf>, else model.sdf), end; else what is wrong, naming the file and line: an
+/// include chain that comes back to a file on it ("A includes B, which includes A"), one deeper
+/// than kMaxIncludeDepth, more than kMaxIncludedFiles files, or a file that is not a regular
+/// file. sdformat itself would recurse until memory runs out.
+std::string includeProblem(const std::string& path, const IncludeFinder& find);
+
+constexpr int kMaxIncludeDepth = 32;
+constexpr int kMaxIncludedFiles = 100000;
 
 }  // namespace jetbot_rl

@@ -2,14 +2,18 @@
 // semantics, its <include> handling); only the shapes' surfaces are made here.
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sdf/sdf.hh>
 #include <sstream>
 
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/package_path.h"
 #include "world/gazebo/sdf_prepass.h"
@@ -40,6 +44,20 @@ std::string errorText(const sdf::Errors& errors, const std::string& path) {
     s << ": " << e.Message();
   }
   return s.str();
+}
+
+// What a collision may measure and where it may lie [m]: beyond, it is refused naming it (a size
+// of 1e300 would take the cut's loops for ever; a shape 100 km out, a grid of 4e12 cells).
+constexpr double kMaxShapeSize = 1000.0;
+constexpr double kMaxShapeDistance = 10000.0;
+
+/// "FILE:LINE" of an SDF element (the world's file when sdformat read it from a string).
+std::string whereIs(const sdf::ElementPtr& element, const std::string& world_path) {
+  if (!element) return world_path;
+  const std::string& file = element->FilePath();
+  std::string where = file.rfind('/', 0) == 0 ? file : world_path;
+  if (const std::optional<int> line = element->LineNumber()) where += ":" + std::to_string(*line);
+  return where;
 }
 
 bool deprecationOnly(const sdf::Error& e) {
@@ -92,6 +110,53 @@ class Reader {
   void shape(const sdf::Collision& collision, const Eigen::Isometry3d& pose,
              const std::string& name) {
     const sdf::Geometry& g = *collision.Geom();
+    // Sizes in (0, kMaxShapeSize], the pose within kMaxShapeDistance: refused otherwise, naming
+    // the collision, its file and line and the value.
+    const auto refuse = [&](const std::string& what) {
+      throw ConfigError(whereIs(collision.Element(), world_.path) + ": collision '" + name +
+                        "': " + what);
+    };
+    const auto sized = [&](const char* what, std::initializer_list<double> values) {
+      for (double v : values) {
+        if (!(v > 0.0 && v <= kMaxShapeSize)) {
+          std::ostringstream s;
+          s << what << " " << v << " must be in (0, " << kMaxShapeSize << "] m";
+          refuse(s.str());
+        }
+      }
+    };
+    if (!pose.translation().allFinite() ||
+        pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
+      std::ostringstream s;
+      s << "its pose in the world (" << pose.translation().transpose() << ") must lie within "
+        << kMaxShapeDistance << " m of the origin on every axis";
+      refuse(s.str());
+    }
+    switch (g.Type()) {
+      case sdf::GeometryType::BOX: {
+        const auto b = g.BoxShape()->Size();
+        sized("its box size", {b.X(), b.Y(), b.Z()});
+        break;
+      }
+      case sdf::GeometryType::CYLINDER:
+        sized("its cylinder radius and length",
+              {g.CylinderShape()->Radius(), g.CylinderShape()->Length()});
+        break;
+      case sdf::GeometryType::SPHERE:
+        sized("its sphere radius", {g.SphereShape()->Radius()});
+        break;
+      case sdf::GeometryType::ELLIPSOID: {
+        const auto a = g.EllipsoidShape()->Radii();
+        sized("its ellipsoid radii", {a.X(), a.Y(), a.Z()});
+        break;
+      }
+      case sdf::GeometryType::CAPSULE:
+        sized("its capsule radius and length",
+              {g.CapsuleShape()->Radius(), g.CapsuleShape()->Length()});
+        break;
+      default:
+        break;
+    }
     const Eigen::Matrix3d& r = pose.linear();
     WorldSolid solid;
     solid.name = name;
@@ -157,11 +222,18 @@ class Reader {
       case sdf::GeometryType::HEIGHTMAP:
         skip("heightmap '" + name + "'");
         return;
-      default:
-        if (!polyline(g, local)) {
+      default: {
+        bool any = false;
+        try {
+          any = polyline(g, local);
+        } catch (const ConfigError& e) {
+          refuse(e.what());
+        }
+        if (!any) {
           skip("empty geometry '" + name + "'");
           return;
         }
+      }
     }
     if (solid.upright) {
       setUpright(solid, *solid.upright, solid.bottom, solid.top);
@@ -195,7 +267,15 @@ class Reader {
       std::vector<Eigen::Vector3d> triangles = loadMeshTriangles(path);
       const auto s = m.Scale();
       const Eigen::Vector3d scale(s.X(), s.Y(), s.Z());
-      for (Eigen::Vector3d& p : triangles) p = p.cwiseProduct(scale);
+      for (Eigen::Vector3d& p : triangles) {
+        p = p.cwiseProduct(scale);
+        if (!(p.cwiseAbs().maxCoeff() <= kMaxShapeSize)) {
+          std::ostringstream s;
+          s << "a vertex of mesh '" << uri << "' at scale " << scale.transpose() << " lies at ("
+            << p.transpose() << "), beyond " << kMaxShapeSize << " m of its origin";
+          throw ConfigError(s.str());
+        }
+      }
       if (!m.Submesh().empty()) skip("submesh choice of '" + name + "' (the whole mesh is used)");
       return triangles;
     } catch (const Error& e) {
@@ -213,7 +293,19 @@ class Reader {
       for (sdf::ElementPtr q = p->HasElement("point") ? p->GetElement("point") : nullptr; q;
            q = q->GetNextElement("point")) {
         const auto v = q->Get<ignition::math::Vector2d>();
+        if (!(std::abs(v.X()) <= kMaxShapeSize && std::abs(v.Y()) <= kMaxShapeSize)) {
+          std::ostringstream text;
+          text << "its polyline point (" << v.X() << ", " << v.Y() << ") lies beyond "
+               << kMaxShapeSize << " m of its origin";
+          throw ConfigError(text.str());
+        }
         points.emplace_back(v.X(), v.Y());
+      }
+      if (const double height = p->Get<double>("height");
+          !(height > 0.0 && height <= kMaxShapeSize)) {
+        std::ostringstream text;
+        text << "its polyline height " << height << " must be in (0, " << kMaxShapeSize << "] m";
+        throw ConfigError(text.str());
       }
       const auto surface = polylineSurface(points, p->Get<double>("height"));
       out.insert(out.end(), surface.begin(), surface.end());
@@ -235,20 +327,32 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   // model:// as Gazebo finds it; a relative path from the world file's folder (sdformat would
   // look in the working directory).
   const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-  config.SetFindCallback([folder](const std::string& uri) {
+  const auto find = [folder](const std::string& uri) {
     if (uri.find("://") == std::string::npos && !uri.empty() && uri[0] != '/') {
       const std::filesystem::path local = (folder / uri).lexically_normal();
       return std::filesystem::exists(local) ? local.string() : std::string();
     }
     return findGazeboModel(uri);
-  });
+  };
+  config.SetFindCallback(find);
+  // sdformat 12 reads the includes of an included model with its global callback, not the
+  // config's: without it a nested model:// include was dropped with a line on stderr.
+  sdf::setFindCallback(find);
   config.SetWarningsPolicy(sdf::EnforcementPolicy::LOG);
   const auto load = [&](sdf::Root& root, const std::string& text) {
     sdf::Errors errors = text.empty() ? root.Load(path, config) : root.LoadSdfString(text, config);
     errors.erase(std::remove_if(errors.begin(), errors.end(), deprecationOnly), errors.end());
     return errors;
   };
+  if (const std::string problem = fileProblem(path); !problem.empty()) {
+    throw ConfigError(path + ": " + problem);
+  }
   if (const std::string problem = sdfFileProblem(path, sdf::SDF::Version()); !problem.empty()) {
+    throw ConfigError(problem);
+  }
+  // sdformat follows a model that includes itself until memory runs out: the chain is walked
+  // first, and refused naming it.
+  if (const std::string problem = includeProblem(path, find); !problem.empty()) {
     throw ConfigError(problem);
   }
   // Repeated models parsed once; on any error the file itself is read again, for sdformat's
@@ -299,6 +403,18 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
       world.solids.push_back(std::move(solid));
     }
     world.models += models_in.at(r.like);
+  }
+  // A repeat is moved, not read again: where it lies is checked here, for every solid alike.
+  for (const WorldSolid& solid : world.solids) {
+    const double reach = std::max({solid.bounds.min().cwiseAbs().maxCoeff(),
+                                   solid.bounds.max().cwiseAbs().maxCoeff(), std::abs(solid.bottom),
+                                   std::abs(solid.top)});
+    if (!(reach <= kMaxShapeDistance)) {
+      std::ostringstream s;
+      s << path << ": collision '" << solid.name << "': its pose in the world (" << reach
+        << " m out) must lie within " << kMaxShapeDistance << " m of the origin on every axis";
+      throw ConfigError(s.str());
+    }
   }
   if (root->WorldCount() > 1) reader.skip(std::to_string(root->WorldCount() - 1) + " more worlds");
   if (w.LightCount() > 0) reader.skip(std::to_string(w.LightCount()) + " lights");
