@@ -86,9 +86,9 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     return 1;
   }
   ROS_INFO(
-      "%s: the trained robot's settings in use: xy_goal_tolerance %g m, footprint_radius %g "
-      "m, path_clearance %g m, path_clearance_cost %g, wheel_radius %g m, wheel_separation "
-      "%g m",
+      "%s: settings in use (the checkpoint's unless given): xy_goal_tolerance %g m, "
+      "footprint_radius %g m, path_clearance %g m, path_clearance_cost %g, wheel_radius %g m, "
+      "wheel_separation %g m",
       pnh.getNamespace().c_str(), p.pursuit.xy_goal_tolerance, p.pursuit.footprint_radius,
       p.pursuit.path_clearance, p.pursuit.path_clearance_cost, p.driver.wheel_radius,
       p.driver.wheel_separation);
