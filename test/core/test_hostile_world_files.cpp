@@ -160,6 +160,15 @@ TEST(HostileWorldFiles, AShapeFarOutOrAGridTooLargeIsRefusedNamingTheShape) {
   EXPECT_NE(e.find("collision 'far::link::c': its pose in the world (100000"), std::string::npos)
       << e;  // a repeat of 'ok' (folded, then moved): checked where it lies
   EXPECT_NE(e.find("must lie within 10000 m of the origin"), std::string::npos) << e;
+  // A pose at 1e300 (a size of its own, so that it is read, not folded as a repeat): the pose
+  // named, not the spawn point.
+  e = worldRefusal("a box at x = 1e300",
+                   sdfWorld("huge_pose.world", boxModel("ok", "0 0 0.5 0 0 0", "1 1 1") +
+                                                   boxModel("far", "1e300 0 0.5 0 0 0", "2 1 1")));
+  EXPECT_NE(e.find("huge_pose.world:5: collision 'far::link::c': its pose in the world (1e+300"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("spawn"), std::string::npos) << e;
   // Within the bounds, but 402 x 402 m at 0.05 m: 65 million cells.
   e = worldRefusal("a 400 m wide world",
                    sdfWorld("wide.world", boxModel("a", "-200 -200 0.5 0 0 0", "1 1 1") +
