@@ -50,7 +50,6 @@ class ObserverAgreement : public ::testing::TestWithParam<TaskKind> {};
 TEST_P(ObserverAgreement, TheRobotViewsMessagesObservedAsTheDeployNodeDoGiveTheTasksObservation) {
   const std::unique_ptr<BatchedEnv> batch = env(GetParam());
   const BatchSpec spec = batch->spec();
-  const ScanBeams beams = scanBeamsOf(spec.observer);  // 3 samples a beam: the smallest of each
   const std::unique_ptr<TaskObserver> observer = observerOf(spec, 0.2, "the env's spec");
   const RobotNames names(true);
   nav_msgs::Odometry odom = odometryFrame(*batch, 0, names);
@@ -74,7 +73,8 @@ TEST_P(ObserverAgreement, TheRobotViewsMessagesObservedAsTheDeployNodeDoGiveTheT
     if (observer->scanBeams() > 0) {
       updateScan(*batch, 0, odom.header.stamp, scan);
       std::string error;
-      ASSERT_TRUE(resampleScan(scan, beams, ranges, error)) << error;
+      // the contract's beams: 3 samples a beam, the smallest of each
+      ASSERT_TRUE(resampleScan(scan, spec.observer, ranges, error)) << error;
       m.scan = ranges.data();
     }
     if (const auto* nav = dynamic_cast<const NavigationTask*>(&batch->task()))

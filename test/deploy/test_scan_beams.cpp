@@ -29,9 +29,9 @@ sensor_msgs::LaserScan scan(int n, double angle_min, double increment) {
 }
 
 /// Beams at `angles` read from the nearest sample (a checkpoint without sectors).
-ScanBeams nearest(const std::vector<double>& angles) {
-  ScanBeams beams;
-  beams.angles = angles;
+ObserverSpec nearest(const std::vector<double>& angles) {
+  ObserverSpec beams;
+  beams.scan_beam_angles = angles;
   return beams;
 }
 
@@ -87,8 +87,8 @@ TEST(ResampleScan, ABeamOutsideAPartialScanIsRefusedNamingTheAngles) {
 TEST(ResampleScan, SectorsTakeTheSmallestReadingAndAClockwiseScanReadsTheSame) {
   sensor_msgs::LaserScan s = scan(8, 0.0, kPi / 4);  // readings 1.0, 1.1, ..., 1.7
   s.ranges[3] = 0.5f;
-  ScanBeams beams = nearest({0.0, kPi / 2, kPi, 3 * kPi / 2});
-  beams.width = kPi / 2;  // two samples a beam
+  ObserverSpec beams = nearest({0.0, kPi / 2, kPi, 3 * kPi / 2});
+  beams.scan_beam_width = kPi / 2;  // two samples a beam
   std::vector<float> ranges;
   std::string error;
   ASSERT_TRUE(resampleScan(s, beams, ranges, error)) << error;
@@ -101,19 +101,6 @@ TEST(ResampleScan, SectorsTakeTheSmallestReadingAndAClockwiseScanReadsTheSame) {
   std::vector<float> from_clockwise;
   ASSERT_TRUE(resampleScan(clockwise, beams, from_clockwise, error)) << error;
   EXPECT_EQ(from_clockwise, ranges);
-}
-
-TEST(ScanBeamsOf, TheContractsBeamsSectorsAndRange) {
-  ObserverSpec trained;
-  trained.scan_beam_angles = {-1.0, 0.0, 1.0};
-  trained.scan_range = {0.15, 3.5};
-  trained.scan_beam_width = 0.5;
-  const ScanBeams beams = scanBeamsOf(trained);
-  EXPECT_EQ(beams.angles, (std::vector<double>{-1.0, 0.0, 1.0}));
-  EXPECT_EQ(beams.width, 0.5);
-  EXPECT_EQ(beams.range_min, 0.15);
-  EXPECT_EQ(beams.range_max, 3.5);
-  EXPECT_TRUE(scanBeamsOf(ObserverSpec()).angles.empty());  // a task without a scan
 }
 
 }  // namespace

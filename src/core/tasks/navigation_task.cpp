@@ -23,16 +23,13 @@ double yawOf(const RootState& state) {
   return std::atan2(forward.y(), forward.x());
 }
 
-/// ConfigError unless `spec` holds scan beams and a range for them.
+/// ConfigError unless `spec` holds scan beams and a valid range for them (its field rules).
 void checkScan(const ObserverSpec& spec) {
-  if (spec.scan_beam_angles.empty() || spec.scan_range.size() != 2 ||
-      !(spec.scan_range[0] >= 0.0 && spec.scan_range[0] < spec.scan_range[1])) {
-    throw ConfigError("the navigation task observes " +
-                      std::to_string(spec.scan_beam_angles.size()) + " scan beams over " +
-                      listText(spec.scan_range) +
-                      " m: it needs at least one beam (scan_beam_angles) and scan_range "
-                      "[range_min, range_max] with 0 <= range_min < range_max");
+  if (spec.scan_beam_angles.empty()) {
+    throw ConfigError(
+        "the navigation task observes 0 scan beams: it needs at least one (scan_beam_angles)");
   }
+  checkFieldRules(spec);
 }
 
 double checkedRange(const ObserverSpec& spec, std::size_t i) {
@@ -142,7 +139,9 @@ bool NavigationObserver::reached(const MeasuredState& state) const {
 
 // Until attach() gives the scanner and the action size: a range of [0, 1] m and two actions.
 NavigationTask::NavigationTask(const NavigationConfig& config, Variant variant)
-    : config_(config), variant_(variant), observer_(config.beams, 0.0, 1.0, 2, config.goal_radius) {}
+    : config_(config),
+      variant_(variant),
+      observer_(config.beams, 0.0, 1.0, 2, config.goal_radius) {}
 
 void NavigationTask::attach(const TaskContext& context) {
   context_ = context;

@@ -64,19 +64,19 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_r
 
 DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                            const TaskObserver& observer, const DeployParams& p,
-                           const PolicyRun& run, const ScanBeams& beams,
-                           const std::optional<DiffDrive>& kinematics)
+                           const PolicyRun& run, const std::optional<DiffDrive>& kinematics)
     : policy_(policy),
       observer_(observer),
       run_(run),
-      beams_(beams),
+      trained_(policy.meta().spec.observer),
       kinematics_(kinematics),
       drops_(nh, ros::this_node::getName() + ": deploy input", "dropped input"),
       odom_(nh, p.driver.odom_topic, "odometry", p.driver.odom_timeout, checkOdometry, drops_) {
   if (!run.twist && !kinematics_) throw Error("DeployDriver: wheel actions need kinematics");
-  if (observer.scanBeams() != static_cast<int>(beams_.angles.size())) {
+  if (observer.scanBeams() != static_cast<int>(trained_.scan_beam_angles.size())) {
     throw ConfigError("the policy observes " + std::to_string(observer.scanBeams()) +
-                      " scan beams; " + std::to_string(beams_.angles.size()) + " are known");
+                      " scan beams; " + std::to_string(trained_.scan_beam_angles.size()) +
+                      " are known");
   }
   last_action_.assign(static_cast<std::size_t>(policy.actionDim()), 0.0f);
   cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.driver.cmd_vel_topic, 10);
@@ -87,7 +87,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
         nh, p.driver.scan_topic, "scan", p.driver.scan_timeout,
         [this](const sensor_msgs::LaserScan& scan) {
           std::string error;
-          return resampleScan(scan, beams_, ranges_, error) ? "" : "refused: " + error;
+          return resampleScan(scan, trained_, ranges_, error) ? "" : "refused: " + error;
         },
         drops_);
     inputs += ", " + scan_->topic();
@@ -117,9 +117,9 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     << run.control_rate << " Hz (" << (run.twist ? "twist" : "wheel") << " actions"
     << (kinematics_ ? ", " + kinematics_->describe() : std::string()) << "; the checkpoint's)";
   if (scan_) {
-    s << "; " << beams_.angles.size() << " beams over [" << beams_.angles.front() << ", "
-      << beams_.angles.back() << "] rad, range [" << beams_.range_min << ", " << beams_.range_max
-      << "] m";
+    s << "; " << trained_.scan_beam_angles.size() << " beams over ["
+      << trained_.scan_beam_angles.front() << ", " << trained_.scan_beam_angles.back()
+      << "] rad, range " << listText(trained_.scan_range) << " m";
   }
   ROS_INFO("%s", s.str().c_str());
 }
@@ -168,7 +168,7 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
   state.root = rootStateOf(*odom_.latest());
   if (scan_) {
     std::string error;
-    resampleScan(*scan_->latest(), beams_, ranges_, error);  // it took it: it covers them
+    resampleScan(*scan_->latest(), trained_, ranges_, error);  // it took it: it covers them
     state.scan = ranges_.data();
   }
   state.command = command_;

@@ -96,8 +96,7 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().spec.task.c_str());
   try {
-    DeployDriver driver(nh, pnh, *policy, *observer, p, run, scanBeamsOf(trained.observer),
-                        kinematics);
+    DeployDriver driver(nh, pnh, *policy, *observer, p, run, kinematics);
     ros::AsyncSpinner spinner(1);
     spinner.start();
     waitForStop(stop);

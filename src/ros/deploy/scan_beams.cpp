@@ -6,18 +6,7 @@
 
 namespace jetbot_rl {
 
-ScanBeams scanBeamsOf(const ObserverSpec& trained) {
-  ScanBeams beams;
-  beams.angles = trained.scan_beam_angles;
-  if (trained.scan_range.size() == 2) {
-    beams.range_min = trained.scan_range[0];
-    beams.range_max = trained.scan_range[1];
-  }
-  beams.width = trained.scan_beam_width;
-  return beams;
-}
-
-bool resampleScan(const sensor_msgs::LaserScan& scan, const ScanBeams& beams,
+bool resampleScan(const sensor_msgs::LaserScan& scan, const ObserverSpec& trained,
                   std::vector<float>& ranges, std::string& error) {
   ScanView view{scan.ranges.data(), static_cast<int>(scan.ranges.size()), scan.angle_min,
                 scan.angle_increment};
@@ -29,8 +18,8 @@ bool resampleScan(const sensor_msgs::LaserScan& scan, const ScanBeams& beams,
                                           static_cast<double>(scan.ranges.size() - 1);
     view.increment = -static_cast<double>(scan.angle_increment);
   }
-  ranges.resize(beams.angles.size());
-  return readBeams(view, beams.angles, beams.width, ranges.data(), error);
+  ranges.resize(trained.scan_beam_angles.size());
+  return readBeams(view, trained.scan_beam_angles, trained.scan_beam_width, ranges.data(), error);
 }
 
 }  // namespace jetbot_rl

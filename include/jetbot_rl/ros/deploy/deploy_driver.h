@@ -61,12 +61,12 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_r
  */
 class DeployDriver {
  public:
-  /// `p`: with the checkpoint's settings taken (takeTrainedSettings()); `beams`: the policy's
-  /// scan beams (a task that observes a scan); `kinematics`: wheel targets -> Twist for a policy
-  /// with wheel actions.
+  /// `p`: with the checkpoint's settings taken (takeTrainedSettings()); the scan is read at the
+  /// beams of the policy's contract (a task that observes a scan); `kinematics`: wheel targets
+  /// -> Twist for a policy with wheel actions.
   DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Policy& policy,
                const TaskObserver& observer, const DeployParams& p, const PolicyRun& run,
-               const ScanBeams& beams, const std::optional<DiffDrive>& kinematics);
+               const std::optional<DiffDrive>& kinematics);
   /// Stops ticking and leaves the robot standing: a zero Twist, written out before returning.
   void stop();
 
@@ -84,7 +84,7 @@ class DeployDriver {
   ppo::Policy& policy_;
   const TaskObserver& observer_;
   PolicyRun run_;
-  ScanBeams beams_;
+  const ObserverSpec& trained_;  // the policy's observation contract (its checkpoint's)
   std::optional<DiffDrive> kinematics_;
   DropCounter drops_;
   FreshInput<nav_msgs::Odometry> odom_;
