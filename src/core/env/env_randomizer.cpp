@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -40,7 +41,7 @@ const std::vector<T>& rangeNamed(const RandomizationConfig& config, const char* 
   const std::vector<T>* range = nullptr;
   visitFields(config, [&](const char* field, const auto& value, const auto&, const char*) {
     if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::vector<T>>) {
-      if (std::string(field) == name) range = &value;
+      if (std::strcmp(field, name) == 0) range = &value;
     }
   });
   if (!range) throw Error(std::string("RandomizationConfig has no range ") + name + " to draw");
