@@ -12,14 +12,13 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string shippedWorld() {
   return std::string(JETBOT_RL_SOURCE_DIR) + "/worlds/furnished_room.world";

@@ -7,7 +7,7 @@
 namespace jetbot_rl {
 namespace {
 
-GoalWatchConfig config() {
+GoalWatchConfig watchConfig() {
   GoalWatchConfig c;
   c.timeout = 60.0;
   c.oscillation_timeout = 5.0;
@@ -16,7 +16,7 @@ GoalWatchConfig config() {
 }
 
 TEST(GoalWatch, ARobotThatKeepsMovingIsPursuingUntilTheTimeOut) {
-  GoalWatch watch(config());
+  GoalWatch watch(watchConfig());
   watch.start(100.0, {0.0, 0.0});
   std::string why;
   for (int k = 1; k <= 590; ++k) {  // 0.1 m/s for 59 s
@@ -28,7 +28,7 @@ TEST(GoalWatch, ARobotThatKeepsMovingIsPursuingUntilTheTimeOut) {
 }
 
 TEST(GoalWatch, ARobotThatMovesLessThanTheDistanceIsStuckAfterTheOscillationTimeOut) {
-  GoalWatch watch(config());
+  GoalWatch watch(watchConfig());
   watch.start(0.0, {1.0, 1.0});
   std::string why;
   // Back and forth 0.15 m (turning on the spot, pushing into a wall): no progress.

@@ -41,12 +41,6 @@ std::vector<Obstacle> wallWithDoor(double door) {
           wallBox(0.0, 0.5 * (bottom - 2.0), 0.05, 0.5 * (bottom + 2.0))};
 }
 
-double lengthOf(const std::vector<Eigen::Vector2d>& path) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) l += (path[i] - path[i - 1]).norm();
-  return l;
-}
-
 /// Every point of the path, each 1 cm, keeps the footprint from the world and the obstacles.
 void expectClear(const WorldModel& world, const std::vector<Obstacle>& obstacles,
                  const std::vector<Eigen::Vector2d>& path, double radius) {
@@ -72,8 +66,8 @@ TEST(GridPlanner, TheShortestWayGoesThroughTheDoor) {
   // Through the door's lower corner, inflated by the footprint: about start -> (0, 0.3) -> goal.
   const Eigen::Vector2d corner(0.0, 0.4 + kRadius);
   const double shortest = (corner - start).norm() + (goal - corner).norm();
-  EXPECT_GT(lengthOf(path), shortest - 0.15);
-  EXPECT_LT(lengthOf(path), shortest * 1.08 + 0.1);
+  EXPECT_GT(test::pathLength(path), shortest - 0.15);
+  EXPECT_LT(test::pathLength(path), shortest * 1.08 + 0.1);
   bool through_door = false;
   for (const auto& p : path) through_door |= std::abs(p.x()) < 0.2 && p.y() > 0.35 && p.y() < 1.0;
   EXPECT_TRUE(through_door);
@@ -127,7 +121,7 @@ TEST(GridPlanner, PathsKeepOffWallsWhereThereIsRoom) {
   };
   EXPECT_LT(midClearance(tight), 0.3);
   EXPECT_GT(midClearance(roomy), kRadius + 0.25);
-  EXPECT_LT(lengthOf(roomy), lengthOf(tight) + 0.5);
+  EXPECT_LT(test::pathLength(roomy), test::pathLength(tight) + 0.5);
 }
 
 TEST(PathTracker, FollowsAnLPathAndLooksAhead) {
@@ -189,10 +183,10 @@ TEST(NavigationPath, TheTaskPlansAPathOnEachLayoutAndObservesIt) {
       EXPECT_EQ(path.back(), task.goal(e));
       expectClear(*env.world(), l.obstacles, path, env.world()->robotRadius());
       ++planned;
-      longer += lengthOf(path) > (task.goal(e) - l.start).norm() + 0.3;  // round walls
+      longer += test::pathLength(path) > (task.goal(e) - l.start).norm() + 0.3;  // round walls
       // What is observed: the path left, and the direction of a point 0.6 m along it.
       const float* obs = &r.observations[static_cast<std::size_t>(e) * names.size()];
-      EXPECT_NEAR(obs[27], lengthOf(path), 1e-4);
+      EXPECT_NEAR(obs[27], test::pathLength(path), 1e-4);
       const RootState root = env.view(e).rootState();
       PathTracker t;
       t.reset(path);
@@ -241,7 +235,7 @@ TEST(NavigationPath, ProgressIsRewardedAlongThePathNotStraightAtTheGoal) {
     return task.reward(0, s);
   };
   task.layoutDrawn(0, world, layout);
-  ASSERT_GT(lengthOf(task.path(0)), 3.0 + 2.0 * (1.0 + kRadius) - 0.5);
+  ASSERT_GT(test::pathLength(task.path(0)), 3.0 + 2.0 * (1.0 + kRadius) - 0.5);
   const std::vector<Eigen::Vector2d> path = task.path(0);
   const Eigen::Vector2d along = path[0] + 0.5 * (path[1] - path[0]).normalized();
   EXPECT_NEAR(rewardAt(along), config.progress_reward * 0.5, 1e-6);

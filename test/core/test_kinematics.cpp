@@ -12,13 +12,10 @@ using test::jetbot;
 using test::smallConfig;
 using test::uniformActions;
 
-constexpr double kWheelRadius = 0.03;        // [m]
-constexpr double kWheelSeparation = 0.1125;  // [m]
-
 TEST(Kinematics, StraightDrivingReachesWheelSpeedTimesRadius) {
   BatchedEnv env(jetbot(), smallConfig(1));
   const Averages avg = drive(env, 10.0f, 10.0f, 120, 60);
-  const double expected = 10.0 * kWheelRadius;  // 0.30 m/s
+  const double expected = 10.0 * test::kJetbotWheelRadius;  // 0.30 m/s
   EXPECT_NEAR(avg.body_velocity.x(), expected, 0.05 * expected);
   EXPECT_NEAR(avg.body_velocity.y(), 0.0, 0.01);
   EXPECT_NEAR(avg.body_velocity.z(), 0.0, 0.01);
@@ -35,10 +32,11 @@ TEST(Kinematics, TurningInPlaceMatchesDifferentialDrive) {
   BatchedEnv env(jetbot(), smallConfig(1));
   const float w = 10.0f;
   const Averages avg = drive(env, -w, w, 60, 60);
-  const double expected_yaw_rate = 2.0 * w * kWheelRadius / kWheelSeparation;  // CCW positive
+  const double expected_yaw_rate =
+      2.0 * w * test::kJetbotWheelRadius / test::kJetbotWheelSeparation;  // CCW positive
   EXPECT_NEAR(avg.yaw_rate, expected_yaw_rate, 0.10 * expected_yaw_rate);
   // Near zero: within 10 % of the wheels' rim speed (0.3 m/s).
-  EXPECT_NEAR(avg.body_velocity.x(), 0.0, 0.1 * w * kWheelRadius);
+  EXPECT_NEAR(avg.body_velocity.x(), 0.0, 0.1 * w * test::kJetbotWheelRadius);
 }
 
 TEST(Kinematics, AParkedRobotStandsStill) {
@@ -53,7 +51,8 @@ TEST(Kinematics, TargetsBeyondTheLimitAreClamped) {
   BatchedEnv env(jetbot(), smallConfig(1));
   ASSERT_FLOAT_EQ(env.actionHigh()[0], 20.0f);
   const Averages avg = drive(env, 1000.0f, 1000.0f, 120, 60);
-  EXPECT_NEAR(avg.body_velocity.x(), 20.0 * kWheelRadius, 0.05 * 20.0 * kWheelRadius);
+  EXPECT_NEAR(avg.body_velocity.x(), 20.0 * test::kJetbotWheelRadius,
+              0.05 * 20.0 * test::kJetbotWheelRadius);
   EXPECT_LE(env.view(0).dofVelocity(0), 20.0 * 1.02);
 }
 

@@ -4,13 +4,12 @@
 #include <numeric>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "world_test_util.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// A scanner of `samples` beams over [min, max] with range [range_min, range_max], no noise.
 ScannerSpec spec(int samples, double min, double max, double range_min = 0.05,

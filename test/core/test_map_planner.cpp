@@ -6,6 +6,7 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/planning/map_planner.h"
+#include "test_util.h"
 
 namespace jetbot_rl {
 namespace {
@@ -44,12 +45,6 @@ MapPlannerConfig config() {
   return c;
 }
 
-double lengthOf(const std::vector<Eigen::Vector2d>& path) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) l += (path[i] - path[i - 1]).norm();
-  return l;
-}
-
 TEST(MapPlanner, PlansThroughTheDoorIntoTheOtherRoom) {
   const MapPlanner planner(twoRooms(6), config());
   const Eigen::Vector2d start(0.6, 0.5), goal(3.4, 1.5);
@@ -69,7 +64,7 @@ TEST(MapPlanner, PlansThroughTheDoorIntoTheOtherRoom) {
     crossed = true;
   }
   EXPECT_TRUE(crossed);
-  EXPECT_GT(lengthOf(path), (goal - start).norm());
+  EXPECT_GT(test::pathLength(path), (goal - start).norm());
   // Deterministic.
   std::vector<Eigen::Vector2d> again;
   ASSERT_EQ(planner.plan(start, goal, {}, again), "");
@@ -119,7 +114,7 @@ TEST(MapPlanner, WhatTheScanSeesClosesTheWayAndTheMapsWallsChangeNothing) {
   // A post in the room is gone round.
   ASSERT_EQ(planner.plan({0.5, 1.0}, {1.5, 1.0}, {{1.0, 1.0}}, path), "");
   EXPECT_GE(path.size(), 3u);
-  EXPECT_GT(lengthOf(path), 1.0);
+  EXPECT_GT(test::pathLength(path), 1.0);
 }
 
 TEST(MapPlanner, AStartBrushingAWallLeavesFromTheNearestFreeCell) {

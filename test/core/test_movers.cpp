@@ -12,8 +12,6 @@
 namespace jetbot_rl {
 namespace {
 
-RobotModelConstPtr lidar() { return test::lidarJetbot(); }
-
 /// The navigation arena (4 x 4 m, three boxes, two cylinders) with `people` people.
 EnvConfig peopleConfig(int num_envs, int people, MoverRule rule, int threads = 1) {
   EnvConfig c = test::scanningArenaConfig(num_envs, threads);
@@ -82,7 +80,8 @@ TEST(Movers, WalkStraightToTheirWaypointsAtTheirSpeeds) {
 }
 
 TEST(Movers, SocialForceKeepsThemOffTheWorldAndEachOther) {
-  BatchedEnv env(lidar(), peopleConfig(8, 10, MoverRule::kSocialForce), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), peopleConfig(8, 10, MoverRule::kSocialForce),
+                 test::navigationTask());
   const std::vector<float> stop(static_cast<std::size_t>(env.numEnvs()) * env.actionDim(), 0.0f);
   double closest_pair = 1e9, deepest_world = 1e9, fastest = 0.0;
   for (int step = 0; step < 300; ++step) {
@@ -113,7 +112,7 @@ TEST(Movers, TheScanSeesThemWhereTheyStand) {
   EnvConfig c = peopleConfig(4, 10, MoverRule::kSocialForce);
   c.scan.samples = 360;
   c.scan.angles = {-3.14159265358979323846, 3.14159265358979323846 * 179.0 / 180.0};
-  BatchedEnv env(lidar(), c, test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
   const std::vector<float> stop(static_cast<std::size_t>(env.numEnvs()) * env.actionDim(), 0.0f);
   int differ = 0;
   for (int step = 0; step < 20; ++step) {
@@ -155,7 +154,7 @@ std::unique_ptr<BatchedEnv> personWalkingAtTheRobot(std::unique_ptr<Task> task,
   c.movers.speed = {1.0, 1.0};
   c.movers.rule = MoverRule::kStraight;
   c.movers.start_clearance = 0.0;
-  auto env = std::make_unique<BatchedEnv>(lidar(), c, std::move(task));
+  auto env = std::make_unique<BatchedEnv>(test::lidarJetbot(), c, std::move(task));
   const std::vector<float> stop(env->actionDim(), 0.0f);
   for (int tries = 0; tries < 200; ++tries) {
     const Obstacle& p = env->view(0).movers()[0];
@@ -228,7 +227,7 @@ TEST(Movers, AMoverFarFromTheRobotLeavesNoBodyBehindInThePhysics) {
   c.movers.rule = MoverRule::kStraight;
   c.movers.start_clearance = 2.0;
   TaskConfig velocity;  // ends no episode on a contact
-  BatchedEnv env(lidar(), c, makeTask(velocity));
+  BatchedEnv env(test::lidarJetbot(), c, makeTask(velocity));
   const std::vector<float> stop(env.actionDim(), 0.0f);
   const Eigen::Vector2d start = env.view(0).movers()[0].center;
   const auto robot = [&] { return Eigen::Vector2d(env.view(0).rootState().position.head<2>()); };
@@ -251,7 +250,7 @@ TEST(Movers, AMoverFarFromTheRobotLeavesNoBodyBehindInThePhysics) {
 
 TEST(Movers, TheSameOnAnyThreadCountAndAfterAReseed) {
   const auto run = [](int threads) {
-    BatchedEnv env(lidar(), peopleConfig(6, 10, MoverRule::kSocialForce, threads),
+    BatchedEnv env(test::lidarJetbot(), peopleConfig(6, 10, MoverRule::kSocialForce, threads),
                    test::navigationTask());
     std::vector<float> out;
     Rng actions(3);
@@ -277,7 +276,7 @@ TEST(Movers, TheSameOnAnyThreadCountAndAfterAReseed) {
 TEST(Movers, BadParametersAreRefusedNamingTheField) {
   const auto refused = [](EnvConfig c, const std::string& field) {
     try {
-      BatchedEnv env(lidar(), c, test::navigationTask());
+      BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
       ADD_FAILURE() << field << ": accepted";
     } catch (const ConfigError& e) {
       EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
@@ -312,7 +311,7 @@ TEST(Movers, BadParametersAreRefusedNamingTheField) {
 TEST(Movers, StayInTheirRegion) {
   EnvConfig c = peopleConfig(4, 3, MoverRule::kSocialForce);
   c.movers.region = {0.5, -1.8, 1.0, 1.8};  // a band across the arena
-  BatchedEnv env(lidar(), c, test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
   const Eigen::AlignedBox2d band(Eigen::Vector2d(0.5, -1.8), Eigen::Vector2d(1.0, 1.8));
   const std::vector<float> stop(static_cast<std::size_t>(env.numEnvs()) * env.actionDim(), 0.0f);
   for (int e = 0; e < env.numEnvs(); ++e) {

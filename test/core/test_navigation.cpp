@@ -6,14 +6,13 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 #include "navigation_fixture.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// A robot at (x, y) heading `yaw`, moving forward at `speed` and turning at `yaw_rate`.
 RootState at(double x, double y, double yaw, double speed = 0.0, double yaw_rate = 0.0) {
@@ -113,12 +112,10 @@ EnvConfig navConfig(int envs, int threads = 1) {
   return c;
 }
 
-std::unique_ptr<Task> navigation() { return test::navigationTask(); }
-
 TEST(NavigationTask, GoalsAreDrawnInFreeSpaceAwayFromObstacles) {
   EnvConfig c = navConfig(16, 2);
   c.episode_length_s = 0.05;  // many resets
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   const auto& task = dynamic_cast<const NavigationTask&>(env.task());
   int checked = 0;
   for (int s = 0; s < 40; ++s) {
@@ -144,7 +141,7 @@ TEST(NavigationTask, OutcomesOfEndedEpisodesAreReported) {
   EnvConfig c = navConfig(2);
   c.world.num_boxes = 0;
   c.world.num_cylinders = 0;
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   const auto& task = dynamic_cast<const NavigationTask&>(env.task());
   // Env 0 put on its goal: a success at the next step. Env 1 drives on until it hits a wall.
   RootState s = env.view(0).rootState();
@@ -193,7 +190,7 @@ TEST(NavigationTask, TheSpecCarriesTheBeamsItObservesForARobotElsewhere) {
 TEST(NavigationTask, NeedsAScannerAndNoMoreBeamsThanItHas) {
   EnvConfig c = test::smallConfig(1);
   try {
-    BatchedEnv env(test::jetbot(), c, navigation());
+    BatchedEnv env(test::jetbot(), c, test::navigationTask());
     FAIL() << "accepted without a scanner";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("task = navigation"), std::string::npos) << e.what();

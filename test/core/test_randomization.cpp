@@ -11,8 +11,6 @@ namespace {
 
 using namespace test;
 
-constexpr double kWheelRadius = 0.03;  // [m]
-
 // ---- each quantity acts as it should ----
 
 TEST(Randomization, AHeavierChassisAcceleratesSlower) {
@@ -26,7 +24,8 @@ TEST(Randomization, AHeavierChassisAcceleratesSlower) {
   // (3 x 0.82 kg), the wheels (0.06 kg) and their inertia (2 x 1.35e-5 kg m^2 / r^2 = 0.03 kg).
   // (The stock one spins its wheels: its start is limited by their grip.)
   const double a_heavy = v_heavy / (5 * heavy_env.controlDt());
-  EXPECT_NEAR(a_heavy, 2 * 0.08 / kWheelRadius / (3 * 0.82 + 0.06 + 0.03), 0.05 * a_heavy);
+  EXPECT_NEAR(a_heavy, 2 * 0.08 / test::kJetbotWheelRadius / (3 * 0.82 + 0.06 + 0.03),
+              0.05 * a_heavy);
   // Both reach the same top speed: only the mass changed.
   EXPECT_NEAR(speedAfter(heavy_env, 200), speedAfter(light_env, 200), 0.01);
 }
@@ -40,7 +39,7 @@ TEST(Randomization, LowerFrictionSlips) {
   const auto slip = [](BatchedEnv& env) {
     const double v = speedAfter(env, 10);
     const double rim =
-        0.5 * (env.view(0).dofVelocity(0) + env.view(0).dofVelocity(1)) * kWheelRadius;
+        0.5 * (env.view(0).dofVelocity(0) + env.view(0).dofVelocity(1)) * test::kJetbotWheelRadius;
     return rim - v;
   };
   const double grip = slip(grip_env), slipping = slip(slip_env);
@@ -68,13 +67,14 @@ TEST(Randomization, BiggerWheelsDriveFasterAndStartOnTheGround) {
   small.randomization.wheel_radius_scale = {0.8, 0.8};
   BatchedEnv big_env(jetbot(), big), small_env(jetbot(), small);
   const double z_rest = BatchedEnv(jetbot(), smallConfig(1)).view(0).rootState().position.z();
-  EXPECT_NEAR(big_env.view(0).rootState().position.z(), z_rest + 0.2 * kWheelRadius, 1e-9);
+  EXPECT_NEAR(big_env.view(0).rootState().position.z(), z_rest + 0.2 * test::kJetbotWheelRadius,
+              1e-9);
   EXPECT_EQ(small_env.view(0).rootState().position.z(), z_rest);  // dropped onto its wheels
   // Top speed = wheel speed x radius.
   const double v_big = speedAfter(big_env, 200, 10.0f, 10.0f);
   const double v_small = speedAfter(small_env, 200, 10.0f, 10.0f);
-  EXPECT_NEAR(v_big, 10.0 * 1.2 * kWheelRadius, 0.03 * v_big);
-  EXPECT_NEAR(v_small, 10.0 * 0.8 * kWheelRadius, 0.03 * v_small);
+  EXPECT_NEAR(v_big, 10.0 * 1.2 * test::kJetbotWheelRadius, 0.03 * v_big);
+  EXPECT_NEAR(v_small, 10.0 * 0.8 * test::kJetbotWheelRadius, 0.03 * v_small);
   EXPECT_LT(big_env.view(0).maxJointError(), 1e-3);
 }
 
@@ -99,7 +99,7 @@ TEST(Randomization, InitialYawAndSpeedAppearInTheFirstObservation) {
     EXPECT_NEAR(obs[0], std::cos(std::atan2(cmd.y(), cmd.x()) - r.initial_yaw), 1e-5);
     EXPECT_NEAR(obs[2], 0.3, 1e-6);
     // The wheels roll with it.
-    EXPECT_NEAR(env.view(e).dofVelocity(0) * kWheelRadius, 0.3, 1e-6);
+    EXPECT_NEAR(env.view(e).dofVelocity(0) * test::kJetbotWheelRadius, 0.3, 1e-6);
   }
   EXPECT_GT(
       *std::max_element(yaws.begin(), yaws.end()) - *std::min_element(yaws.begin(), yaws.end()),
@@ -189,7 +189,8 @@ TEST(Randomization, ActionNoiseChangesTheTrajectoryReproduciblyPerSeed) {
   EXPECT_FALSE(bitEqual(noisy.state().observations, other.state().observations));
   EXPECT_FALSE(bitEqual(envObs(noisy, 0), envObs(noisy, 1))) << "envs share their noise";
   // Noisy targets turn the robot a little; on average it still drives at about 8 rad/s.
-  EXPECT_NEAR(noisy.view(0).rootState().comLinearVelocityBody().x(), 8.0 * kWheelRadius, 0.05);
+  EXPECT_NEAR(noisy.view(0).rootState().comLinearVelocityBody().x(), 8.0 * test::kJetbotWheelRadius,
+              0.05);
   // The noise stream restarts with a reseeding reset.
   noisy.reset({}, 3);
   again.reset({}, 3);

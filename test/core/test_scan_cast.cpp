@@ -6,13 +6,12 @@
 #include <cstring>
 #include <random>
 
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "sensors/scan_rays.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// Every beam against every obstacle: the definition castScan must reproduce (no noise).
 std::vector<float> everyBeamAgainstEveryObstacle(const ScannerSpec& spec,

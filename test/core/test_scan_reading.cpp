@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "jetbot_rl/sensors/scan_reading.h"
 #include "test_util.h"
@@ -13,7 +14,6 @@
 namespace jetbot_rl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 
 TEST(ReadBeams, EachBeamIsTheSmallestReadingOfItsSector) {

@@ -5,16 +5,13 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/rng.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-RobotModelConstPtr lidar() { return test::lidarJetbot(); }
 
 /// `num_envs` 4 x 4 m arenas, `k` scanning robots each, on a circle of `radius` (0: random
 /// starts).
@@ -33,7 +30,7 @@ double yawOf(const RootState& s) {
 TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
   const int n = 3, k = 5;
   const double radius = 1.2;
-  BatchedEnv env(lidar(), teamConfig(n, k, radius), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), teamConfig(n, k, radius), test::navigationTask());
   ASSERT_EQ(env.numEnvs(), n * k);
   EXPECT_EQ(env.spec().num_envs, n * k);
   EXPECT_EQ(env.state().observations.size(), static_cast<std::size_t>(n * k * env.obsDim()));
@@ -58,7 +55,7 @@ TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
 }
 
 TEST(Team, RobotsSeeEachOtherInTheirScans) {
-  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), teamConfig(1, 2, 0.0), test::navigationTask());
   const std::vector<float> stop(2 * env.actionDim(), 0.0f);
   const ScannerSpec& scanner = *env.scanner();
   const int ahead = static_cast<int>(std::lround(-scanner.min_angle / scanner.angleIncrement()));
@@ -77,7 +74,7 @@ TEST(Team, RobotsSeeEachOtherInTheirScans) {
 }
 
 TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
-  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), teamConfig(1, 2, 0.0), test::navigationTask());
   auto& task = dynamic_cast<NavigationTask&>(env.task());
   test::place(env, 0, Eigen::Vector2d(-0.6, 0.0), 0.0);
   test::place(env, 1, Eigen::Vector2d(0.6, 0.0), kPi);
@@ -99,7 +96,7 @@ TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {
 // A robot that drove away leaves no stand-in behind in the other's world: the step after it was
 // last near, its stand-in is parked (the steps after that skip the stand-ins altogether).
 TEST(Team, ARobotThatDroveAwayLeavesNoStandInWhereItWas) {
-  BatchedEnv env(lidar(), teamConfig(1, 2, 0.0), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), teamConfig(1, 2, 0.0), test::navigationTask());
   auto& task = dynamic_cast<NavigationTask&>(env.task());
   test::place(env, 0, Eigen::Vector2d(-0.5, 0.0), 0.0);
   test::place(env, 1, Eigen::Vector2d(-0.1, 0.0), 0.0);  // 0.4 m ahead of robot 0: near it
@@ -130,7 +127,7 @@ TEST(Team, ARobotThatDroveAwayLeavesNoStandInWhereItWas) {
 }
 
 TEST(Team, ARobotStartsAnewClearOfTheOthersAndAloneWhenItsRowIsReset) {
-  BatchedEnv env(lidar(), teamConfig(2, 3, 1.0), test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), teamConfig(2, 3, 1.0), test::navigationTask());
   // Robot 1 of env 0 parked on robot 0's point: robot 0, reset, takes another point.
   test::place(env, 1, Eigen::Vector2d(1.0, 0.0), 0.0);
   const RootState other_env = env.view(4).rootState();
@@ -149,7 +146,7 @@ TEST(Team, TheSameOnAnyThreadCountAndAfterAReseed) {
     EnvConfig c = teamConfig(4, 5, 1.2, threads);
     c.team.rounds = rounds;
     c.randomization.initial_yaw = {-0.5, 0.5};  // a draw at every reset
-    BatchedEnv env(lidar(), c, test::navigationTask());
+    BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
     Rng rng(3);
     std::vector<float> out, actions(env.numEnvs() * env.actionDim());
     int waits = 0;
@@ -190,7 +187,7 @@ int sampleTowards(const BatchedEnv& env, int row, const Eigen::Vector2d& p) {
 TEST(Team, InRoundsARobotThatEndedWaitsUnseenUntilAllHaveEnded) {
   EnvConfig c = teamConfig(1, 3, 1.0);
   c.team.rounds = true;
-  BatchedEnv env(lidar(), c, test::navigationTask());
+  BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
   auto& task = dynamic_cast<NavigationTask&>(env.task());
   const std::vector<float> stop(3 * env.actionDim(), 0.0f);
   const int dim = env.obsDim();
@@ -249,33 +246,26 @@ TEST(Team, InRoundsARobotThatEndedWaitsUnseenUntilAllHaveEnded) {
   EXPECT_NEAR(env.view(1).scan()[towards0], gap, 0.1) << "robot 1 sees robot 0 again";
 }
 
-void expectRefused(const EnvConfig& c, const std::string& field) {
-  try {
-    BatchedEnv env(lidar(), c, test::navigationTask());
-    ADD_FAILURE() << "accepted; expected an error naming " << field;
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
-}
-
 TEST(Team, BadParametersAreRefusedNamingTheField) {
   EnvConfig c = teamConfig(1, 3, 1.0);
   c.world.num_boxes = 2;
-  expectRefused(c, "robots_per_env");
+  test::expectRefused(test::lidarJetbot(), c, "robots_per_env");
   c = teamConfig(1, 3, 0.0);
   c.world.random_start = false;
-  expectRefused(c, "robots_per_env");
+  test::expectRefused(test::lidarJetbot(), c, "robots_per_env");
   c = teamConfig(1, 3, 1.0);
   c.world.arena_size.clear();
-  expectRefused(c, "robots_per_env");
-  expectRefused(teamConfig(1, 30, 1.0), "robots_per_env");  // 0.21 m apart: they do not fit
-  expectRefused(teamConfig(1, 3, 1.9), "swap_radius");      // the points touch the walls
+  test::expectRefused(test::lidarJetbot(), c, "robots_per_env");
+  test::expectRefused(test::lidarJetbot(), teamConfig(1, 30, 1.0),
+                      "robots_per_env");  // 0.21 m apart: they do not fit
+  test::expectRefused(test::lidarJetbot(), teamConfig(1, 3, 1.9),
+                      "swap_radius");  // the points touch the walls
   c = teamConfig(1, 3, 0.0);
   c.team.robots_per_env = 0;
-  expectRefused(c, "robots_per_env");
+  test::expectRefused(test::lidarJetbot(), c, "robots_per_env");
   c = teamConfig(1, 1, 1.0);
   c.team.rounds = true;  // rounds of one robot
-  expectRefused(c, "rounds");
+  test::expectRefused(test::lidarJetbot(), c, "rounds");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/rng.h"
 #include "jetbot_rl/scene/movers.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
@@ -14,7 +15,6 @@ namespace jetbot_rl {
 namespace {
 
 constexpr int kRobots = 4, kPeople = 5;
-constexpr double kPi = 3.14159265358979323846;
 
 /// `num_envs` 6 x 6 m arenas, each with kRobots scanning robots at random starts and kPeople
 /// people walking by the social force.

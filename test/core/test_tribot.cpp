@@ -11,8 +11,8 @@ namespace {
 using test::tribot;
 using test::tribotConfig;
 
-constexpr double kWheelRadius = 0.033;     // [m]
-constexpr double kWheelSeparation = 0.16;  // [m]
+constexpr double kTribotWheelRadius = 0.033;     // [m]
+constexpr double kTribotWheelSeparation = 0.16;  // [m]
 
 using test::Averages;
 
@@ -32,7 +32,7 @@ class Tribot : public ::testing::Test {
 
 TEST_F(Tribot, DrivesStraightAtWheelSpeedTimesRadius) {
   const double omega = 5.0;  // [rad/s] of the wheels
-  const double expected = omega * kWheelRadius;
+  const double expected = omega * kTribotWheelRadius;
   const Averages avg = drive(env, kinematics, {expected, 0.0}, 120, 60);
   EXPECT_NEAR(avg.body_velocity.x(), expected, 0.05 * expected);
   EXPECT_NEAR(avg.body_velocity.y(), 0.0, 0.01);
@@ -44,13 +44,14 @@ TEST_F(Tribot, DrivesStraightAtWheelSpeedTimesRadius) {
 }
 
 TEST_F(Tribot, DrivesBackwards) {
-  const Averages avg = drive(env, kinematics, {-5.0 * kWheelRadius, 0.0}, 120, 60);
-  EXPECT_NEAR(avg.body_velocity.x(), -5.0 * kWheelRadius, 0.05 * 5.0 * kWheelRadius);
+  const Averages avg = drive(env, kinematics, {-5.0 * kTribotWheelRadius, 0.0}, 120, 60);
+  EXPECT_NEAR(avg.body_velocity.x(), -5.0 * kTribotWheelRadius, 0.05 * 5.0 * kTribotWheelRadius);
 }
 
 TEST_F(Tribot, TurnsInPlaceAtTwiceWheelRimSpeedOverSeparation) {
-  const double omega = 5.0;                                               // [rad/s] of the wheels
-  const double expected = 2.0 * omega * kWheelRadius / kWheelSeparation;  // 2.06 rad/s, CCW
+  const double omega = 5.0;  // [rad/s] of the wheels
+  const double expected =
+      2.0 * omega * kTribotWheelRadius / kTribotWheelSeparation;  // 2.06 rad/s, CCW
   const auto targets = kinematics.wheelTargets({0.0, expected});
   EXPECT_NEAR(targets[0], -omega, 1e-5);  // the separation is along the axis, tilted 0.0008 rad
   EXPECT_NEAR(targets[1], omega, 1e-5);

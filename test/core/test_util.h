@@ -15,6 +15,10 @@
 namespace jetbot_rl {
 namespace test {
 
+/// The Jetbot\'s wheel radius and separation (urdf/jetbot.urdf) [m].
+constexpr double kJetbotWheelRadius = 0.03;
+constexpr double kJetbotWheelSeparation = 0.1125;
+
 inline std::string jetbotUrdfText() {
   std::ifstream file(JETBOT_URDF);
   std::ostringstream text;
@@ -110,6 +114,17 @@ inline std::unique_ptr<Task> navigationTask(bool path = false) {
 }
 
 /// The tribot's dofs, with the limits its URDF lacks given as parameters.
+/// A navigation batch of `robot` with config `c` is refused with a ConfigError naming `field`.
+inline void expectRefused(const RobotModelConstPtr& robot, const EnvConfig& c,
+                          const std::string& field) {
+  try {
+    BatchedEnv env(robot, c, navigationTask());
+    ADD_FAILURE() << "accepted; expected an error naming " << field;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+  }
+}
+
 inline EnvConfig tribotConfig(int num_envs, int threads = 1) {
   EnvConfig c = smallConfig(num_envs, threads);
   c.dof_names = {"wheel_left_joint", "wheel_right_joint"};
@@ -149,6 +164,21 @@ inline Averages drive(BatchedEnv& env, float left, float right, int settle, int 
   avg.body_velocity /= measure;
   avg.yaw_rate /= measure;
   return avg;
+}
+
+/// Reproducible pseudo-random targets in [-20, 20] rad/s from a stream of `seed`.
+inline std::vector<float> seededActions(int num_envs, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<float> a(static_cast<std::size_t>(num_envs) * 2);
+  for (float& x : a) x = static_cast<float>(40.0 * rng.uniform() - 20.0);
+  return a;
+}
+
+/// Length of a polyline [m].
+inline double pathLength(const std::vector<Eigen::Vector2d>& path) {
+  double l = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) l += (path[i] - path[i - 1]).norm();
+  return l;
 }
 
 /// Reproducible pseudo-random targets in [-25, 25] rad/s (some beyond the limit) for step `step`.

@@ -28,20 +28,13 @@ EnvConfig worldConfig(int envs, int threads) {
 }
 
 /// Random targets, the same for every run.
-std::vector<float> actions(int envs, int step) {
-  Rng rng(1000 + step);
-  std::vector<float> a(static_cast<std::size_t>(envs) * 2);
-  for (float& x : a) x = static_cast<float>(40.0 * rng.uniform() - 20.0);
-  return a;
-}
-
 TEST(World, ObstaclesKeepTheStartsClearanceAndEachOthersDistance) {
   EnvConfig c = worldConfig(16, 2);
   c.episode_length_s = 0.05;  // 3 control steps: many resets
   BatchedEnv env(test::jetbot(), c);
   int layouts = 0;
   for (int s = 0; s < 60; ++s) {
-    env.step(actions(16, s));
+    env.step(test::seededActions(16, 1000 + s));
     for (int e = 0; e < 16; ++e) {
       const EnvLayout& l = env.view(e).layout();
       ++layouts;
@@ -80,8 +73,8 @@ TEST(World, SameSeedSameWorldsTrajectoriesAndScansOnAnyThreadCount) {
   BatchedEnv one(test::jetbot(), worldConfig(12, 1));
   BatchedEnv three(test::jetbot(), worldConfig(12, 3));
   for (int s = 0; s < 200; ++s) {
-    const StepResult& a = one.step(actions(12, s));
-    const StepResult& b = three.step(actions(12, s));
+    const StepResult& a = one.step(test::seededActions(12, 1000 + s));
+    const StepResult& b = three.step(test::seededActions(12, 1000 + s));
     ASSERT_EQ(a.observations, b.observations) << "step " << s;
     ASSERT_EQ(a.reset_env_ids, b.reset_env_ids);
     for (int e = 0; e < 12; ++e) {
@@ -193,7 +186,8 @@ TEST(World, TheLidarJetbotDrivesBitForBitAsTheJetbot) {
   EXPECT_DOUBLE_EQ(scanning.scanner()->range_max, 12.0);
   EXPECT_EQ(scanning.scanner()->update_every, 11);  // 5.5 Hz at 60 Hz
   for (int s = 0; s < 400; ++s) {
-    ASSERT_EQ(plain.step(actions(6, s)).observations, scanning.step(actions(6, s)).observations);
+    ASSERT_EQ(plain.step(test::seededActions(6, 1000 + s)).observations,
+              scanning.step(test::seededActions(6, 1000 + s)).observations);
   }
   // On an empty plane nothing returns.
   for (int k = 0; k < 360; ++k) EXPECT_EQ(scanning.view(0).scan()[k], kNoReturn);

@@ -29,15 +29,6 @@ EnvConfig generatedConfig(int envs, int threads, std::vector<std::string> famili
   return c;
 }
 
-std::unique_ptr<Task> navigation() { return test::navigationTask(); }
-
-std::vector<float> actions(int envs, int step) {
-  Rng rng(500 + step);
-  std::vector<float> a(static_cast<std::size_t>(envs) * 2);
-  for (float& x : a) x = static_cast<float>(40.0 * rng.uniform() - 20.0);
-  return a;
-}
-
 /// An oracle independent of FootprintGrid: a 4-connected walk over 0.02 m cells whose centres
 /// keep more than `radius` from every wall and placed obstacle (exact distances).
 bool hasPath(const WorldModel& world, const std::vector<Obstacle>& obstacles, double radius,
@@ -95,12 +86,12 @@ TEST(GeneratedWorlds, EveryStartAndGoalHaveAPathForTheRobotsFootprint) {
     for (double difficulty : {0.0, 1.0}) {
       EnvConfig c = generatedConfig(4, 2, {family});
       c.world.difficulty = difficulty;
-      BatchedEnv env(test::jetbot(), c, navigation());
+      BatchedEnv env(test::jetbot(), c, test::navigationTask());
       const auto& task = dynamic_cast<const NavigationTask&>(env.task());
       const double radius = env.world()->robotRadius();
       int checked = 0;
       for (int s = 0; s < 12; ++s) {
-        for (int e : env.step(actions(4, s)).reset_env_ids) {
+        for (int e : env.step(test::seededActions(4, 500 + s)).reset_env_ids) {
           const EnvLayout& l = env.view(e).layout();
           ASSERT_FALSE(l.unmade) << family << " env " << e;
           EXPECT_EQ(l.family, 0);
@@ -197,7 +188,7 @@ TEST(GeneratedWorlds, ObstaclesBeyondTheSlotsAreLeftOutAndCounted) {
   EnvConfig c = generatedConfig(2, 1, {"clutter"});
   c.world.difficulty = 1.0;
   c.world.max_generated_obstacles = 5;
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   EXPECT_GT(env.obstaclesGivenUp(), 0u);
   EXPECT_LE(env.view(0).layout().obstacles.size(), 5u);
 }
@@ -205,10 +196,11 @@ TEST(GeneratedWorlds, ObstaclesBeyondTheSlotsAreLeftOutAndCounted) {
 TEST(GeneratedWorlds, FamiliesAreDrawnByTheirWeights) {
   EnvConfig c = generatedConfig(8, 2, {"clutter", "rooms", "maze"});
   c.world.family_weights = {1.0, 0.0, 3.0};
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   std::array<int, 3> count{};
   for (int s = 0; s < 60; ++s) {
-    for (int e : env.step(actions(8, s)).reset_env_ids) ++count[env.view(e).layout().family];
+    for (int e : env.step(test::seededActions(8, 500 + s)).reset_env_ids)
+      ++count[env.view(e).layout().family];
   }
   EXPECT_EQ(count[1], 0);
   const double share = count[2] / static_cast<double>(count[0] + count[2]);
@@ -221,15 +213,17 @@ TEST(GeneratedWorlds, SameSeedSameLayoutsGoalsAndScansOnAnyThreadCount) {
     c.world.difficulty = 0.7;
     return c;
   };
-  BatchedEnv one(test::jetbot(), config(1), navigation());
-  BatchedEnv two(test::jetbot(), config(2), navigation());
-  BatchedEnv three(test::jetbot(), config(3), navigation());
+  BatchedEnv one(test::jetbot(), config(1), test::navigationTask());
+  BatchedEnv two(test::jetbot(), config(2), test::navigationTask());
+  BatchedEnv three(test::jetbot(), config(3), test::navigationTask());
   const auto& ta = dynamic_cast<const NavigationTask&>(one.task());
   const auto& tb = dynamic_cast<const NavigationTask&>(three.task());
   for (int s = 0; s < 40; ++s) {
-    const StepResult& a = one.step(actions(10, s));
-    ASSERT_EQ(a.observations, two.step(actions(10, s)).observations) << "step " << s;
-    ASSERT_EQ(a.observations, three.step(actions(10, s)).observations) << "step " << s;
+    const StepResult& a = one.step(test::seededActions(10, 500 + s));
+    ASSERT_EQ(a.observations, two.step(test::seededActions(10, 500 + s)).observations)
+        << "step " << s;
+    ASSERT_EQ(a.observations, three.step(test::seededActions(10, 500 + s)).observations)
+        << "step " << s;
     for (int e = 0; e < 10; ++e) {
       const EnvLayout& la = one.view(e).layout();
       const EnvLayout& lb = three.view(e).layout();
@@ -260,13 +254,13 @@ TEST(GeneratedWorlds, ALayoutThatCannotBeMadeIsCountedAndRunsInTheBareArena) {
   }
   const std::uint64_t before = env.layoutsUnmade();
   std::vector<float> observations;
-  for (int s = 0; s < 6; ++s) observations = env.step(actions(3, s)).observations;
+  for (int s = 0; s < 6; ++s) observations = env.step(test::seededActions(3, 500 + s)).observations;
   EXPECT_GT(env.layoutsUnmade(), before);
   for (float x : observations) EXPECT_TRUE(std::isfinite(x));
 
   // The same world with goals that fit: none unmade.
-  BatchedEnv fine(test::jetbot(), c, navigation());
-  for (int s = 0; s < 6; ++s) fine.step(actions(3, s));
+  BatchedEnv fine(test::jetbot(), c, test::navigationTask());
+  for (int s = 0; s < 6; ++s) fine.step(test::seededActions(3, 500 + s));
   EXPECT_EQ(fine.layoutsUnmade(), 0u);
 }
 
@@ -300,10 +294,10 @@ TEST(GeneratedWorlds, TheCurriculumRaisesAnEnvsDifficultyAfterAGoodRun) {
   c.world.curriculum_episodes = 2;
   c.world.curriculum_success = 0.0;
   c.world.curriculum_step = 0.25;
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   std::vector<int> episodes(4, 0);
   for (int s = 0; s < 20; ++s) {
-    for (int e : env.step(actions(4, s)).reset_env_ids) {
+    for (int e : env.step(test::seededActions(4, 500 + s)).reset_env_ids) {
       ++episodes[e];
       EXPECT_DOUBLE_EQ(env.view(e).layout().difficulty, env.difficulty(e));
     }
@@ -349,10 +343,10 @@ TEST(GeneratedWorlds, TheCurriculumMixDrawsItsShareOfLayoutsBelowAnEnvsDifficult
   c.world.curriculum = true;
   c.world.curriculum_success = 1.0;
   c.world.curriculum_mix = 0.5;
-  BatchedEnv env(test::jetbot(), c, navigation());
+  BatchedEnv env(test::jetbot(), c, test::navigationTask());
   int layouts = 0, easier = 0;
   for (int s = 0; s < 40; ++s) {
-    for (int e : env.step(actions(4, s)).reset_env_ids) {
+    for (int e : env.step(test::seededActions(4, 500 + s)).reset_env_ids) {
       ++layouts;
       EXPECT_LE(env.view(e).layout().difficulty, env.difficulty(e));
       easier += env.view(e).layout().difficulty < env.difficulty(e) ? 1 : 0;
@@ -362,62 +356,53 @@ TEST(GeneratedWorlds, TheCurriculumMixDrawsItsShareOfLayoutsBelowAnEnvsDifficult
   EXPECT_LT(easier, 3 * layouts / 4) << easier << " of " << layouts;
 }
 
-void expectRefused(const EnvConfig& c, const std::string& field) {
-  try {
-    BatchedEnv env(test::jetbot(), c, navigation());
-    FAIL() << "accepted, expected a refusal naming " << field;
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
-}
-
 TEST(GeneratedWorlds, BadParametersAreRefusedNamingTheField) {
   const EnvConfig good = generatedConfig(1, 1, {"clutter", "maze"});
   EnvConfig c = good;
   c.world.families = {"clutter", "forest"};
-  expectRefused(c, "world/families");
+  test::expectRefused(test::jetbot(), c, "world/families");
   c = good;
   c.world.family_weights = {1.0};
-  expectRefused(c, "world/family_weights = [1]");
+  test::expectRefused(test::jetbot(), c, "world/family_weights = [1]");
   c.world.family_weights = {0.0, 0.0};
-  expectRefused(c, "world/family_weights");
+  test::expectRefused(test::jetbot(), c, "world/family_weights");
   c.world.family_weights = {1.0, -1.0};
-  expectRefused(c, "world/family_weights");
+  test::expectRefused(test::jetbot(), c, "world/family_weights");
   c = good;
   c.world.arena_size = {};
   c.world.region = {-1, -1, 1, 1};
-  expectRefused(c, "world/families");
+  test::expectRefused(test::jetbot(), c, "world/families");
   c = good;
   c.world.region = {-1, -1, 1, 1};
-  expectRefused(c, "world/region");
+  test::expectRefused(test::jetbot(), c, "world/region");
   c = good;
   c.world.num_cylinders = 3;
-  expectRefused(c, "world/num_cylinders = 3");
+  test::expectRefused(test::jetbot(), c, "world/num_cylinders = 3");
   c = good;
   c.world.difficulty = 1.5;
-  expectRefused(c, "world/difficulty = 1.5");
+  test::expectRefused(test::jetbot(), c, "world/difficulty = 1.5");
   c = good;
   c.world.max_generated_obstacles = 0;
-  expectRefused(c, "world/max_generated_obstacles = 0");
+  test::expectRefused(test::jetbot(), c, "world/max_generated_obstacles = 0");
   c = good;
   c.world.curriculum_mix = 1.5;
-  expectRefused(c, "world/curriculum_mix = 1.5");
+  test::expectRefused(test::jetbot(), c, "world/curriculum_mix = 1.5");
   c = good;
   c.world.families = {};
   c.world.num_boxes = 2;
   c.world.curriculum = true;
-  expectRefused(c, "world/curriculum = true");
+  test::expectRefused(test::jetbot(), c, "world/curriculum = true");
   // A maze too tight for any start with this clearance, at the difficulty the curriculum reaches.
   c = good;
   c.world.families = {"maze"};
   c.world.arena_size = {1.5, 1.5};  // one 1.5 m cell at 0, four of 0.75 m at 1
   c.world.start_clearance = 0.5;
   c.world.difficulty = 1.0;
-  expectRefused(c, "world/difficulty = 1");
+  test::expectRefused(test::jetbot(), c, "world/difficulty = 1");
   c.world.difficulty = 0.0;
-  EXPECT_NO_THROW(BatchedEnv(test::jetbot(), c, navigation()));
+  EXPECT_NO_THROW(BatchedEnv(test::jetbot(), c, test::navigationTask()));
   c.world.curriculum = true;
-  expectRefused(c, "world/difficulty = 1");
+  test::expectRefused(test::jetbot(), c, "world/difficulty = 1");
 }
 
 }  // namespace

@@ -9,13 +9,13 @@
 #include <limits>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 
 namespace jetbot_rl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// A scan of `n` samples from `angle_min`, `increment` apart, reading 1 + sample index / 10 [m].

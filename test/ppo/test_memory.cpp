@@ -18,13 +18,13 @@ namespace jetbot_rl {
 namespace ppo {
 namespace {
 
-constexpr int kObs = 3, kAct = 2, kEnvs = 4, kSteps = 10;
+constexpr int kObsDim = 3, kActDim = 2, kNumEnvs = 4, kNumSteps = 10;
 
 BatchSpec spec() {
   BatchSpec s;
-  s.num_envs = kEnvs;
-  s.obs_dim = kObs;
-  s.action_dim = kAct;
+  s.num_envs = kNumEnvs;
+  s.obs_dim = kObsDim;
+  s.action_dim = kActDim;
   s.action_low = {-20.0f, -20.0f};
   s.action_high = {20.0f, 20.0f};
   s.control_dt = 1.0 / 60.0;
@@ -39,7 +39,7 @@ PpoConfig memoryConfig(RnnType rnn, int obs_history, int action_history) {
   PpoConfig c;
   c.actor_hidden_dims = {8};
   c.critic_hidden_dims = {8};
-  c.num_steps_per_env = kSteps;
+  c.num_steps_per_env = kNumSteps;
   c.num_mini_batches = 2;
   c.num_learning_epochs = 1;
   c.rnn_type = rnn;
@@ -62,15 +62,15 @@ std::vector<float> floats(const torch::Tensor& t) {
 StepResult answer(std::uint64_t step, const std::vector<std::uint32_t>& ended, bool truncated) {
   StepResult r;
   r.step = step;
-  r.observations = floats(torch::randn({kEnvs, kObs}));
-  r.rewards = floats(torch::randn({kEnvs}));
-  r.terminated.assign(kEnvs, 0);
-  r.truncated.assign(kEnvs, 0);
-  r.episode_steps.assign(kEnvs, 0);
+  r.observations = floats(torch::randn({kNumEnvs, kObsDim}));
+  r.rewards = floats(torch::randn({kNumEnvs}));
+  r.terminated.assign(kNumEnvs, 0);
+  r.truncated.assign(kNumEnvs, 0);
+  r.episode_steps.assign(kNumEnvs, 0);
   for (std::uint32_t e : ended) {
     (truncated ? r.truncated : r.terminated)[e] = 1;
     r.reset_env_ids.push_back(e);
-    const std::vector<float> final_obs = floats(torch::randn({kObs}));
+    const std::vector<float> final_obs = floats(torch::randn({kObsDim}));
     r.final_observations.insert(r.final_observations.end(), final_obs.begin(), final_obs.end());
   }
   return r;
@@ -79,7 +79,7 @@ StepResult answer(std::uint64_t step, const std::vector<std::uint32_t>& ended, b
 /// A rollout with episode ends at some steps (env 1 at step 3, envs 0 and 2 at step 6).
 void rollout(Ppo& ppo) {
   StepResult r = answer(0, {}, false);
-  for (int t = 0; t < kSteps; ++t) {
+  for (int t = 0; t < kNumSteps; ++t) {
     ppo.act(r);
     std::vector<std::uint32_t> ended;
     if (t == 3) ended = {1};
@@ -138,7 +138,7 @@ TEST_P(RecurrentTest, TheStateStartsOverForExactlyTheEnvsThatEnded) {
   ppo.act(r);
   const MemoryState after = ppo.memoryState();
   // Expected: one step of the actor's RNN from the state before (env 1: from zeros).
-  const torch::Tensor obs = torch::tensor(r.observations).reshape({kEnvs, kObs});
+  const torch::Tensor obs = torch::tensor(r.observations).reshape({kNumEnvs, kObsDim});
   torch::Tensor state = before.actor.clone();
   state[1].zero_();
   ppo.model()->actorMemory()->step(obs, state);
@@ -157,8 +157,8 @@ TEST_P(RecurrentTest, MiniBatchSequencesRecomputeWhatActingComputed) {
   int batches = 0;
   for (const MiniBatch& b : ppo.storage().sequenceMiniBatches(2)) {
     torch::NoGradGuard no_grad;
-    ASSERT_EQ(b.obs.size(0), kSteps);
-    ASSERT_EQ(b.obs.size(1), kEnvs / 2);
+    ASSERT_EQ(b.obs.size(0), kNumSteps);
+    ASSERT_EQ(b.obs.size(1), kNumEnvs / 2);
     const ActionEvaluation e = ppo.model()->evaluateSequence(b.obs, b.actions, b.state, b.starts);
     EXPECT_TRUE(torch::allclose(e.mean, b.old_mean, 0.0, 1e-6));
     EXPECT_TRUE(torch::allclose(e.values, b.old_values, 0.0, 1e-6));
@@ -220,7 +220,7 @@ INSTANTIATE_TEST_SUITE_P(GruAndLstm, RecurrentTest, testing::Values(RnnType::kGr
 
 TEST(MemoryConfig, ARecurrentMinibatchHoldsWholeEnvSequences) {
   PpoConfig c = memoryConfig(RnnType::kGru, 1, 0);
-  c.num_mini_batches = kEnvs + 1;
+  c.num_mini_batches = kNumEnvs + 1;
   try {
     Ppo ppo(spec(), c);
     FAIL() << "no error";
@@ -259,8 +259,8 @@ TEST_P(ExportTest, TheTorchScriptPolicyActsAsTheCheckpointStepAfterStep) {
   Ppo ppo(spec(), c);
   rollout(ppo);  // the normaliser learns something
   CheckpointMeta meta;
-  meta.obs_dim = kObs;
-  meta.action_dim = kAct;
+  meta.obs_dim = kObsDim;
+  meta.action_dim = kActDim;
   meta.config = c;
   meta.spec = spec();
   const auto dir = std::filesystem::temp_directory_path() / "jetbot_rl_test_memory";
@@ -280,7 +280,7 @@ TEST_P(ExportTest, TheTorchScriptPolicyActsAsTheCheckpointStepAfterStep) {
   std::vector<torch::Tensor> outputs;
   bool moved = false;
   for (int t = 0; t < 12; ++t) {
-    const torch::Tensor obs = 2.0 * torch::randn({3, kObs});
+    const torch::Tensor obs = 2.0 * torch::randn({3, kObsDim});
     if (t == 5) {  // env 2 starts over
       policy.resetMemory({2});
       hidden[2].zero_();
@@ -298,7 +298,7 @@ TEST_P(ExportTest, TheTorchScriptPolicyActsAsTheCheckpointStepAfterStep) {
   EXPECT_TRUE(moved);
   // The memory matters: the same observation after different pasts gives different actions.
   std::vector<float> a, b;
-  const std::vector<float> same = floats(torch::ones({3, kObs}));
+  const std::vector<float> same = floats(torch::ones({3, kObsDim}));
   policy.resetMemory();
   policy.act(same, 3, a);
   policy.act(same, 3, b);

@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """scripts/ppo_example.py trains briefly through JetbotVecEnv (100 envs, 20 iterations, seed 0),
 clearly beating the random policy of its first iteration, then plays the saved policy, also with
-an observation and action history (25 iterations, above 0.25 per step); Ctrl-C and SIGTERM mid-training save the
-policy and exit 0. Its renamed options (and those of bench/python_bench.py, the other program
+an observation and action history (25 iterations, above 0.25 per step). Its renamed options (and those of bench/python_bench.py, the other program
 on JetbotVecEnv) are refused naming the new ones. Against a navigation node it reports the
-navigation task's target, a success rate, instead of the velocity task's reward per step."""
+navigation task's target, a success rate, instead of the velocity task's reward per step. With
+--signals (python_ppo_example_signals.test): Ctrl-C and SIGTERM mid-training save the policy and
+exit 0 within 2 s."""
 import os
 import re
 import signal
 import subprocess
+import sys
 import tempfile
 import time
 import unittest
@@ -135,6 +137,11 @@ class TestPpoExample(unittest.TestCase):
         self.assertEqual(out.returncode, 0, out.stdout)
         self.assertIn('env_steps_per_s=', out.stdout)
 
+
+class TestPpoExampleSignals(unittest.TestCase):
+    """Timed (the exit within 2 s of a signal): python_ppo_example_signals.test, in the
+    foreground lane of the test run (the trainings above run beside it, niced)."""
+
     def test_ctrl_c_saves_the_policy(self):
         """SIGINT (Ctrl-C) and SIGTERM mid-training: the current iteration's policy is saved,
         exit 0."""
@@ -168,4 +175,7 @@ class TestPpoExample(unittest.TestCase):
 
 if __name__ == '__main__':
     rospy.init_node('test_python_ppo_example', disable_signals=True)
-    rostest.rosrun('jetbot_rl', 'test_python_ppo_example', TestPpoExample)
+    if '--signals' in sys.argv:
+        rostest.rosrun('jetbot_rl', 'test_python_ppo_example_signals', TestPpoExampleSignals)
+    else:
+        rostest.rosrun('jetbot_rl', 'test_python_ppo_example', TestPpoExample)

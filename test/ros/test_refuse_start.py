@@ -154,6 +154,9 @@ class TestRefuseStart(unittest.TestCase):
     def test_odom_rate_zero(self):
         self.refuses(['_odom_rate:=0.0'], 'odom_rate = 0')
 
+    def test_diagnostic_period_zero(self):
+        self.refuses(['_diagnostic_period:=0.0'], 'diagnostic_period = 0', 'must be in [0.01, 60]')
+
     def test_cmd_vel_timeout_negative(self):
         self.refuses(['_cmd_vel_timeout:=-0.5'], 'cmd_vel_timeout = -0.5')
 

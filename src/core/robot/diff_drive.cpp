@@ -6,6 +6,8 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
+#include "jetbot_rl/robot/urdf_errors.h"
 
 namespace jetbot_rl {
 namespace {
@@ -16,12 +18,6 @@ constexpr double kMinAxisAlongY = 0.99;
 constexpr double kCoaxial = 0.999;
 /// The two derived radii may differ by this fraction before wheel_radius must be given.
 constexpr double kRadiusMismatch = 0.01;
-
-bool positiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
-
-std::string jointError(const std::string& joint, const std::string& what) {
-  return "joint '" + joint + "': " + what;
-}
 
 /// Link frame of every body in the root link frame at zero joint angles.
 std::vector<Eigen::Isometry3d> restPoses(const RobotModel& robot) {

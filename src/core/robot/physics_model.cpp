@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/robot/urdf_errors.h"
 
 namespace jetbot_rl {
 namespace {
@@ -24,10 +25,6 @@ btDefaultCollisionConstructionInfo tinyPools() {
   info.m_defaultMaxPersistentManifoldPoolSize = 1;
   info.m_defaultMaxCollisionAlgorithmPoolSize = 1;
   return info;
-}
-
-std::string jointError(const std::string& joint, const std::string& what) {
-  return "joint '" + joint + "': " + what;
 }
 
 }  // namespace

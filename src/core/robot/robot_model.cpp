@@ -12,6 +12,8 @@
 
 #include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
+#include "jetbot_rl/robot/urdf_errors.h"
 
 namespace jetbot_rl {
 namespace {
@@ -54,12 +56,6 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
           .toRotationMatrix();
   return t;
 }
-
-std::string linkError(const std::string& link, const std::string& what) {
-  return "link '" + link + "': " + what;
-}
-
-bool positiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
 
 /// Inertial of one URDF link, validated, expressed in the body's link frame.
 struct MassElement {

@@ -7,14 +7,14 @@
 
 #include "env/env_physics.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 
 namespace jetbot_rl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A stand-in enters a robot's world this far [m] beyond where the two could touch within a
 // control step at the speeds of its start (what they gain within it is centimetres).
-constexpr double kNearMargin = 0.25;
+constexpr double kStandInMargin = 0.25;
 
 }  // namespace
 
@@ -86,7 +86,7 @@ bool RobotTeam::beginStep(int row, double dt) {
   const std::uint8_t* placed = placed_.data();
   const std::uint32_t* epoch = epoch_.data();
   const Eigen::Vector2d own = position[row];
-  const double base = 2.0 * radius_ + kNearMargin + speed[row] * dt;
+  const double base = 2.0 * radius_ + kStandInMargin + speed[row] * dt;
   int slot = 0;
   bool any = false;
   for (int m = first; m < first + k_; ++m) {

@@ -4,11 +4,10 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 template <typename T>
 std::string text(T v) {

@@ -9,14 +9,13 @@
 #include <limits>
 #include <optional>
 
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "planning/grid_walk.h"
 #include "sensors/scan_rays.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// The unit directions of a scanner's beams in its own frame (cos, sin of each beam's angle),
 /// computed once per scanner and thread.

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/planning/grid_planner.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
@@ -15,7 +16,6 @@
 namespace jetbot_rl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kPathNames[] = {"path_remaining", "path_cos", "path_sin"};
 
 double yawOf(const RootState& state) {

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <limits>
 
+#include "jetbot_rl/numeric.h"
+
 namespace jetbot_rl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Facets of round surfaces (cylinders, spheres) that are not upright.
 constexpr int kRoundFacets = 32;
 

@@ -7,13 +7,12 @@
 
 #include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double lerp(double a, double b, double t) { return a + (b - a) * t; }
 

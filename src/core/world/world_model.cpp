@@ -8,14 +8,13 @@
 #include <utility>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/world_generation.h"
 
 namespace jetbot_rl {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// Felzenszwalb and Huttenlocher's 1-D squared distance transform of `f` (n values, stride
 /// `stride`; far cells hold kFar) in place.

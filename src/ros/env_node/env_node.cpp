@@ -13,6 +13,7 @@
 #include "jetbot_rl/ros/common/robot_description.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
 #include "jetbot_rl/ros/env_node/marker_publisher.h"
+#include "jetbot_rl/ros/env_node/queue_size.h"
 #include "jetbot_rl/ros/env_node/randomization_service.h"
 #include "jetbot_rl/ros/env_node/robot_names.h"
 #include "jetbot_rl/ros/env_node/robot_state_output.h"
@@ -25,7 +26,6 @@ namespace jetbot_rl {
 namespace {
 
 // A lockstep learner has one message in flight.
-constexpr std::uint32_t kQueueSize = 16;
 // How long the last markers may take to be written [s]: SIGINT and SIGTERM end the node within
 // this, waitForStop()'s 0.1 s and a little.
 constexpr double kFlushTimeout = 0.5;
@@ -82,7 +82,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
     };
   };
   targets_sub_ = subscribeBounded<WheelTargets>(
-      inline_pnh, "wheel_targets", kQueueSize,
+      inline_pnh, "wheel_targets", kEnvNodeQueueSize,
       [this](const WheelTargets::ConstPtr& msg) { onWheelTargets(msg); }, refused("wheel_targets"),
       ros::TransportHints().tcpNoDelay());
   step_srv_ = advertiseServiceBounded<Step>(
@@ -100,7 +100,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   for (int e = 0; e < robot_view_envs; ++e) {
     const std::string topic = names.topic(e, "cmd_vel");
     cmd_vel_subs_.push_back(subscribeBounded<geometry_msgs::Twist>(
-        inline_nh, topic, kQueueSize,
+        inline_nh, topic, kEnvNodeQueueSize,
         [this, e](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(e, msg); },
         refused(topic)));
   }
@@ -113,8 +113,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
     realtime_timer_ =
         nh_.createWallTimer(ros::WallDuration(period), &EnvNode::onRealtimeTimer, this);
   }
-  diagnostics_timer_ =
-      nh_.createWallTimer(ros::WallDuration(1.0), &EnvNode::onDiagnosticsTimer, this);
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(params_.diagnostic_period),
+                                           &EnvNode::onDiagnosticsTimer, this);
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     diagnostics_.publish(server_.counters(), env_->state().step);

@@ -3,12 +3,12 @@
 #include <algorithm>
 
 #include "jetbot_rl/ros/common/geometry_conversion.h"
+#include "jetbot_rl/ros/env_node/queue_size.h"
 
 namespace jetbot_rl {
 namespace {
 
 // A slow subscriber loses old states, never slows stepping.
-constexpr std::uint32_t kQueueSize = 16;
 
 void setDiagonal(boost::array<double, 36>& covariance) {
   covariance.fill(0.0);
@@ -59,9 +59,10 @@ RobotStateOutput::RobotStateOutput(ros::NodeHandle& nh, const BatchedEnv& env, i
     : gate_(rate) {
   const int n = std::clamp(envs, 0, env.numEnvs());
   for (int e = 0; e < n; ++e) {
-    odom_pubs_.push_back(nh.advertise<nav_msgs::Odometry>(names.topic(e, "odom"), kQueueSize));
+    odom_pubs_.push_back(
+        nh.advertise<nav_msgs::Odometry>(names.topic(e, "odom"), kEnvNodeQueueSize));
     joint_pubs_.push_back(
-        nh.advertise<sensor_msgs::JointState>(names.topic(e, "joint_states"), kQueueSize));
+        nh.advertise<sensor_msgs::JointState>(names.topic(e, "joint_states"), kEnvNodeQueueSize));
     odom_.push_back(odometryFrame(env, e, names));
     joints_.emplace_back();
   }

@@ -1,16 +1,17 @@
 #include "jetbot_rl/ros/env_node/state_output.h"
 
+#include "jetbot_rl/ros/env_node/queue_size.h"
+
 namespace jetbot_rl {
 namespace {
 
 // Small bounded queue: a lockstep learner has one message in flight, and a slow subscriber only
 // loses old messages.
-constexpr std::uint32_t kQueueSize = 16;
 
 }  // namespace
 
 EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh)
-    : pub_(pnh.advertise<EnvStep>("env_step", kQueueSize)) {}
+    : pub_(pnh.advertise<EnvStep>("env_step", kEnvNodeQueueSize)) {}
 
 void EnvStepOutput::send() {
   if (msg_) pub_.publish(msg_);

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,14 @@ inline const char* paramTypeName(const std::vector<int>&) { return "a list of in
 inline const char* paramTypeName(const std::vector<double>&) { return "a list of numbers"; }
 inline const char* paramTypeName(const std::vector<std::string>&) { return "a list of strings"; }
 
+/// A parameter's value as rosparam writes it. (Called by its global name: the generated
+/// jetbot_rl messages declare operator<< in namespace jetbot_rl, which hides the global one.)
+inline std::string paramText(const XmlRpc::XmlRpcValue& raw) {
+  std::ostringstream s;
+  ::operator<<(s, raw);
+  return s.str();
+}
+
 /// Reads private parameter `name` into `value` when it is set, keeping the default otherwise;
 /// throws ConfigError naming the parameter and its value when it has the wrong type.
 template <typename T, std::enable_if_t<!IsNamedEnum<T>::value, int> = 0>
@@ -30,7 +39,7 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T& value) {
   if (!pnh.hasParam(name) || pnh.getParam(name, value)) return;
   XmlRpc::XmlRpcValue raw;
   pnh.getParam(name, raw);
-  throwInvalid(name, raw, std::string("must be ") + paramTypeName(value));
+  throwInvalid(name, paramText(raw), std::string("must be ") + paramTypeName(value));
 }
 
 /// A list of names; a single name stands for a list of one.

@@ -34,6 +34,7 @@ struct NodeParams {
   /// Before the robot view's topics and frames (e.g. "jetbot_env_1/"): several env nodes' robots
   /// in one graph keep apart.
   std::string robot_prefix;
+  double diagnostic_period = 1.0;  ///< Between /diagnostics status messages [s, wall].
 };
 
 /// Rows with the robot view: robot_view_envs clamped to the rows (num_envs x robots_per_env).
@@ -80,6 +81,9 @@ IfConfig<C, NodeParams> visitFields(C& c, V&& v) {
     "Before the robot view's topics and tf frames (e.g. jetbot_env_1/ gives "
     "jetbot_env_1/env_0/cmd_vel and frame jetbot_env_1/env_0/odom): several env nodes in one "
     "graph keep their robots apart (env_nodes.launch sets it to each node's name).");
+  v("diagnostic_period", c.diagnostic_period, inRange(0.01, 60.0, "s, wall"),
+    "Between the node's /diagnostics status messages (its counters), as diagnostic_updater's "
+    "~diagnostic_period.");
 }
 
 /// The rules between fields (EnvConfig's, and env_prefix against robot_view_envs).
