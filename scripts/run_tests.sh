@@ -53,8 +53,10 @@ for target in "${targets[@]}"; do
   fi
 done
 echo "== running ${#targets[@]} test files: ${#foreground_targets[@]} in the foreground," \
-  "${#background_targets[@]} in the background (nice 10)"
+  "${#background_targets[@]} in the background"
 
+# nice 10, not the idle class: a background trainer starved for longer than its step_timeout
+# (10 s) while the foreground trains on both cores would give up.
 nice -n 10 bash "${BASH_SOURCE[0]}" --lane "[bg] " "$build" "${background_targets[@]}" &
 background_pid=$!
 bash "${BASH_SOURCE[0]}" --lane "" "$build" "${foreground_targets[@]}"

@@ -26,6 +26,7 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# build [TARGET...]: the package (make's default target) or the targets given.
 build() {
   echo "== building in $ws"
   mkdir -p "$ws/src"
@@ -35,7 +36,7 @@ build() {
   mkdir -p "$ws/devel/lib/python3/dist-packages"
   cd "$ws"
   # ROS's Python tools need Debian's interpreter, not a pyenv python3 on the PATH.
-  catkin_make -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
+  catkin_make -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release "$@"
   set +u
   # shellcheck disable=SC1091
   source "$ws/devel/setup.bash"
@@ -45,9 +46,8 @@ build() {
 run_tests() {
   cd "$ws"
   rm -rf "$ws/build/test_results"
-  # The test programs build on every core; the tests then run in two lanes (run_tests.sh): those
-  # that time what they measure in the foreground, one at a time, the rest beside them at nice 10.
-  catkin_make tests -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
+  # Two lanes (run_tests.sh): the tests that time what they measure in the foreground, one at a
+  # time, the rest beside them at nice 10.
   bash "$repo/scripts/run_tests.sh" "$ws"
   local status=0
   catkin_test_results --verbose "$ws/build/test_results" || status=$?
@@ -56,10 +56,11 @@ run_tests() {
 }
 
 install_packages
-build
 if [ "$mode" = test ]; then
+  build all tests  # the package and its test programs, in one make on every core
   run_tests
 else
+  build
   # The main job: PPO learns to drive with 100 envs; the run directory gets progress.csv,
   # checkpoints and learning_curve.png. roslaunch starts a ROS master when none runs.
   run_dir="$HOME/.ros/jetbot_rl/main_$(date +%Y%m%d_%H%M%S)"

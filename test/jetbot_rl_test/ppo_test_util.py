@@ -55,9 +55,23 @@ class StatsWatcher(object):
         return dict(zip(names, msg.data))
 
 
+_NODE_PATHS = {}
+
+
+def node_path(node_type):
+    """The jetbot_rl program rosrun would run, found once (rosrun looks for it at every start:
+    about 0.5 s on a loaded machine)."""
+    if node_type not in _NODE_PATHS:
+        import roslib.packages
+        paths = roslib.packages.find_node('jetbot_rl', node_type)
+        assert paths, 'no jetbot_rl program named %s' % node_type
+        _NODE_PATHS[node_type] = paths[0]
+    return _NODE_PATHS[node_type]
+
+
 def run_node(node_type, name, params, timeout=TIMEOUT):
     """Runs a jetbot_rl node to its end; returns (exit code, output)."""
-    command = ['rosrun', 'jetbot_rl', node_type, '__name:=' + name]
+    command = [node_path(node_type), '__name:=' + name]
     command += ['_%s:=%s' % (k, v) for k, v in params.items()]
     proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           timeout=timeout, universal_newlines=True)
@@ -65,9 +79,9 @@ def run_node(node_type, name, params, timeout=TIMEOUT):
 
 
 def start_node(node_type, name, params):
-    command = ['rosrun', 'jetbot_rl', node_type, '__name:=' + name]
+    command = [node_path(node_type), '__name:=' + name]
     command += ['_%s:=%s' % (k, v) for k, v in params.items()]
-    # rosrun execs the node (same pid), so signals reach it directly.
+    # the node itself (no rosrun), so signals reach it directly.
     return subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             universal_newlines=True)
 

@@ -10,6 +10,8 @@ import rospkg
 import rospy
 import rostest
 
+from jetbot_rl_test.ppo_test_util import node_path
+
 RUN_TIMEOUT = 60.0  # s, for one node start-up on a loaded machine
 
 PACKAGE = rospkg.RosPack().get_path('jetbot_rl')
@@ -26,14 +28,14 @@ class TestRefuseStart(unittest.TestCase):
 
     def node_command(self, *args):
         TestRefuseStart.count += 1
-        return ['rosrun', 'jetbot_rl', 'jetbot_env_node',
+        return [node_path('jetbot_env_node'),
                 '__name:=refuse_%d' % TestRefuseStart.count] + list(args)
 
     def refuses(self, args, *texts, **params):
         """Runs the node with private params `args` ("_name:=value", typed by roscpp) and `params`
         (set on the master); it must exit non-zero with a FATAL line containing every text."""
         command = self.node_command(*args)
-        name = command[3][len('__name:='):]
+        name = command[1][len('__name:='):]
         for key, value in params.items():
             rospy.set_param('/%s/%s' % (name, key), value)
         proc = subprocess.run(command, stdout=subprocess.PIPE,
@@ -227,7 +229,7 @@ class TestRefuseStart(unittest.TestCase):
     def starts(self, args, **params):
         """Runs the node with private params `args` and `params`: it must serve ~reset."""
         command = self.node_command(*args)
-        name = command[3][len('__name:='):]
+        name = command[1][len('__name:='):]
         for key, value in params.items():
             rospy.set_param('/%s/%s' % (name, key), value)
         with tempfile.TemporaryFile(mode='w+') as output:
