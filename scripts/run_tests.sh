@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs every test of the package in a built catkin workspace (bash scripts/run_tests.sh WS), in
 # two lanes at once: the tests test/background_lane.txt names, one after another at nice 10, and
-# every other test, one after another at normal priority; then those test/alone.txt names. The tests that time what they measure
-# (realtime nodes, signals) run in the foreground and keep the CPU they need; the background uses
-# what the foreground leaves idle. Results: WS/build/test_results (catkin's JUnit XML).
+# every other test, one after another at normal priority; then those test/alone.txt names, by
+# themselves. The tests that time what they measure (realtime nodes, signals) run in the
+# foreground and keep the CPU they need; the background uses what the foreground leaves idle.
+# Results: WS/build/test_results (catkin's JUnit XML); a lane never stops at a failed test.
 set -euo pipefail
 
 # One lane (called by this script): its targets one after another, each line prefixed.
@@ -42,7 +43,8 @@ read_list() {
     else
       target=run_tests_jetbot_rl_gtest_$entry
     fi
-    [ -n "${known[$target]:-}" ] || { echo "$list: '$entry' is no test of the package" >&2; exit 1; }
+    [ -n "${known[$target]:-}" ] ||
+      { echo "$list: '$entry' is no test of the package" >&2; exit 1; }
     lane[$target]=$name
   done < "$repo/$list"
 }

@@ -47,7 +47,7 @@ run_tests() {
   cd "$ws"
   rm -rf "$ws/build/test_results"
   # Two lanes (run_tests.sh): the tests that time what they measure in the foreground, one at a
-  # time, the rest beside them at nice 10.
+  # time, the rest beside them at nice 10; then the rate comparisons alone.
   bash "$repo/scripts/run_tests.sh" "$ws"
   local status=0
   catkin_test_results --verbose "$ws/build/test_results" || status=$?
