@@ -69,6 +69,7 @@ class TestInterface(unittest.TestCase):
         self.assertIn('parameter task', res.message)
 
     def test_reset_reports_state(self):
+        rospy.wait_for_service(NODE + '/reset', TIMEOUT)  # tests run in name order: this one first
         res = rospy.ServiceProxy(NODE + '/reset', Reset)(env_ids=[], seed=-1)
         self.assertTrue(res.success, res.message)
         self.assertEqual(res.state.num_envs, 5)
