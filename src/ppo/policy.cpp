@@ -5,20 +5,28 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/checkpoint.h"
+#include "jetbot_rl/ppo/policy_model.h"
 
 namespace jetbot_rl {
 namespace ppo {
 
-Policy::Policy(const std::string& checkpoint) : meta_(readCheckpointMeta(checkpoint)) {
+Policy::Policy(const std::string& checkpoint)
+    : meta_(readCheckpointMeta(checkpoint)), model_(std::make_unique<Model>()) {
   const NetworkConfig& c = meta_.config;
-  model_ = ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c);
-  normalizer_ = ObsNormalizer(meta_.obs_dim, c.normalize_observations);
-  loadPolicy(checkpoint, model_, normalizer_);
-  model_->eval();
+  model_->net =
+      ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c);
+  model_->normalizer = ObsNormalizer(meta_.obs_dim, c.normalize_observations);
+  loadPolicy(checkpoint, model_->net, model_->normalizer);
+  model_->net->eval();
   if (!meta_.spec.action_low.empty()) {
     setActionLimits(meta_.spec.action_low, meta_.spec.action_high);
   }
 }
+
+Policy::~Policy() = default;
+Policy::Policy(Policy&&) noexcept = default;
+Policy& Policy::operator=(Policy&&) noexcept = default;
 
 namespace {
 std::string bounds(const std::vector<float>& low, const std::vector<float>& high) {
@@ -36,7 +44,7 @@ std::string Policy::setActionLimits(const std::vector<float>& low, const std::ve
                       " action dimensions; the policy was trained for " +
                       std::to_string(actionDim()));
   }
-  scaler_ = std::make_unique<ActionScaler>(low, high, meta_.config.action_squash);
+  model_->scaler = std::make_unique<ActionScaler>(low, high, meta_.config.action_squash);
   const BatchSpec& trained = meta_.spec;
   if (trained.action_low.empty() || (trained.action_low == low && trained.action_high == high)) {
     return "";
@@ -64,15 +72,16 @@ std::vector<std::string> Policy::fitTo(const BatchSpec& env) {
 }
 
 void Policy::resetMemory(const std::vector<std::uint32_t>& envs) {
-  if (memory_) memory_->reset(envs);  // before the first act() every env starts anyway
+  if (model_->memory)
+    model_->memory->reset(envs);  // before the first act() every env starts anyway
 }
 
 void Policy::resetMemory() {
-  if (memory_) memory_->resetAll();
+  if (model_->memory) model_->memory->resetAll();
 }
 
 void Policy::act(const std::vector<float>& observations, int num_envs, std::vector<float>& out) {
-  if (!scaler_) throw Error("Policy::act before setActionLimits");
+  if (!model_->scaler) throw Error("Policy::act before setActionLimits");
   if (num_envs < 1 || static_cast<std::int64_t>(observations.size()) !=
                           static_cast<std::int64_t>(num_envs) * obsDim()) {
     throw InputError("expected " + std::to_string(num_envs * obsDim()) + " observations, got " +
@@ -81,17 +90,21 @@ void Policy::act(const std::vector<float>& observations, int num_envs, std::vect
   torch::NoGradGuard no_grad;
   const torch::Tensor obs = torch::from_blob(const_cast<float*>(observations.data()),
                                              {num_envs, obsDim()}, torch::kFloat);
-  if (!memory_ || memory_->numEnvs() != num_envs) {
-    memory_ = std::make_unique<PolicyMemory>(meta_.config, model_, num_envs, obsDim(), actionDim(),
-                                             /*with_critic=*/false);
+  std::unique_ptr<PolicyMemory>& memory = model_->memory;
+  if (!memory || memory->numEnvs() != num_envs) {
+    memory = std::make_unique<PolicyMemory>(meta_.config, model_->net, num_envs, obsDim(),
+                                            actionDim(), /*with_critic=*/false);
   }
-  const torch::Tensor input =
-      memory_->begin(obs, [this](const torch::Tensor& o) { return normalizer_->normalize(o); });
+  const ObsNormalizer& normalizer = model_->normalizer;
+  const torch::Tensor input = memory->begin(
+      obs, [&normalizer](const torch::Tensor& o) { return normalizer->normalize(o); });
   const torch::Tensor mean =
-      model_->actionMean(input, memory_->recurrent() ? &memory_->state().actor : nullptr);
-  memory_->end(scaler_->squash(mean));
-  scaler_->toEnv(mean, out);
+      model_->net->actionMean(input, memory->recurrent() ? &memory->state().actor : nullptr);
+  memory->end(model_->scaler->squash(mean));
+  model_->scaler->toEnv(mean, out);
 }
+
+void setTorchThreads(int threads) { torch::set_num_threads(threads); }
 
 }  // namespace ppo
 }  // namespace jetbot_rl

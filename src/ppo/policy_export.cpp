@@ -11,6 +11,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/policy_memory.h"
+#include "jetbot_rl/ppo/policy_model.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -49,7 +50,9 @@ std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta,
 }  // namespace
 
 void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) const {
-  if (!scaler_) throw Error("Policy::exportTorchScript before setActionLimits");
+  if (!model_->scaler) throw Error("Policy::exportTorchScript before setActionLimits");
+  const ObsNormalizer& normalizer = model_->normalizer;
+  const ActionScaler& scaler = *model_->scaler;
   torch::NoGradGuard no_grad;
   const NetworkConfig& c = meta_.config;
   torch::jit::Module module("JetbotPolicy");
@@ -57,17 +60,17 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
 
   // normalize(x): the same float values and operations as ObsNormalizer::normalize.
   code << "def normalize(self, x: Tensor) -> Tensor:\n";
-  if (normalizer_->enabled()) {
-    module.register_buffer("obs_mean", normalizer_->mean().to(torch::kFloat));
+  if (normalizer->enabled()) {
+    module.register_buffer("obs_mean", normalizer->mean().to(torch::kFloat));
     module.register_buffer(
-        "obs_std", (torch::sqrt(normalizer_->var()) + normalizer_->epsilon()).to(torch::kFloat));
-    code << "    return torch.clamp((x - self.obs_mean) / self.obs_std, " << -normalizer_->clip()
-         << ", " << normalizer_->clip() << ")\n";
+        "obs_std", (torch::sqrt(normalizer->var()) + normalizer->epsilon()).to(torch::kFloat));
+    code << "    return torch.clamp((x - self.obs_mean) / self.obs_std, " << -normalizer->clip()
+         << ", " << normalizer->clip() << ")\n";
   } else {
     code << "    return x\n";
   }
 
-  const MemoryScript memory = memoryScript(c, model_, obsDim(), actionDim(), module);
+  const MemoryScript memory = memoryScript(c, model_->net, obsDim(), actionDim(), module);
   if (memory.hidden_size == 0) {
     code << "def forward(self, obs: Tensor) -> Tensor:\n";
   } else {
@@ -77,7 +80,7 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
   }
   code << memory.code;
   int layer = 0;
-  for (const auto& child : model_->actor()->children()) {
+  for (const auto& child : model_->net->actor()->children()) {
     if (auto* linear = child->as<torch::nn::Linear>()) {
       const std::string n = std::to_string(layer++);
       module.register_buffer("weight_" + n, linear->weight.detach().clone());
@@ -88,9 +91,9 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
       code << "    x = " << activationCall(c.activation) << "\n";
     }
   }
-  code << "    a = " << (scaler_->tanh() ? "torch.tanh(x)" : "torch.clamp(x, -1.0, 1.0)") << "\n";
-  module.register_buffer("action_center", scaler_->center().clone());
-  module.register_buffer("action_half_range", scaler_->halfRange().clone());
+  code << "    a = " << (scaler.tanh() ? "torch.tanh(x)" : "torch.clamp(x, -1.0, 1.0)") << "\n";
+  module.register_buffer("action_center", scaler.center().clone());
+  module.register_buffer("action_half_range", scaler.halfRange().clone());
   if (memory.hidden_size == 0) {
     code << "    return self.action_center + self.action_half_range * a\n";
   } else {

@@ -5,11 +5,8 @@
 #include <vector>
 
 #include "jetbot_rl/env/step_result.h"
-#include "jetbot_rl/ppo/action_scaler.h"
-#include "jetbot_rl/ppo/actor_critic.h"
-#include "jetbot_rl/ppo/checkpoint.h"
-#include "jetbot_rl/ppo/obs_normalizer.h"
-#include "jetbot_rl/ppo/policy_memory.h"
+#include "jetbot_rl/ppo/checkpoint_meta.h"
+#include "jetbot_rl/ppo/network_config.h"
 
 namespace jetbot_rl {
 namespace ppo {
@@ -18,12 +15,18 @@ namespace ppo {
  * A trained policy for playing: the checkpoint's model and normaliser, acting with the mean.
  * A policy with memory (history, RNN) keeps it per env: the caller starts an env's memory over
  * with resetMemory() when its episode (or, on a robot, its command) starts.
+ *
+ * Its networks live behind a pointer (policy_model.h), so that a program playing a policy does
+ * not parse libtorch's headers.
  */
 class Policy {
  public:
   /// Loads `checkpoint` (Error naming the file when it cannot); the action limits are the
   /// checkpoint's (a checkpoint of format 1 has none: call setActionLimits()).
   explicit Policy(const std::string& checkpoint);
+  ~Policy();
+  Policy(Policy&&) noexcept;
+  Policy& operator=(Policy&&) noexcept;
 
   /// Sets the env's action limits (from EnvSpec); ConfigError when they do not fit the model.
   /// Returns "" or, when the checkpoint holds other limits, a line naming both (for a warning:
@@ -60,12 +63,15 @@ class Policy {
   int actionDim() const { return meta_.action_dim; }
 
  private:
+  struct Model;  // the networks, the action scaler and the memory (policy_model.h)
+
   CheckpointMeta meta_;
-  ActorCritic model_{nullptr};
-  ObsNormalizer normalizer_{nullptr};
-  std::unique_ptr<ActionScaler> scaler_;
-  std::unique_ptr<PolicyMemory> memory_;  // sized by the last act()
+  std::unique_ptr<Model> model_;
 };
+
+/// Sets how many threads libtorch uses within an operation (a robot's policy acts on one small
+/// batch: 1 spares the pool's hand-offs), without the caller including libtorch.
+void setTorchThreads(int threads);
 
 }  // namespace ppo
 }  // namespace jetbot_rl

@@ -1,7 +1,6 @@
 #include "jetbot_rl/ros/deploy/deploy_node.h"
 
 #include <ros/ros.h>
-#include <torch/utils.h>
 
 #include <filesystem>
 #include <memory>
@@ -45,7 +44,7 @@ int runDeployNode() {
 }
 
 int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
-  torch::set_num_threads(1);
+  ppo::setTorchThreads(1);
   const std::optional<DeployParams> params = loadParams<DeployParams>(pnh, [](DeployParams& p) {
     std::string& checkpoint = p.driver.checkpoint;
     if (std::filesystem::is_directory(checkpoint)) {
