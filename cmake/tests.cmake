@@ -132,7 +132,8 @@ foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigatio
     closed_loop_move_base
     move_base_client
     closed_loop_memory
-    deploy_node)
+    deploy_node
+    evaluator_options)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

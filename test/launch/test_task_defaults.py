@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Each task's defaults live in one place: launch/jetbot_env.launch picks the robot (urdf) and the
 task's env file (task_config) from `task` when they are left empty, and every launch file that
-starts an env passes them through. Compared on the parameters roslaunch would set
-(`roslaunch --dump-params`, no master): `jetbot_env.launch task:=navigation` is the env that
+starts an env passes them through. Compared on the parameters roslaunch would set (what
+`roslaunch --dump-params` prints, read in-process through the same roslaunch loader; no master): `jetbot_env.launch task:=navigation` is the env that
 `train.launch task:=navigation` trains (env node, several nodes, in-process), that play.launch,
 env_host.launch and view.launch start; a urdf or task_config given wins."""
 import os
-import subprocess
 import unittest
 
+import roslaunch.config
+import roslaunch.rlutil
 import rospkg
 import rostest
 import yaml
@@ -27,13 +28,11 @@ RUN_PARAMS = {'num_envs', 'num_threads', 'mode', 'seed', 'publish_clock', 'tf_en
 
 
 def dump(launch_file, *args):
-    """The parameters `roslaunch jetbot_rl launch_file args` would set: {name: value}."""
-    out = subprocess.run(['roslaunch', '--dump-params', 'jetbot_rl', launch_file] + list(args),
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
-                         timeout=60)
-    assert out.returncode == 0, 'roslaunch --dump-params %s %s failed:\n%s' % (
-        launch_file, ' '.join(args), out.stderr)
-    return yaml.safe_load(out.stdout)
+    """The parameters `roslaunch jetbot_rl launch_file args` would set: {name: value}, as
+    `roslaunch --dump-params` loads them (without a process per launch file)."""
+    path = roslaunch.rlutil.resolve_launch_arguments(['jetbot_rl', launch_file])[0]
+    config = roslaunch.config.load_config_default([(path, list(args))], None, verbose=False)
+    return {name: param.value for name, param in config.params.items()}
 
 
 def under(params, ns):

@@ -88,42 +88,54 @@ class TestClosedLoopMemory(unittest.TestCase):
                  what='%s odometry up to %.1f s' % (robot, end))
         return [o for o in odoms if start + SETTLE <= stamp(o) <= end]
 
-    def drive(self, policy, robot):
-        """Drives `robot` with `policy` through COMMANDS; returns [(largest heading error
-        [rad], speed [m/s])] over each command's window."""
-        odoms, command = self.odoms[robot], self.commands[robot]
-        wait_for(lambda: odoms, what='odometry of %s' % robot)
-        command.publish(Vector3(math.cos(COMMANDS[0]), math.sin(COMMANDS[0]), 0.0))
-        count = len(odoms)
-        proc = subprocess.Popen([
-            'rosrun', 'jetbot_rl', 'jetbot_deploy_node', '__name:=%s_%s' % (policy, robot),
-            '_checkpoint:=' + self.runs[policy],
-            '_odom_topic:=/%s/env_0/odom' % robot, '_cmd_vel_topic:=/%s/env_0/cmd_vel' % robot,
-            '_command_topic:=/%s_command' % robot,
-            # no wheel parameters: the checkpoint's wheels, which the env's robot view converts
-            # cmd_vel with (the trained robot's URDF)
-        ])
-        results = []
+    def drive(self, policy):
+        """Drives both robots at once (two env nodes, a deploy node each) with `policy` through
+        COMMANDS; returns {robot: [(largest heading error [rad], speed [m/s])]} over each
+        command's window."""
+        counts, procs = {}, {}
+        for robot in ROBOTS:
+            wait_for(lambda: self.odoms[robot], what='odometry of %s' % robot)
+            self.commands[robot].publish(Vector3(math.cos(COMMANDS[0]), math.sin(COMMANDS[0]),
+                                                 0.0))
+            counts[robot] = len(self.odoms[robot])
         try:
+            for robot in ROBOTS:
+                procs[robot] = subprocess.Popen([
+                    'rosrun', 'jetbot_rl', 'jetbot_deploy_node',
+                    '__name:=%s_%s' % (policy, robot), '_checkpoint:=' + self.runs[policy],
+                    '_odom_topic:=/%s/env_0/odom' % robot,
+                    '_cmd_vel_topic:=/%s/env_0/cmd_vel' % robot,
+                    '_command_topic:=/%s_command' % robot,
+                    # no wheel parameters: the checkpoint's wheels, which the env's robot view
+                    # converts cmd_vel with (the trained robot's URDF)
+                ])
             # The first command counts from when the policy first moves the robot; the second
             # from when it is set, while the robot drives.
-            wait_for(lambda: any(moving(o) for o in odoms[count:]),
-                     what='%s to move %s' % (policy, robot))
-            start = stamp(next(o for o in odoms[count:] if moving(o)))
+            starts, results = {}, {robot: [] for robot in ROBOTS}
+            for robot in ROBOTS:
+                odoms, count = self.odoms[robot], counts[robot]
+                wait_for(lambda: any(moving(o) for o in odoms[count:]),
+                         what='%s to move %s' % (policy, robot))
+                starts[robot] = stamp(next(o for o in odoms[count:] if moving(o)))
             for k, goal in enumerate(COMMANDS):
-                if k > 0:
-                    start = stamp(odoms[-1])
-                    command.publish(Vector3(math.cos(goal), math.sin(goal), 0.0))
-                window = self.window(robot, start)
-                results.append((max(heading_error(o, goal) for o in window),
-                                Motion(window).speed))
+                for robot in ROBOTS:
+                    if k > 0:
+                        starts[robot] = stamp(self.odoms[robot][-1])
+                        self.commands[robot].publish(Vector3(math.cos(goal), math.sin(goal), 0.0))
+                for robot in ROBOTS:
+                    window = self.window(robot, starts[robot])
+                    results[robot].append((max(heading_error(o, goal) for o in window),
+                                           Motion(window).speed))
         finally:
-            proc.send_signal(signal.SIGINT)
-            self.assertEqual(proc.wait(timeout=TIMEOUT), 0)
-        for goal, (error, speed) in zip(COMMANDS, results):
-            print('FIGURE: closed loop, %s robot, %s policy: heading at most %.3f rad off the '
-                  'command %.1f rad %.1f-%.1f s after it, at %.3f m/s'
-                  % (robot, policy, error, goal, SETTLE, SETTLE + WINDOW, speed))
+            for proc in procs.values():
+                proc.send_signal(signal.SIGINT)
+            for proc in procs.values():
+                self.assertEqual(proc.wait(timeout=TIMEOUT), 0)
+        for robot in ROBOTS:
+            for goal, (error, speed) in zip(COMMANDS, results[robot]):
+                print('FIGURE: closed loop, %s robot, %s policy: heading at most %.3f rad off the '
+                      'command %.1f rad %.1f-%.1f s after it, at %.3f m/s'
+                      % (robot, policy, error, goal, SETTLE, SETTLE + WINDOW, speed))
         return results
 
     def test_exported_policy_runs_in_python_without_the_package(self):
@@ -140,8 +152,10 @@ class TestClosedLoopMemory(unittest.TestCase):
         self.assertIn('export check passed', out.stdout)
 
     def test_memory_absorbs_a_weak_motor(self):
-        figures = {(policy, robot): self.drive(policy, robot)
-                   for robot in ROBOTS for policy in ('memoryless', 'memory')}
+        figures = {}
+        for policy in ('memoryless', 'memory'):
+            for robot, results in self.drive(policy).items():
+                figures[policy, robot] = results
         for robot in ROBOTS:
             for (error, speed), goal in zip(figures['memory', robot], COMMANDS):
                 self.assertLess(error, 0.1, '%s robot, command %.1f rad' % (robot, goal))
