@@ -4,6 +4,12 @@ add_executable(jetbot_rl_bench bench/core_bench_main.cpp)
 target_compile_definitions(jetbot_rl_bench PRIVATE ${JETBOT_RL_DEFAULT_URDF_DEFINE})
 target_link_libraries(jetbot_rl_bench jetbot_rl_core)
 
+# Camera frames/s of the Embree renderer (RGB + depth + labels) for a batch in the office map.
+add_executable(jetbot_rl_camera_bench bench/camera_bench_main.cpp)
+target_compile_definitions(jetbot_rl_camera_bench PRIVATE
+  JETBOT_RL_DEFAULT_MAP="${PROJECT_SOURCE_DIR}/maps/office.yaml")
+target_link_libraries(jetbot_rl_camera_bench jetbot_rl_core)
+
 # The lockstep round trips against a running env node: jetbot_rl_ros_bench and the nodelet.
 add_library(jetbot_rl_lockstep_bench bench/lockstep_bench.cpp)
 target_include_directories(jetbot_rl_lockstep_bench PUBLIC bench)
@@ -31,7 +37,7 @@ endif()
 install(TARGETS jetbot_rl_lockstep_bench
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
-install(TARGETS jetbot_rl_bench jetbot_rl_ros_bench jetbot_rl_nodes_bench
+install(TARGETS jetbot_rl_bench jetbot_rl_camera_bench jetbot_rl_ros_bench jetbot_rl_nodes_bench
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(PROGRAMS bench/bench.sh bench/bench16.sh bench/bench_nodes.sh bench/bench_world.sh bench/bench_team.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -8,6 +8,8 @@ pkg_check_modules(STB REQUIRED stb)
 find_package(yaml-cpp REQUIRED)
 # Gazebo world files (SDF), read with Debian's libsdformat-dev as Gazebo reads them.
 find_package(sdformat12 REQUIRED)
+# Cameras' images, ray traced on the CPU with Debian's libembree-dev (Embree 3).
+find_package(embree 3 REQUIRED)
 add_library(jetbot_rl_core
   src/core/config/config_fields.cpp
   src/core/config/file_checks.cpp
@@ -44,6 +46,8 @@ add_library(jetbot_rl_core
   src/core/scene/movers.cpp
   src/core/scene/people_bodies.cpp
   src/core/scene/robot_team.cpp
+  src/core/sensors/camera_model.cpp
+  src/core/sensors/camera_scene.cpp
   src/core/sensors/laser_scanner.cpp
   src/core/sensors/scan_cast.cpp
   src/core/sensors/scan_reading.cpp
@@ -75,7 +79,7 @@ target_compile_definitions(jetbot_rl_core PUBLIC ${BULLET_DEFINITIONS})
 target_link_libraries(jetbot_rl_core PUBLIC ${BULLET_LIBRARIES} ${URDFDOM_LIBRARIES} Threads::Threads)
 target_include_directories(jetbot_rl_core PRIVATE ${ASSIMP_INCLUDE_DIRS} ${TINYXML2_INCLUDE_DIRS})
 target_link_libraries(jetbot_rl_core PRIVATE ${ASSIMP_LIBRARIES} ${TINYXML2_LIBRARIES}
-  ${STB_LIBRARIES} yaml-cpp sdformat12::sdformat12)
+  ${STB_LIBRARIES} yaml-cpp sdformat12::sdformat12 embree)
 
 # Headless demo of the batched core.
 add_executable(jetbot_rl_demo src/nodes/demo_main.cpp)

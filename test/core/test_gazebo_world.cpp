@@ -20,6 +20,8 @@
 namespace jetbot_rl {
 namespace {
 
+using test::sdfWorld;
+
 std::string shippedWorld() {
   return std::string(JETBOT_RL_SOURCE_DIR) + "/worlds/furnished_room.world";
 }
@@ -38,12 +40,6 @@ const WorldSolid& solid(const GazeboWorld& world, const std::string& name) {
     if (s.name == name) return s;
   }
   throw std::runtime_error("no solid " + name);
-}
-
-std::string sdfWorld(const std::string& name, const std::string& body,
-                     const std::string& version = "1.6") {
-  return test::writeTempFile(name, "<?xml version=\"1.0\"?>\n<sdf version=\"" + version +
-                                       "\">\n<world name=\"w\">\n" + body + "</world>\n</sdf>\n");
 }
 
 std::string staticModel(const std::string& name, const std::string& pose,

@@ -28,6 +28,8 @@
 namespace jetbot_rl {
 namespace {
 
+using test::sdfWorld;
+
 /// The error text of `load` (which must throw an Error), with its time and the peak memory as a
 /// FIGURE line; fails when it does not throw.
 std::string refusal(const std::string& what, const std::function<void()>& load) {
@@ -71,13 +73,6 @@ class Fifo {
   std::string path_;
   std::thread writer_;
 };
-
-std::string sdfWorld(const std::string& name, const std::string& body) {
-  return test::writeTempFile(name,
-                             "<?xml version=\"1.0\"?>\n<sdf version=\"1.6\">\n<world "
-                             "name=\"w\">\n" +
-                                 body + "</world>\n</sdf>\n");
-}
 
 std::string boxModel(const std::string& name, const std::string& pose, const std::string& size) {
   return "<model name=\"" + name + "\"><static>true</static><pose>" + pose +

@@ -75,6 +75,13 @@ inline std::string writeTempFile(const std::string& name, const std::string& tex
 
 /// A scanner of 360 samples, one a degree over a full turn from -pi, reading `range_min` to
 /// `range_max` [m], no noise.
+/// A Gazebo world file `name` (in the temporary folder) of SDF `version` holding `body`; its path.
+inline std::string sdfWorld(const std::string& name, const std::string& body,
+                            const std::string& version = "1.6") {
+  return writeTempFile(name, "<?xml version=\"1.0\"?>\n<sdf version=\"" + version +
+                                 "\">\n<world name=\"w\">\n" + body + "</world>\n</sdf>\n");
+}
+
 inline ScannerSpec fullTurnScanner(double range_min, double range_max) {
   constexpr double pi = 3.14159265358979323846;
   ScannerSpec spec;

@@ -1,0 +1,94 @@
+#pragma once
+
+// What a camera sees, as Embree scenes (Intel's ray-tracing kernels, on the CPU): the world's
+// static bodies once, shared by every env (CameraWorld: the model), and per env a scene holding an
+// instance of it and the env's own bodies (CameraEnvScene: the data). Rendering traces one ray per
+// pixel in packets of 8.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "jetbot_rl/sensors/camera_model.h"
+
+struct RTCDeviceTy;
+struct RTCSceneTy;
+
+namespace jetbot_rl {
+
+class WorldModel;
+struct Obstacle;
+
+/// What a pixel shows (the label image's values).
+enum class SurfaceClass : std::uint8_t {
+  kNone = 0,  ///< Nothing within the far clip (the sky)
+  kGround = 1,
+  kWall = 2,      ///< The arena walls
+  kMap = 3,       ///< The map's obstacle cells and a Gazebo world's solids
+  kObstacle = 4,  ///< The env's obstacles
+};
+
+/// The look of a body: its diffuse colour (RGB, each in [0, 1]) and its class.
+struct SurfaceStyle {
+  Eigen::Vector3f colour = Eigen::Vector3f::Constant(0.5f);
+  SurfaceClass label = SurfaceClass::kNone;
+};
+
+/// One camera's images, row by row from the top left.
+struct CameraImages {
+  std::vector<std::uint8_t> rgb;  ///< rgb8: width x height x 3
+  /// 32FC1: distance along the optical axis [m]; +inf where nothing lies within the far clip,
+  /// -inf where the surface is nearer than the near clip (REP 118).
+  std::vector<float> depth;
+  std::vector<std::uint8_t> label;  ///< SurfaceClass of each pixel
+};
+
+/**
+ * The static bodies of a WorldModel as one Embree scene, in the env frame: the arena walls, the
+ * map's obstacle cells (blocks of world/obstacle_height) and a Gazebo world's upright solids (the
+ * ground, the plane z = 0, is the renderer's). Built once; read concurrently by every env's scene.
+ */
+class CameraWorld {
+ public:
+  /// ModelError with Embree's message when Embree cannot start.
+  explicit CameraWorld(const WorldModel& world);
+  ~CameraWorld();
+  CameraWorld(const CameraWorld&) = delete;
+  CameraWorld& operator=(const CameraWorld&) = delete;
+
+  RTCDeviceTy* device() const { return device_; }
+  RTCSceneTy* scene() const { return scene_; }
+  /// The style of the static scene's geometry `id`.
+  const SurfaceStyle& style(unsigned id) const { return styles_.at(id); }
+
+ private:
+  RTCDeviceTy* device_ = nullptr;
+  RTCSceneTy* scene_ = nullptr;
+  std::vector<SurfaceStyle> styles_;  // per geometry id of scene_
+};
+
+/// One env's scene: the shared world and the env's own obstacles; renders its camera's images.
+class CameraEnvScene {
+ public:
+  explicit CameraEnvScene(const CameraWorld& world);
+  ~CameraEnvScene();
+  CameraEnvScene(const CameraEnvScene&) = delete;
+  CameraEnvScene& operator=(const CameraEnvScene&) = delete;
+
+  /// Replaces the env's obstacles with the placed ones of `obstacles` (env frame).
+  void setObstacles(const std::vector<Obstacle>& obstacles);
+  /// Renders what `model` sees from `pose` (its optical frame in the env frame: z forward, x
+  /// right, y down) into `images` (sized here). Safe to call from several threads at once.
+  void render(const CameraModel& model, const Eigen::Isometry3d& pose, CameraImages& images) const;
+
+ private:
+  const CameraWorld& world_;
+  RTCSceneTy* scene_ = nullptr;
+  unsigned obstacles_id_;  // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
+  SurfaceStyle obstacle_style_;
+};
+
+/// The optical frame of a camera whose body frame (x forward, y left, z up: REP 103) is `body`.
+Eigen::Isometry3d opticalFrame(const Eigen::Isometry3d& body);
+
+}  // namespace jetbot_rl

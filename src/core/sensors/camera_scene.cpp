@@ -1,0 +1,237 @@
+#include "jetbot_rl/sensors/camera_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/world/world_model.h"
+#include "world/solid_surfaces.h"
+
+namespace jetbot_rl {
+namespace {
+
+// The looks of the bodies until materials and appearance randomisation come: a grey floor, light
+// walls, darker map blocks, orange obstacles, a pale sky.
+const SurfaceStyle kGroundStyle{{0.45f, 0.45f, 0.42f}, SurfaceClass::kGround};
+const SurfaceStyle kWallStyle{{0.85f, 0.85f, 0.8f}, SurfaceClass::kWall};
+const SurfaceStyle kMapStyle{{0.6f, 0.62f, 0.65f}, SurfaceClass::kMap};
+const SurfaceStyle kObstacleStyle{{0.9f, 0.45f, 0.1f}, SurfaceClass::kObstacle};
+const Eigen::Vector3f kSkyColour(0.75f, 0.82f, 0.92f);
+// One light from above and ahead of the world's x axis, and the ambient share of the colour.
+const Eigen::Vector3f kLightDirection = Eigen::Vector3f(0.3f, 0.2f, -1.0f).normalized();
+constexpr float kAmbient = 0.35f;
+
+[[noreturn]] void throwEmbree(RTCDevice device, const std::string& what) {
+  const RTCError code = device ? rtcGetDeviceError(device) : RTC_ERROR_UNKNOWN;
+  throw ModelError("Embree: " + what + " failed (error " + std::to_string(code) + ")");
+}
+
+/// Triangles (three corners each) as one Embree triangle geometry of `scene`; its id.
+unsigned attachTriangles(RTCDevice device, RTCScene scene,
+                         const std::vector<Eigen::Vector3d>& corners) {
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (!geometry) throwEmbree(device, "a triangle geometry");
+  const std::size_t count = corners.size() / 3;
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), corners.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
+  if (!vertices || !indices) {
+    rtcReleaseGeometry(geometry);
+    throwEmbree(device, "a triangle buffer");
+  }
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = static_cast<float>(corners[i][k]);
+    indices[i] = static_cast<unsigned>(i);
+  }
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  return id;
+}
+
+/// Appends the surface of obstacle `o` (standing on the ground) in the env frame.
+void addObstacle(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
+  const std::vector<Eigen::Vector3d> local =
+      o.shape == Obstacle::Shape::kBox
+          ? boxSurface(
+                Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), o.height))
+          : cylinderSurface(o.radius, o.height);
+  const Eigen::Isometry3d pose = Eigen::Translation3d(o.center.x(), o.center.y(), 0.5 * o.height) *
+                                 Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ());
+  for (const Eigen::Vector3d& c : local) corners.push_back(pose * c);
+}
+
+}  // namespace
+
+CameraWorld::CameraWorld(const WorldModel& world) {
+  // One build thread, the caller's: the same trees every run, no pool beside the env's threads.
+  device_ = rtcNewDevice("threads=1,user_threads=0");
+  if (!device_) throwEmbree(nullptr, "rtcNewDevice");
+  scene_ = rtcNewScene(device_);
+  if (!scene_) throwEmbree(device_, "rtcNewScene");
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+
+  const double height = world.config().obstacle_height;
+  std::vector<Eigen::Vector3d> walls, blocks;
+  for (const Obstacle& w : world.walls()) addObstacle(w, walls);
+  for (const Obstacle& o : world.worldObstacles()) addObstacle(o, blocks);
+  if (world.map()) {
+    for (const Eigen::AlignedBox2d& r : world.mapRectangles()) {
+      Obstacle block;
+      block.center = world.mapPose() * r.center();
+      block.yaw = Eigen::Rotation2Dd(world.mapPose().linear()).angle();
+      block.half_extents = 0.5 * r.sizes();
+      block.height = height;
+      addObstacle(block, blocks);
+    }
+  }
+  if (!walls.empty()) {
+    styles_.push_back(kWallStyle);
+    attachTriangles(device_, scene_, walls);
+  }
+  if (!blocks.empty()) {
+    styles_.push_back(kMapStyle);
+    attachTriangles(device_, scene_, blocks);
+  }
+  rtcCommitScene(scene_);
+}
+
+CameraWorld::~CameraWorld() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+CameraEnvScene::CameraEnvScene(const CameraWorld& world)
+    : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID), obstacle_style_(kObstacleStyle) {
+  scene_ = rtcNewScene(world_.device());
+  if (!scene_) throwEmbree(world_.device(), "rtcNewScene");
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry instance = rtcNewGeometry(world_.device(), RTC_GEOMETRY_TYPE_INSTANCE);
+  if (!instance) throwEmbree(world_.device(), "an instance");
+  rtcSetGeometryInstancedScene(instance, world_.scene());
+  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // 3 x 4, column-major
+  rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcCommitGeometry(instance);
+  rtcAttachGeometry(scene_, instance);
+  rtcReleaseGeometry(instance);
+  rtcCommitScene(scene_);
+}
+
+CameraEnvScene::~CameraEnvScene() {
+  if (scene_) rtcReleaseScene(scene_);
+}
+
+void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
+  if (obstacles_id_ != RTC_INVALID_GEOMETRY_ID) {
+    rtcDetachGeometry(scene_, obstacles_id_);
+    obstacles_id_ = RTC_INVALID_GEOMETRY_ID;
+  }
+  std::vector<Eigen::Vector3d> corners;
+  for (const Obstacle& o : obstacles) {
+    if (o.placed) addObstacle(o, corners);
+  }
+  if (!corners.empty()) obstacles_id_ = attachTriangles(world_.device(), scene_, corners);
+  rtcCommitScene(scene_);
+}
+
+void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
+                            CameraImages& images) const {
+  const int width = model.width(), height = model.height();
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  images.rgb.resize(3 * pixels);
+  images.depth.resize(pixels);
+  images.label.resize(pixels);
+  const Eigen::Matrix3f rotation = pose.linear().cast<float>();
+  const Eigen::Vector3f origin = pose.translation().cast<float>();
+  const float near = static_cast<float>(model.intrinsics().near);
+  const float far = static_cast<float>(model.intrinsics().far);
+  const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // neighbouring pixels: neighbouring rays
+
+  // The ground is the plane z = 0, intersected here rather than in the trees: a ray towards it
+  // ends there (Embree skips what lies beyond), and one that hits nothing before it hits it.
+  // Tiles of 4 x 2 pixels, one packet each.
+  for (int y0 = 0; y0 < height; y0 += 2) {
+    for (int x0 = 0; x0 < width; x0 += 4) {
+      alignas(32) int valid[8];
+      alignas(32) RTCRayHit8 packet;
+      float ground[8];  // distance to the ground along each ray (+inf: it does not go down)
+      for (int k = 0; k < 8; ++k) {
+        const int x = x0 + k % 4, y = y0 + k / 4;
+        valid[k] = x < width && y < height ? -1 : 0;
+        // A direction with z = 1 in the optical frame: the hit distance is the depth.
+        const Eigen::Vector3f d =
+            valid[k] ? Eigen::Vector3f(rotation * rays[static_cast<std::size_t>(y) * width + x])
+                     : Eigen::Vector3f::UnitZ();
+        packet.ray.org_x[k] = origin.x();
+        packet.ray.org_y[k] = origin.y();
+        packet.ray.org_z[k] = origin.z();
+        packet.ray.dir_x[k] = d.x();
+        packet.ray.dir_y[k] = d.y();
+        packet.ray.dir_z[k] = d.z();
+        ground[k] = d.z() < 0.0f && origin.z() > 0.0f ? -origin.z() / d.z()
+                                                      : std::numeric_limits<float>::infinity();
+        packet.ray.tnear[k] = 0.0f;
+        packet.ray.tfar[k] = std::min(far, ground[k]);
+        packet.ray.time[k] = 0.0f;
+        packet.ray.mask[k] = ~0u;
+        packet.ray.id[k] = static_cast<unsigned>(k);
+        packet.ray.flags[k] = 0;
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect8(valid, scene_, &context, &packet);
+      for (int k = 0; k < 8; ++k) {
+        if (!valid[k]) continue;
+        const std::size_t i = static_cast<std::size_t>(y0 + k / 4) * width + (x0 + k % 4);
+        std::uint8_t* rgb = &images.rgb[3 * i];
+        const bool on_ground = packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && ground[k] <= far;
+        if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && !on_ground) {
+          images.depth[i] = std::numeric_limits<float>::infinity();
+          images.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
+          for (int c = 0; c < 3; ++c) {
+            rgb[c] = static_cast<std::uint8_t>(std::lround(255.0f * kSkyColour[c]));
+          }
+          continue;
+        }
+        const float t = on_ground ? ground[k] : packet.ray.tfar[k];
+        images.depth[i] = t < near ? -std::numeric_limits<float>::infinity() : t;
+        const SurfaceStyle& style = on_ground ? kGroundStyle
+                                    : packet.hit.instID[0][k] != RTC_INVALID_GEOMETRY_ID
+                                        ? world_.style(packet.hit.geomID[k])
+                                        : obstacle_style_;
+        images.label[i] = static_cast<std::uint8_t>(style.label);
+        // Lambert's diffuse light on the side facing the camera, plus the ambient share.
+        Eigen::Vector3f normal =
+            on_ground ? Eigen::Vector3f::UnitZ()
+                      : Eigen::Vector3f(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
+        const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
+        if (normal.dot(dir) > 0.0f) normal = -normal;
+        const float lit = std::max(0.0f, -normal.normalized().dot(kLightDirection));
+        const float shade = kAmbient + (1.0f - kAmbient) * lit;
+        for (int c = 0; c < 3; ++c) {
+          rgb[c] = static_cast<std::uint8_t>(
+              std::lround(255.0f * std::min(1.0f, style.colour[c] * shade)));
+        }
+      }
+    }
+  }
+}
+
+Eigen::Isometry3d opticalFrame(const Eigen::Isometry3d& body) {
+  // Optical z is body x, optical x is body -y, optical y is body -z.
+  Eigen::Matrix3d optical_in_body;
+  optical_in_body << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3d out = body;
+  out.linear() = body.linear() * optical_in_body;
+  return out;
+}
+
+}  // namespace jetbot_rl
