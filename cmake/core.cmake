@@ -41,6 +41,7 @@ add_library(jetbot_rl_core
   src/core/robot/package_path.cpp
   src/core/robot/physics_model.cpp
   src/core/robot/robot_model.cpp
+  src/core/robot/urdf_camera_blocks.cpp
   src/core/robot/urdf_gazebo_blocks.cpp
   src/core/scene/env_scene.cpp
   src/core/scene/movers.cpp

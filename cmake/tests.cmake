@@ -30,6 +30,7 @@ catkin_add_gtest(test_core
   test/core/test_motor_model.cpp
   test/core/test_occupancy_map.cpp
   test/core/test_camera.cpp
+  test/core/test_camera_blocks.cpp
   test/core/test_laser_scanner.cpp
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp
