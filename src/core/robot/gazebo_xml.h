@@ -70,6 +70,20 @@ inline Eigen::Isometry3d pose(const XMLElement* parent, const std::string& where
   return out;
 }
 
+/// Calls `visit(block)` for each <gazebo> element of URDF text, in order; none when the text does
+/// not parse (urdfdom reports what is wrong with the XML).
+template <typename Visit>
+void forEachGazeboBlock(const std::string& urdf_xml, Visit&& visit) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) return;
+  const XMLElement* robot = doc.FirstChildElement("robot");
+  if (!robot) return;
+  for (const XMLElement* g = robot->FirstChildElement("gazebo"); g;
+       g = g->NextSiblingElement("gazebo")) {
+    visit(g);
+  }
+}
+
 /// True when `s` ends with `suffix`.
 inline bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&

@@ -86,16 +86,9 @@ bool isCameraPlugin(const tinyxml2::XMLElement* plugin) {
 
 std::vector<GazeboCamera> parseCameraBlocks(const std::string& urdf_xml) {
   std::vector<GazeboCamera> cameras;
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    return cameras;  // urdfdom reports what is wrong with the XML
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (!robot) return cameras;
-  for (const tinyxml2::XMLElement* g = robot->FirstChildElement("gazebo"); g;
-       g = g->NextSiblingElement("gazebo")) {
+  gazebo_xml::forEachGazeboBlock(urdf_xml, [&cameras](const tinyxml2::XMLElement* g) {
     const char* reference = g->Attribute("reference");
-    if (!reference) continue;
+    if (!reference) return;
     for (const tinyxml2::XMLElement* s = g->FirstChildElement("sensor"); s;
          s = s->NextSiblingElement("sensor")) {
       const std::string type = s->Attribute("type") ? s->Attribute("type") : "";
@@ -128,7 +121,7 @@ std::vector<GazeboCamera> parseCameraBlocks(const std::string& urdf_xml) {
         if (type != "multicamera") break;
       }
     }
-  }
+  });
   return cameras;
 }
 

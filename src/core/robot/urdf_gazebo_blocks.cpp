@@ -53,14 +53,7 @@ GazeboDiffDrive diffDrive(const tinyxml2::XMLElement* plugin) {
 
 GazeboBlocks parseGazeboBlocks(const std::string& urdf_xml) {
   GazeboBlocks blocks;
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    return blocks;  // urdfdom reports what is wrong with the XML
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (!robot) return blocks;
-  for (const tinyxml2::XMLElement* g = robot->FirstChildElement("gazebo"); g;
-       g = g->NextSiblingElement("gazebo")) {
+  gazebo_xml::forEachGazeboBlock(urdf_xml, [&blocks](const tinyxml2::XMLElement* g) {
     const char* reference = g->Attribute("reference");
     for (const tinyxml2::XMLElement* s = g->FirstChildElement("sensor");
          s && reference && !blocks.ray; s = s->NextSiblingElement("sensor")) {
@@ -72,10 +65,11 @@ GazeboBlocks parseGazeboBlocks(const std::string& urdf_xml) {
     for (const tinyxml2::XMLElement* p = g->FirstChildElement("plugin"); p && !blocks.diff_drive;
          p = p->NextSiblingElement("plugin")) {
       const char* file = p->Attribute("filename");
-      if (file && gazebo_xml::endsWith(file, "gazebo_ros_diff_drive.so"))
+      if (file && gazebo_xml::endsWith(file, "gazebo_ros_diff_drive.so")) {
         blocks.diff_drive = diffDrive(p);
+      }
     }
-  }
+  });
   return blocks;
 }
 
