@@ -56,11 +56,7 @@ unsigned attachTriangles(RTCDevice device, RTCScene scene,
 
 /// Appends the surface of obstacle `o` (standing on the ground) in the env frame.
 void addObstacle(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
-  const std::vector<Eigen::Vector3d> local =
-      o.shape == Obstacle::Shape::kBox
-          ? boxSurface(
-                Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), o.height))
-          : cylinderSurface(o.radius, o.height);
+  const std::vector<Eigen::Vector3d> local = uprightSurface(o, o.height);
   const Eigen::Isometry3d pose = Eigen::Translation3d(o.center.x(), o.center.y(), 0.5 * o.height) *
                                  Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ());
   for (const Eigen::Vector3d& c : local) corners.push_back(pose * c);

@@ -163,13 +163,15 @@ WorldSolid moved(const WorldSolid& solid, const Eigen::Isometry3d& move) {
     setUpright(out, u, mid - 0.5 * length, mid + 0.5 * length);
     return out;
   }
-  const bool box = o.shape == Obstacle::Shape::kBox;
-  setSurface(
-      out,
-      box ? boxSurface(Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), length))
-          : cylinderSurface(o.radius, length),
-      now);
+  setSurface(out, uprightSurface(o, length), now);
   return out;
+}
+
+std::vector<Eigen::Vector3d> uprightSurface(const Obstacle& o, double length) {
+  return o.shape == Obstacle::Shape::kBox
+             ? boxSurface(
+                   Eigen::Vector3d(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), length))
+             : cylinderSurface(o.radius, length);
 }
 
 }  // namespace jetbot_rl

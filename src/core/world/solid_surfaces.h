@@ -25,6 +25,10 @@ std::vector<Eigen::Vector3d> ellipsoidSurface(
 std::vector<Eigen::Vector3d> polylineSurface(const std::vector<Eigen::Vector2d>& points,
                                              double height);
 
+/// The surface of upright `o` (a box or a vertical cylinder) `length` tall, centred on its own
+/// origin.
+std::vector<Eigen::Vector3d> uprightSurface(const Obstacle& o, double length);
+
 /// Makes `solid` the upright `o` from `bottom` to `top` [m], with its bounds.
 void setUpright(WorldSolid& solid, Obstacle o, double bottom, double top);
 /// Makes `solid` the surface `local` (triangle corners) placed by `pose`, with its extent.
