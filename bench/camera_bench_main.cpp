@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     config.map = o.map;
     const WorldModel world(config, 0.1);
     const auto build_start = std::chrono::steady_clock::now();
-    const CameraWorld camera_world(world);
+    const CameraWorld camera_world(&world);
     CameraIntrinsics intrinsics;
     intrinsics.width = o.width;
     intrinsics.height = o.height;

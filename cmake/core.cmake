@@ -49,6 +49,8 @@ add_library(jetbot_rl_core
   src/core/scene/robot_team.cpp
   src/core/sensors/camera_model.cpp
   src/core/sensors/camera_scene.cpp
+  src/core/sensors/camera_sensor.cpp
+  src/core/sensors/camera_spec.cpp
   src/core/sensors/laser_scanner.cpp
   src/core/sensors/scan_cast.cpp
   src/core/sensors/scan_reading.cpp

@@ -22,6 +22,7 @@ target_link_libraries(jetbot_rl_ros_common PUBLIC jetbot_rl_core ${catkin_LIBRAR
 add_dependencies(jetbot_rl_ros_common ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
 add_library(jetbot_rl_env_node
+  src/ros/env_node/camera_output.cpp
   src/ros/env_node/cmd_vel_mixer.cpp
   src/ros/env_node/env_diagnostics.cpp
   src/ros/env_node/env_node.cpp
@@ -38,7 +39,7 @@ add_library(jetbot_rl_env_node
   src/ros/env_node/tf_publisher.cpp
   src/ros/env_node/tf_tree.cpp
 )
-target_link_libraries(jetbot_rl_env_node PUBLIC jetbot_rl_ros_common)
+target_link_libraries(jetbot_rl_env_node PUBLIC jetbot_rl_ros_common ${IMAGE_TRANSPORT_LIBRARY})
 
 add_library(jetbot_rl_client
   src/ros/client/connect_envs.cpp

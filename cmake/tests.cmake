@@ -31,6 +31,7 @@ catkin_add_gtest(test_core
   test/core/test_occupancy_map.cpp
   test/core/test_camera.cpp
   test/core/test_camera_blocks.cpp
+  test/core/test_camera_sensor.cpp
   test/core/test_laser_scanner.cpp
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp
@@ -107,6 +108,7 @@ add_dependencies(test_tf ${${PROJECT_NAME}_EXPORTED_TARGETS})
 add_rostest(test/world/world_scan.test)
 add_rostest(test/world/world_view.test)
 add_rostest(test/world/gazebo_world.test)
+add_rostest(test/world/camera_view.test)
 
 # ---- the programs the rostests below start ----
 set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_deploy_node jetbot_rl_manager

@@ -108,12 +108,37 @@ TEST(CameraModel, BadIntrinsicsAreNamed) {
 
 class CameraRender : public ::testing::Test {
  protected:
-  CameraRender() : world_(WorldConfig(), 0.1), camera_world_(world_), scene_(camera_world_) {}
+  CameraRender() : world_(WorldConfig(), 0.1), camera_world_(&world_), scene_(camera_world_) {}
 
   WorldModel world_;
   CameraWorld camera_world_;
   CameraEnvScene scene_;
 };
+
+TEST_F(CameraRender, MoversAreSeenWhereTheyStandNow) {
+  // A person (a cylinder of radius 0.25 m) 1.5 m ahead: the centre pixels show a mover at depth
+  // 1.25 m; moved away, the ground and sky again.
+  Obstacle person;
+  person.shape = Obstacle::Shape::kCylinder;
+  person.center = {1.5, 0.0};
+  person.radius = 0.25;
+  person.height = 1.8;
+  scene_.setMovers({person});
+  const CameraModel m(cameraIntrinsics(64, 48, 1.2));
+  CameraImages images;
+  scene_.render(m, levelCamera(0.3), images);
+  const std::size_t centre = 24 * 64 + 32;
+  EXPECT_EQ(images.label[centre], static_cast<std::uint8_t>(SurfaceClass::kMover));
+  EXPECT_NEAR(images.depth[centre], 1.25, 5e-3);  // its surface: a circumscribed polygon
+  person.center = {1.5, 3.0};
+  scene_.setMovers({person});
+  scene_.render(m, levelCamera(0.3), images);
+  EXPECT_NE(images.label[centre], static_cast<std::uint8_t>(SurfaceClass::kMover));
+  // Obstacles and movers are told apart: the env's obstacles keep their class.
+  scene_.setObstacles({standingBox(1.0, 0.0, 0.05, 0.5, 1.0)});
+  scene_.render(m, levelCamera(0.3), images);
+  EXPECT_EQ(images.label[centre], static_cast<std::uint8_t>(SurfaceClass::kObstacle));
+}
 
 TEST_F(CameraRender, DepthAtAWallIsItsDistance) {
   // A wall facing the camera 2 m ahead: its face is a plane at depth 1.95 m in every pixel.

@@ -26,6 +26,8 @@ struct ActionLayout;
 class EnvPhysics;
 class EnvRandomizer;
 class EnvScene;
+class CameraSensor;
+struct CameraSpec;
 class EnvSensor;
 struct SensedEnv;
 class MoverSet;
@@ -116,6 +118,8 @@ class BatchedEnv {
   double difficulty(int env) const;
   /// The scanner in use, or nullptr.
   const ScannerSpec* scanner() const;
+  /// The camera in use, or nullptr (its images: state().images and view()).
+  const CameraSpec* camera() const;
 
  private:
   friend class EnvView;
@@ -169,8 +173,9 @@ class BatchedEnv {
   std::uint64_t diverged_count_ = 0;
   std::vector<std::uint8_t> collided_;  // per env: in the last step, kHitWorld or kHitMover
   static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2, kHitRobot = 3;
-  // The sensors (the scanner, when the robot has one).
+  // The sensors (the scanner and the camera, when the robot has them).
   std::unique_ptr<ScanSensor> scan_;
+  std::unique_ptr<CameraSensor> camera_;
   std::vector<EnvSensor*> sensors_;  // every sensor, in stepping order
 };
 

@@ -9,6 +9,7 @@
 #include "jetbot_rl/robot/motor_model.h"
 #include "jetbot_rl/scene/mover_config.h"
 #include "jetbot_rl/scene/team_config.h"
+#include "jetbot_rl/sensors/camera_config.h"
 #include "jetbot_rl/sensors/scanner_config.h"
 #include "jetbot_rl/world/world_config.h"
 
@@ -79,6 +80,8 @@ struct EnvConfig {
   MoverConfig movers;
   /// The laser scanner (the robot description's Gazebo ray sensor, if it has one).
   ScannerConfig scan;
+  /// The camera (the robot description's Gazebo camera block, if it has one).
+  CameraConfig camera;
   /// Robots per env (one by default).
   TeamConfig team;
 
@@ -148,6 +151,7 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   visitFields(c.world, v);
   visitFields(c.movers, v);
   visitFields(c.scan, v);
+  visitFields(c.camera, v);
   visitFields(c.team, v);
 }
 

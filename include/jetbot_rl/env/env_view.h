@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,14 @@ struct JointStates {
 struct BodyTwist {
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();   ///< Of the frame's origin [m/s].
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();  ///< [rad/s].
+};
+
+/// One env's latest camera images, each row-major from its top left pixel.
+struct EnvImages {
+  int width = 0, height = 0;            ///< [px]
+  const std::uint8_t* rgb = nullptr;    ///< rgb8: height x width x 3
+  const float* depth = nullptr;         ///< 32FC1: height x width [m] (REP 118)
+  const std::uint8_t* label = nullptr;  ///< height x width SurfaceClass values
 };
 
 /**
@@ -70,6 +79,13 @@ class EnvView {
   const float* scan() const;
   /// True when the env took a new scan in the last step() or reset().
   bool scanned() const;
+  /// The latest camera images (a pointer is nullptr for an image the camera does not make, and
+  /// all are without a camera).
+  EnvImages images() const;
+  /// True when the camera made new images in the last step() or reset().
+  bool imaged() const;
+  /// The camera's optical frame (z forward, x right, y down) in the env frame when it made them.
+  Eigen::Isometry3d cameraPose() const;
 
  private:
   friend class BatchedEnv;

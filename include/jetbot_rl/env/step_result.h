@@ -18,8 +18,18 @@ struct Divergence {
   std::string reason;
 };
 
+/// Every env's latest camera images after a step or a reset (docs/camera.md), each row-major from
+/// its top left pixel; an image the camera does not make is empty (without a camera, all are).
+struct BatchImages {
+  int width = 0, height = 0;        ///< [px]
+  std::vector<std::uint8_t> rgb;    ///< num_envs x height x width x 3 (rgb8).
+  std::vector<float> depth;         ///< num_envs x height x width [m] (32FC1, REP 118).
+  std::vector<std::uint8_t> label;  ///< num_envs x height x width (SurfaceClass values).
+  std::vector<std::uint8_t> fresh;  ///< num_envs: 1 where the images were made in the last call.
+};
+
 /// The batch after a step or a reset: what the core returns and what every learner sees
-/// (in-process or through the EnvStep message, whose fields it mirrors).
+/// (in-process or through the EnvStep message, whose fields it mirrors; images in-process only).
 struct StepResult {
   std::uint64_t step = 0;                    ///< Control steps applied; resets do not count.
   std::vector<float> observations;           ///< num_envs x obs_dim, after auto-reset.
@@ -32,6 +42,8 @@ struct StepResult {
   /// len(reset_env_ids): how each ended episode ended (Outcome: 0 time-out, 1 success, 2 failure).
   std::vector<std::uint8_t> outcomes;
   std::vector<Divergence> divergences;  ///< Envs among reset_env_ids that diverged.
+  /// The camera's images, after auto-reset as the observations (none of an ended episode's end).
+  BatchImages images;
 };
 
 /// What a learner needs to know about a batch (the content of the EnvSpec message). One schema

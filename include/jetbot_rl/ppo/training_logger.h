@@ -10,12 +10,10 @@
 #include "jetbot_rl/ppo/episode_tracker.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/progress_csv.h"
+#include "jetbot_rl/ppo/runner_options.h"
 
 namespace jetbot_rl {
 namespace ppo {
-
-/// What makes an iteration the best so far (checkpoints/best.pt).
-enum class BestBy { kRewardPerStep, kEpisodeReturn, kLast };
 
 /// The final figures of a run.
 struct TrainingSummary {

@@ -1,13 +1,17 @@
 #pragma once
 
 // What a robot description's <gazebo> blocks say about the robot, read as Gazebo (classic) reads
-// them: a planar ray sensor (<gazebo reference="LINK"><sensor type="ray">) and the differential
-// drive plugin (libgazebo_ros_diff_drive.so). Their values are the defaults of the scanner's and
-// the drive's parameters; a parameter that is set wins (docs/world.md).
+// them: a planar ray sensor (<gazebo reference="LINK"><sensor type="ray">), the cameras
+// (urdf_camera_blocks.h) and the differential drive plugin (libgazebo_ros_diff_drive.so). Their
+// values are the defaults of the scanner's, the camera's and the drive's parameters; a parameter
+// that is set wins (docs/world.md, docs/camera.md).
 
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "jetbot_rl/robot/urdf_camera_blocks.h"
 
 namespace jetbot_rl {
 
@@ -40,10 +44,12 @@ struct GazeboDiffDrive {
 struct GazeboBlocks {
   std::optional<GazeboRaySensor> ray;         ///< The first ray sensor, if any.
   std::optional<GazeboDiffDrive> diff_drive;  ///< The first diff drive plugin, if any.
+  std::vector<GazeboCamera> cameras;          ///< Every camera, in the order they appear.
 };
 
 /// Reads the <gazebo> blocks of URDF text (the rest of the file is urdfdom's). Throws ModelError
-/// naming the sensor or plugin and the element whose value is not a number or is malformed.
+/// naming the sensor or plugin and the element whose value is not a number or is malformed (a
+/// camera's values: parseCameraBlocks()).
 GazeboBlocks parseGazeboBlocks(const std::string& urdf_xml);
 
 }  // namespace jetbot_rl

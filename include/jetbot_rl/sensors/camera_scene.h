@@ -26,12 +26,21 @@ enum class SurfaceClass : std::uint8_t {
   kWall = 2,      ///< The arena walls
   kMap = 3,       ///< The map's obstacle cells and a Gazebo world's solids
   kObstacle = 4,  ///< The env's obstacles
+  kMover = 5,     ///< People and the other robots of the env's world
 };
 
 /// The look of a body: its diffuse colour (RGB, each in [0, 1]) and its class.
 struct SurfaceStyle {
   Eigen::Vector3f colour = Eigen::Vector3f::Constant(0.5f);
   SurfaceClass label = SurfaceClass::kNone;
+};
+
+/// Where render() writes one camera's images, row by row from the top left; nullptr: an image
+/// not made.
+struct CameraImageView {
+  std::uint8_t* rgb = nullptr;    ///< rgb8: width x height x 3
+  float* depth = nullptr;         ///< 32FC1: width x height [m]
+  std::uint8_t* label = nullptr;  ///< width x height SurfaceClass values
 };
 
 /// One camera's images, row by row from the top left.
@@ -41,6 +50,9 @@ struct CameraImages {
   /// -inf where the surface is nearer than the near clip (REP 118).
   std::vector<float> depth;
   std::vector<std::uint8_t> label;  ///< SurfaceClass of each pixel
+
+  /// All three, sized for `width` x `height`.
+  CameraImageView resize(int width, int height);
 };
 
 /**
@@ -50,24 +62,31 @@ struct CameraImages {
  */
 class CameraWorld {
  public:
-  /// ModelError with Embree's message when Embree cannot start.
-  explicit CameraWorld(const WorldModel& world);
+  /// `world` (nullptr: the ground alone). ModelError with Embree's message when Embree cannot
+  /// start.
+  explicit CameraWorld(const WorldModel* world);
   ~CameraWorld();
   CameraWorld(const CameraWorld&) = delete;
   CameraWorld& operator=(const CameraWorld&) = delete;
 
   RTCDeviceTy* device() const { return device_; }
   RTCSceneTy* scene() const { return scene_; }
+  /// A unit cylinder (radius 1, height 1) or box (sides 1) centred on its origin, upright: the
+  /// shape a mover's instance scales and places.
+  RTCSceneTy* unitShape(bool cylinder) const { return cylinder ? unit_cylinder_ : unit_box_; }
   /// The style of the static scene's geometry `id`.
   const SurfaceStyle& style(unsigned id) const { return styles_.at(id); }
 
  private:
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
+  RTCSceneTy* unit_cylinder_ = nullptr;
+  RTCSceneTy* unit_box_ = nullptr;
   std::vector<SurfaceStyle> styles_;  // per geometry id of scene_
 };
 
-/// One env's scene: the shared world and the env's own obstacles; renders its camera's images.
+/// One env's scene: the shared world, the env's own obstacles and its movers; renders its
+/// camera's images.
 class CameraEnvScene {
  public:
   explicit CameraEnvScene(const CameraWorld& world);
@@ -77,15 +96,36 @@ class CameraEnvScene {
 
   /// Replaces the env's obstacles with the placed ones of `obstacles` (env frame).
   void setObstacles(const std::vector<Obstacle>& obstacles);
+  /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
+  /// an instance of a unit shape, moved without rebuilding any triangles.
+  void setMovers(const std::vector<Obstacle>& movers);
   /// Renders what `model` sees from `pose` (its optical frame in the env frame: z forward, x
-  /// right, y down) into `images` (sized here). Safe to call from several threads at once.
+  /// right, y down) into `out`'s images, each model.width() x model.height(). Safe to call from
+  /// several threads at once.
+  void render(const CameraModel& model, const Eigen::Isometry3d& pose,
+              const CameraImageView& out) const;
+  /// render() into `images`, all three sized here.
   void render(const CameraModel& model, const Eigen::Isometry3d& pose, CameraImages& images) const;
 
  private:
+  /// The style of the geometry a ray hit (`instance`: the world's instance, a mover's, or
+  /// invalid: the env's obstacles).
+  const SurfaceStyle& styleOf(unsigned geometry, unsigned instance) const;
+
+  /// A mover's instance in scene_: its geometry id and the matrix that takes its unit shape's
+  /// normals to the env frame.
+  struct MoverSlot {
+    unsigned id = 0;
+    bool cylinder = true;
+    Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
+  };
+
   const CameraWorld& world_;
   RTCSceneTy* scene_ = nullptr;
-  unsigned obstacles_id_;  // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
-  SurfaceStyle obstacle_style_;
+  unsigned world_id_;              // the world's instance in scene_
+  unsigned obstacles_id_;          // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
+  std::vector<MoverSlot> movers_;  // one per mover seen so far (unused ones disabled)
+  std::vector<int> slot_of_id_;    // per geometry id of scene_: its mover slot, or -1
 };
 
 /// The optical frame of a camera whose body frame (x forward, y left, z up: REP 103) is `body`.

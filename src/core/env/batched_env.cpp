@@ -17,6 +17,7 @@
 #include "robot/physics_model.h"
 #include "scene/env_scene.h"
 #include "scene/robot_team.h"
+#include "sensors/camera_sensor.h"
 #include "sensors/scan_sensor.h"
 
 namespace jetbot_rl {
@@ -53,6 +54,12 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (scanner) {
     scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
     sensors_.push_back(scan_.get());
+  }
+  if (const std::optional<CameraSpec> camera =
+          resolveCamera(config_.camera, *robot_, config_.controlDt())) {
+    camera_ =
+        std::make_unique<CameraSensor>(*camera, scene_->world(), n, config_.seed, result_.images);
+    sensors_.push_back(camera_.get());
   }
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;
@@ -117,6 +124,8 @@ const std::vector<float>& BatchedEnv::actionLow() const { return actions_layout_
 const std::vector<float>& BatchedEnv::actionHigh() const { return actions_layout_->high; }
 
 const ScannerSpec* BatchedEnv::scanner() const { return scan_ ? &scan_->spec() : nullptr; }
+
+const CameraSpec* BatchedEnv::camera() const { return camera_ ? &camera_->spec() : nullptr; }
 
 const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   const int n = config_.numRows();

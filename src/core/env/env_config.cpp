@@ -47,6 +47,7 @@ void checkTeamRules(const EnvConfig& config) {
 void checkFieldRules(const EnvConfig& config) {
   checkFieldRules(config.world);
   checkFieldRules(config.scan);
+  checkFieldRules(config.camera);
   if (config.movers.count() > 0 && !config.world.enabled()) {
     throwInvalid(config.movers.num_people > 0 ? "movers/num_people" : "movers/num_carts",
                  config.movers.count(),

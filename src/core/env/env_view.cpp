@@ -9,6 +9,7 @@
 #include "jetbot_rl/scene/movers.h"
 #include "robot/bullet_conversions.h"
 #include "scene/env_scene.h"
+#include "sensors/camera_sensor.h"
 #include "sensors/scan_sensor.h"
 
 namespace jetbot_rl {
@@ -88,5 +89,24 @@ const std::vector<Obstacle>& EnvView::movers() const {
 const float* EnvView::scan() const { return batch_->scan_ ? batch_->scan_->ranges(env_) : nullptr; }
 
 bool EnvView::scanned() const { return batch_->scan_ && batch_->scan_->isNew(env_); }
+
+EnvImages EnvView::images() const {
+  const BatchImages& images = batch_->result_.images;
+  EnvImages view;
+  view.width = images.width;
+  view.height = images.height;
+  const auto pixels = static_cast<std::size_t>(images.width) * images.height;
+  const auto e = static_cast<std::size_t>(env_);
+  if (!images.rgb.empty()) view.rgb = &images.rgb[e * pixels * 3];
+  if (!images.depth.empty()) view.depth = &images.depth[e * pixels];
+  if (!images.label.empty()) view.label = &images.label[e * pixels];
+  return view;
+}
+
+bool EnvView::imaged() const { return batch_->camera_ && batch_->camera_->isNew(env_); }
+
+Eigen::Isometry3d EnvView::cameraPose() const {
+  return batch_->camera_ ? batch_->camera_->opticalPose(env_) : Eigen::Isometry3d::Identity();
+}
 
 }  // namespace jetbot_rl

@@ -70,6 +70,7 @@ GazeboBlocks parseGazeboBlocks(const std::string& urdf_xml) {
       }
     }
   });
+  blocks.cameras = parseCameraBlocks(urdf_xml);
   return blocks;
 }
 

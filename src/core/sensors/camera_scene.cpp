@@ -20,10 +20,17 @@ const SurfaceStyle kGroundStyle{{0.45f, 0.45f, 0.42f}, SurfaceClass::kGround};
 const SurfaceStyle kWallStyle{{0.85f, 0.85f, 0.8f}, SurfaceClass::kWall};
 const SurfaceStyle kMapStyle{{0.6f, 0.62f, 0.65f}, SurfaceClass::kMap};
 const SurfaceStyle kObstacleStyle{{0.9f, 0.45f, 0.1f}, SurfaceClass::kObstacle};
+const SurfaceStyle kMoverStyle{{0.2f, 0.35f, 0.75f}, SurfaceClass::kMover};
 const Eigen::Vector3f kSkyColour(0.75f, 0.82f, 0.92f);
 // One light from above and ahead of the world's x axis, and the ambient share of the colour.
 const Eigen::Vector3f kLightDirection = Eigen::Vector3f(0.3f, 0.2f, -1.0f).normalized();
 constexpr float kAmbient = 0.35f;
+
+/// An intensity in [0, 1] as a byte, rounded to nearest (half up; lround's result, without its
+/// cost per channel).
+inline std::uint8_t toByte(float intensity) {
+  return static_cast<std::uint8_t>(255.0f * intensity + 0.5f);
+}
 
 [[noreturn]] void throwEmbree(RTCDevice device, const std::string& what) {
   const RTCError code = device ? rtcGetDeviceError(device) : RTC_ERROR_UNKNOWN;
@@ -64,7 +71,15 @@ void addObstacle(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
 
 }  // namespace
 
-CameraWorld::CameraWorld(const WorldModel& world) {
+CameraImageView CameraImages::resize(int width, int height) {
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  rgb.resize(3 * pixels);
+  depth.resize(pixels);
+  label.resize(pixels);
+  return {rgb.data(), depth.data(), label.data()};
+}
+
+CameraWorld::CameraWorld(const WorldModel* world) {
   // One build thread, the caller's: the same trees every run, no pool beside the env's threads.
   device_ = rtcNewDevice("threads=1,user_threads=0");
   if (!device_) throwEmbree(nullptr, "rtcNewDevice");
@@ -72,19 +87,32 @@ CameraWorld::CameraWorld(const WorldModel& world) {
   if (!scene_) throwEmbree(device_, "rtcNewScene");
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
 
-  const double height = world.config().obstacle_height;
   std::vector<Eigen::Vector3d> walls, blocks;
-  for (const Obstacle& w : world.walls()) addObstacle(w, walls);
-  for (const Obstacle& o : world.worldObstacles()) addObstacle(o, blocks);
-  if (world.map()) {
-    for (const Eigen::AlignedBox2d& r : world.mapRectangles()) {
+  if (world) {
+    for (const Obstacle& w : world->walls()) addObstacle(w, walls);
+    for (const Obstacle& o : world->worldObstacles()) addObstacle(o, blocks);
+  }
+  if (world && world->map()) {
+    for (const Eigen::AlignedBox2d& r : world->mapRectangles()) {
       Obstacle block;
-      block.center = world.mapPose() * r.center();
-      block.yaw = Eigen::Rotation2Dd(world.mapPose().linear()).angle();
+      block.center = world->mapPose() * r.center();
+      block.yaw = Eigen::Rotation2Dd(world->mapPose().linear()).angle();
       block.half_extents = 0.5 * r.sizes();
-      block.height = height;
+      block.height = world->config().obstacle_height;
       addObstacle(block, blocks);
     }
+  }
+  // The movers' unit shapes, each its own scene for the env scenes to instance.
+  for (const bool cylinder : {true, false}) {
+    RTCScene& unit = cylinder ? unit_cylinder_ : unit_box_;
+    unit = rtcNewScene(device_);
+    if (!unit) throwEmbree(device_, "rtcNewScene");
+    Obstacle shape;
+    shape.shape = cylinder ? Obstacle::Shape::kCylinder : Obstacle::Shape::kBox;
+    shape.radius = 1.0;
+    shape.half_extents = {0.5, 0.5};
+    attachTriangles(device_, unit, uprightSurface(shape, 1.0));
+    rtcCommitScene(unit);
   }
   if (!walls.empty()) {
     styles_.push_back(kWallStyle);
@@ -99,21 +127,25 @@ CameraWorld::CameraWorld(const WorldModel& world) {
 
 CameraWorld::~CameraWorld() {
   if (scene_) rtcReleaseScene(scene_);
+  if (unit_cylinder_) rtcReleaseScene(unit_cylinder_);
+  if (unit_box_) rtcReleaseScene(unit_box_);
   if (device_) rtcReleaseDevice(device_);
 }
 
 CameraEnvScene::CameraEnvScene(const CameraWorld& world)
-    : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID), obstacle_style_(kObstacleStyle) {
+    : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID) {
   scene_ = rtcNewScene(world_.device());
   if (!scene_) throwEmbree(world_.device(), "rtcNewScene");
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  // Committed at every image with movers: a quick build of its few objects, each kept.
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
   RTCGeometry instance = rtcNewGeometry(world_.device(), RTC_GEOMETRY_TYPE_INSTANCE);
   if (!instance) throwEmbree(world_.device(), "an instance");
   rtcSetGeometryInstancedScene(instance, world_.scene());
   const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // 3 x 4, column-major
   rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
   rtcCommitGeometry(instance);
-  rtcAttachGeometry(scene_, instance);
+  world_id_ = rtcAttachGeometry(scene_, instance);
   rtcReleaseGeometry(instance);
   rtcCommitScene(scene_);
 }
@@ -123,10 +155,8 @@ CameraEnvScene::~CameraEnvScene() {
 }
 
 void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
-  if (obstacles_id_ != RTC_INVALID_GEOMETRY_ID) {
-    rtcDetachGeometry(scene_, obstacles_id_);
-    obstacles_id_ = RTC_INVALID_GEOMETRY_ID;
-  }
+  if (obstacles_id_ != RTC_INVALID_GEOMETRY_ID) rtcDetachGeometry(scene_, obstacles_id_);
+  obstacles_id_ = RTC_INVALID_GEOMETRY_ID;
   std::vector<Eigen::Vector3d> corners;
   for (const Obstacle& o : obstacles) {
     if (o.placed) addObstacle(o, corners);
@@ -135,13 +165,62 @@ void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
   rtcCommitScene(scene_);
 }
 
+void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers) {
+  RTCDevice device = world_.device();
+  for (std::size_t i = 0; i < std::max(movers.size(), movers_.size()); ++i) {
+    if (i == movers_.size()) {
+      RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+      if (!instance) throwEmbree(device, "an instance");
+      rtcSetGeometryInstancedScene(instance, world_.unitShape(true));
+      MoverSlot slot;
+      slot.id = rtcAttachGeometry(scene_, instance);
+      rtcReleaseGeometry(instance);
+      if (slot_of_id_.size() <= slot.id) slot_of_id_.resize(slot.id + 1, -1);
+      slot_of_id_[slot.id] = static_cast<int>(i);
+      movers_.push_back(slot);
+    }
+    MoverSlot& slot = movers_[i];
+    RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
+    if (i >= movers.size() || !movers[i].placed) {
+      rtcDisableGeometry(instance);
+      continue;
+    }
+    const Obstacle& o = movers[i];
+    const bool cylinder = o.shape == Obstacle::Shape::kCylinder;
+    if (cylinder != slot.cylinder) {
+      rtcSetGeometryInstancedScene(instance, world_.unitShape(cylinder));
+      slot.cylinder = cylinder;
+    }
+    const Eigen::Vector3f scale =
+        cylinder ? Eigen::Vector3f(o.radius, o.radius, o.height)
+                 : Eigen::Vector3f(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), o.height);
+    const Eigen::Matrix3f rotation =
+        Eigen::AngleAxisf(static_cast<float>(o.yaw), Eigen::Vector3f::UnitZ()).toRotationMatrix();
+    Eigen::Matrix<float, 3, 4> transform;  // column-major, as Embree reads it
+    transform.leftCols<3>() = rotation * scale.asDiagonal();
+    transform.col(3) = Eigen::Vector3f(o.center.x(), o.center.y(), 0.5 * o.height);
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
+    // Normals go by the inverse transpose: the rotation and the inverse scale.
+    slot.normals = rotation * scale.cwiseInverse().asDiagonal();
+    rtcEnableGeometry(instance);
+    rtcCommitGeometry(instance);
+  }
+  rtcCommitScene(scene_);
+}
+
+const SurfaceStyle& CameraEnvScene::styleOf(unsigned geometry, unsigned instance) const {
+  if (instance == world_id_) return world_.style(geometry);
+  return instance == RTC_INVALID_GEOMETRY_ID ? kObstacleStyle : kMoverStyle;
+}
+
 void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
                             CameraImages& images) const {
+  render(model, pose, images.resize(model.width(), model.height()));
+}
+
+void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
+                            const CameraImageView& out) const {
   const int width = model.width(), height = model.height();
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  images.rgb.resize(3 * pixels);
-  images.depth.resize(pixels);
-  images.label.resize(pixels);
   const Eigen::Matrix3f rotation = pose.linear().cast<float>();
   const Eigen::Vector3f origin = pose.translation().cast<float>();
   const float near = static_cast<float>(model.intrinsics().near);
@@ -187,34 +266,37 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
       for (int k = 0; k < 8; ++k) {
         if (!valid[k]) continue;
         const std::size_t i = static_cast<std::size_t>(y0 + k / 4) * width + (x0 + k % 4);
-        std::uint8_t* rgb = &images.rgb[3 * i];
+        std::uint8_t* rgb = out.rgb ? out.rgb + 3 * i : nullptr;
         const bool on_ground = packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && ground[k] <= far;
         if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && !on_ground) {
-          images.depth[i] = std::numeric_limits<float>::infinity();
-          images.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
-          for (int c = 0; c < 3; ++c) {
-            rgb[c] = static_cast<std::uint8_t>(std::lround(255.0f * kSkyColour[c]));
+          if (out.depth) out.depth[i] = std::numeric_limits<float>::infinity();
+          if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
+          for (int c = 0; rgb && c < 3; ++c) {
+            rgb[c] = toByte(kSkyColour[c]);
           }
           continue;
         }
         const float t = on_ground ? ground[k] : packet.ray.tfar[k];
-        images.depth[i] = t < near ? -std::numeric_limits<float>::infinity() : t;
-        const SurfaceStyle& style = on_ground ? kGroundStyle
-                                    : packet.hit.instID[0][k] != RTC_INVALID_GEOMETRY_ID
-                                        ? world_.style(packet.hit.geomID[k])
-                                        : obstacle_style_;
-        images.label[i] = static_cast<std::uint8_t>(style.label);
+        if (out.depth) out.depth[i] = t < near ? -std::numeric_limits<float>::infinity() : t;
+        const SurfaceStyle& style =
+            on_ground ? kGroundStyle : styleOf(packet.hit.geomID[k], packet.hit.instID[0][k]);
+        if (out.label) out.label[i] = static_cast<std::uint8_t>(style.label);
+        if (!rgb) continue;
         // Lambert's diffuse light on the side facing the camera, plus the ambient share.
         Eigen::Vector3f normal =
             on_ground ? Eigen::Vector3f::UnitZ()
                       : Eigen::Vector3f(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
+        // A mover's normal comes in its unit shape's frame.
+        const unsigned instance = packet.hit.instID[0][k];
+        if (!on_ground && instance != RTC_INVALID_GEOMETRY_ID && instance != world_id_) {
+          normal = movers_[slot_of_id_[instance]].normals * normal;
+        }
         const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
         if (normal.dot(dir) > 0.0f) normal = -normal;
         const float lit = std::max(0.0f, -normal.normalized().dot(kLightDirection));
         const float shade = kAmbient + (1.0f - kAmbient) * lit;
         for (int c = 0; c < 3; ++c) {
-          rgb[c] = static_cast<std::uint8_t>(
-              std::lround(255.0f * std::min(1.0f, style.colour[c] * shade)));
+          rgb[c] = toByte(std::min(1.0f, style.colour[c] * shade));
         }
       }
     }

@@ -12,6 +12,7 @@
 #include "jetbot_rl/ros/common/publication_flush.h"
 #include "jetbot_rl/ros/common/robot_description.h"
 #include "jetbot_rl/ros/common/stop_signal.h"
+#include "jetbot_rl/ros/env_node/camera_output.h"
 #include "jetbot_rl/ros/env_node/marker_publisher.h"
 #include "jetbot_rl/ros/env_node/queue_size.h"
 #include "jetbot_rl/ros/env_node/randomization_service.h"
@@ -20,6 +21,7 @@
 #include "jetbot_rl/ros/env_node/scan_output.h"
 #include "jetbot_rl/ros/env_node/sim_clock.h"
 #include "jetbot_rl/ros/env_node/tf_publisher.h"
+#include "jetbot_rl/sensors/camera_spec.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 
 namespace jetbot_rl {
@@ -58,6 +60,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   outputs_.push_back(
       std::make_unique<RobotStateOutput>(nh_, *env_, robot_view_envs, params_.odom_rate, names));
   outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names));
+  outputs_.push_back(std::make_unique<CameraOutput>(nh_, *env_, robot_view_envs, names));
   if (env_->world() && env_->world()->map()) {
     map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
   }
@@ -234,6 +237,7 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   }
   for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
   if (const auto& scanner = env->scanner()) ROS_INFO("%s", describeScanner(*scanner).c_str());
+  if (const CameraSpec* camera = env->camera()) ROS_INFO("%s", describeCamera(*camera).c_str());
   if (const WorldModel* world = env->world()) {
     ROS_INFO("%s", describeWorld(*world).c_str());
     if (world->gazebo() && !world->gazebo()->skipped.empty()) {

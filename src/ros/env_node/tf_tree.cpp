@@ -4,6 +4,7 @@
 #include <string>
 
 #include "jetbot_rl/ros/common/geometry_conversion.h"
+#include "jetbot_rl/sensors/camera_spec.h"
 
 namespace jetbot_rl {
 
@@ -38,6 +39,15 @@ TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool li
       odom.child_frame_id = names.frame(e, kOdomFrame);
       toTransform(Eigen::Isometry3d::Identity(), odom.transform);
       statics_.push_back(odom);
+    }
+    // The camera's optical frame, when the robot description has no link of that name.
+    const CameraSpec* camera = env.camera();
+    if (camera && std::find(links.begin(), links.end(), camera->frame) == links.end()) {
+      geometry_msgs::TransformStamped optical;
+      optical.header.frame_id = names.frame(e, camera->link);
+      optical.child_frame_id = names.frame(e, camera->frame);
+      toTransform(camera->optical_in_link, optical.transform);
+      statics_.push_back(optical);
     }
     for (std::size_t k = 0; k < links.size(); ++k) {
       if (parent_[k] >= 0 && !link_tf_) continue;

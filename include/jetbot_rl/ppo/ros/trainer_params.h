@@ -7,7 +7,7 @@
 
 #include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/ppo/ppo_config.h"
-#include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ppo/runner_options.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
 #include "jetbot_rl/ros/common/param_reader.h"
 

@@ -17,6 +17,8 @@ namespace jetbot_rl {
  *                                         world -> env_<i>/map there, map -> odom identity)
  *           -> env_<i>/<root link>        the root link's pose in the env (the odometry)
  *           -> env_<i>/<link> ...         every other link relative to its URDF parent link
+ *    env_<i>/<camera link> -> <its frame>  static: the camera's optical frame, when no URDF link
+ *                                          has the name the camera's block gives it
  *
  * (frame names as RobotNames gives them). With `link_tf` false only odom -> root is dynamic;
  * the links are left to robot_state_publisher. Messages are built once and updated in place.
@@ -25,8 +27,8 @@ class TfTree {
  public:
   /// `envs` clamped to the batch.
   TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool link_tf);
-  /// world -> odom (or map, and map -> odom) of every env (stamp 0: static transforms hold at any
-  /// time).
+  /// world -> odom (or map, and map -> odom) and the camera's optical frame of every env (stamp
+  /// 0: static transforms hold at any time).
   const std::vector<geometry_msgs::TransformStamped>& statics() const { return statics_; }
   /// Sets the dynamic transforms to `env`'s current state, stamped `stamp`.
   void update(const BatchedEnv& env, const ros::Time& stamp);

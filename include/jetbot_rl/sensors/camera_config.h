@@ -1,0 +1,65 @@
+#pragma once
+
+// A camera on a link of the robot (docs/camera.md), rendered in each env's world. Its defaults
+// are the robot description's Gazebo camera block (camera, depth or multicamera), where it has
+// one; a parameter that is set wins, and a link without a block gets a camera from the parameters
+// alone.
+
+#include <string>
+#include <vector>
+
+#include "jetbot_rl/config/config_fields.h"
+
+namespace jetbot_rl {
+
+/// The `camera/...` parameters; 0, -1 and [] stand for the robot description's value.
+struct CameraConfig {
+  bool enabled = true;          ///< false: no camera, even when the robot description declares one.
+  std::string link;             ///< Link of the camera; empty: the first Gazebo camera block's.
+  int width = 0;                ///< [px]; 0: the block's (without one: 64).
+  int height = 0;               ///< [px]; 0: the block's (without one: 64).
+  double horizontal_fov = 0.0;  ///< [rad]; 0: the block's (without one: 1.047).
+  std::vector<double> clip;     ///< [near, far] [m]; []: the block's (without: [0.05, 10]).
+  std::vector<double> distortion;   ///< [k1, k2, k3, p1, p2]; []: the block's (without: none).
+  std::vector<std::string> images;  ///< rgb, depth, label; []: rgb (a depth block: rgb, depth).
+  double noise_std = -1.0;  ///< Gaussian noise on [0, 1] intensities; -1: the block's (else 0).
+  int update_every = 0;     ///< Control steps between images; 0: from the block's update rate.
+};
+
+template <typename C, typename V>
+IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
+  const Range<double> any{-1e4, 1e4, false, false, ""};
+  v("camera/enabled", c.enabled, AnyValue{},
+    "false: no camera, even when the robot description declares one.");
+  v("camera/link", c.link, AnyValue{"", "empty: the first Gazebo camera block's link"},
+    "URDF link the camera sits on (looking along its x axis, z up: the block's <pose> on top); "
+    "a link without a Gazebo camera block gets a camera made of these parameters; no link and no "
+    "block: no camera.");
+  v("camera/width", c.width, inRange(0, 4096, "px", "0: the block's, else 64"), "Image width.");
+  v("camera/height", c.height, inRange(0, 4096, "px", "0: the block's, else 64"), "Image height.");
+  v("camera/horizontal_fov", c.horizontal_fov,
+    Range<double>{0.0, 3.141592653589793, false, true, "rad", "0: the block's, else 1.047"},
+    "Horizontal field of view of the pinhole (focal length width / 2 / tan(fov / 2) px).");
+  v("camera/clip", c.clip, EachValue<double>{any},
+    "[near, far] [m], 0 < near < far: depth is measured between them (REP 118: -inf nearer, "
+    "+inf farther); []: the block's <clip>, else [0.05, 10].");
+  v("camera/distortion", c.distortion, EachValue<double>{any},
+    "[k1, k2, k3, p1, p2] Brown-Conrady distortion (Gazebo's <distortion>); []: the block's, "
+    "else none.");
+  v("camera/images", c.images, NameList{"", true},
+    "Images made at each update, of rgb (rgb8), depth (32FC1 [m] along the optical axis) and "
+    "label (mono8 SurfaceClass); []: rgb, with depth for a depth or openni block.");
+  v("camera/noise_std", c.noise_std, atLeast(-1.0, "", "-1: the block's, else 0"),
+    "Gaussian noise added to every colour channel on [0, 1] intensities, clamped (Gazebo's "
+    "camera noise; from the env's own camera stream).");
+  v("camera/update_every", c.update_every, inRange(0, 100000, "control steps"),
+    "Control steps between images; 0: from the block's update rate (the plugin's <updateRate> "
+    "when set, else the sensor's <update_rate>: round(1 / (rate x control step)), at least 1), "
+    "else every step.");
+}
+
+/// The rules of CameraConfig's fields: clip has 0 or 2 values, distortion 0 or 5, images only
+/// rgb, depth and label, noise_std -1 or >= 0.
+void checkFieldRules(const CameraConfig& config);
+
+}  // namespace jetbot_rl

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "jetbot_rl/env/step_result.h"
+#include "jetbot_rl/rng.h"
+#include "jetbot_rl/sensors/camera_model.h"
+#include "jetbot_rl/sensors/camera_scene.h"
+#include "jetbot_rl/sensors/camera_spec.h"
+#include "sensors/env_sensor.h"
+
+namespace jetbot_rl {
+
+class WorldModel;
+
+/// The camera of every env (docs/camera.md): one Embree scene of the shared world, one scene per
+/// env with its obstacles and movers, each env's latest images written into the batch's
+/// BatchImages, their cadence, and a noise stream per env.
+class CameraSensor : public EnvSensor {
+ public:
+  /// `world` (or none) is what the camera sees besides the ground and each env's bodies; images
+  /// go to `out` (sized here), which must outlive the sensor.
+  CameraSensor(const CameraSpec& spec, const WorldModel* world, int num_envs, std::uint64_t seed,
+               BatchImages& out);
+
+  void reseed(int env, std::uint64_t seed) override;
+  void forgetNewReadings() override;
+  void afterStep(int env, const SensedEnv& sensed) override;
+  void afterReset(int env, const SensedEnv& sensed) override;
+
+  const CameraSpec& spec() const { return spec_; }
+  const CameraModel& model() const { return model_; }
+  /// True when env `env`'s images were made in the last step or reset.
+  bool isNew(int env) const { return out_.fresh[env] != 0; }
+  /// Env `env`'s camera optical frame in its env frame when the images were made.
+  const Eigen::Isometry3d& opticalPose(int env) const { return poses_[env]; }
+
+ private:
+  void render(int env, const SensedEnv& sensed);
+  /// Gazebo's camera noise on env `env`'s rgb image: N(mean, std) per channel on [0, 1].
+  void addNoise(int env, std::uint8_t* rgb);
+
+  CameraSpec spec_;
+  CameraModel model_;
+  CameraWorld world_;
+  std::vector<std::unique_ptr<CameraEnvScene>> scenes_;  // per env
+  BatchImages& out_;
+  std::size_t pixels_;
+  std::vector<Eigen::Isometry3d> poses_;  // per env
+  std::vector<std::uint32_t> age_;        // per env: control steps since its last images
+  std::vector<Rng> noise_;                // per env
+};
+
+}  // namespace jetbot_rl

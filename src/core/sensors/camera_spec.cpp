@@ -1,0 +1,167 @@
+#include "jetbot_rl/sensors/camera_spec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/sensors/camera_scene.h"
+
+namespace jetbot_rl {
+namespace {
+
+/// `name` under the namespace `space` ("a" + "b/c": "a/b/c"); a name that starts with '/' is
+/// absolute in Gazebo: here it is relative to the robot's namespace.
+std::string joinTopic(const std::string& space, const std::string& name) {
+  if (!name.empty() && name.front() == '/') return name.substr(1);
+  return space.empty() ? name : space + "/" + name;
+}
+
+const char* const kImageNames[] = {"rgb", "depth", "label"};
+
+}  // namespace
+
+void checkFieldRules(const CameraConfig& c) {
+  if (!c.clip.empty() && c.clip.size() != 2) {
+    throwInvalid("camera/clip", listText(c.clip), "must be [near, far] or []");
+  }
+  if (!c.distortion.empty() && c.distortion.size() != 5) {
+    throwInvalid("camera/distortion", listText(c.distortion), "must be [k1, k2, k3, p1, p2] or []");
+  }
+  if (c.noise_std < 0.0 && c.noise_std != -1.0) {
+    throwInvalid("camera/noise_std", c.noise_std, "must be -1 (the block's) or >= 0");
+  }
+  for (const std::string& image : c.images) {
+    if (std::find(std::begin(kImageNames), std::end(kImageNames), image) == std::end(kImageNames)) {
+      throwInvalid("camera/images", "'" + image + "'", "must be rgb, depth or label");
+    }
+  }
+}
+
+std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotModel& robot,
+                                        double control_dt) {
+  if (!config.enabled) return std::nullopt;
+  const std::vector<GazeboCamera>& blocks = robot.gazebo().cameras;
+  CameraSpec spec;
+  spec.link = config.link.empty() ? (blocks.empty() ? "" : blocks.front().link) : config.link;
+  spec.link_from = config.link.empty() ? "Gazebo" : "camera/link";
+  if (spec.link.empty()) return std::nullopt;
+  Eigen::Isometry3d offset;
+  if (!robot.findLink(spec.link, spec.body, offset)) {
+    throwInvalid("camera/link", "'" + spec.link + "'", "is not a link of the robot description");
+  }
+  // The first block on the camera's link gives the defaults.
+  const auto found = std::find_if(blocks.begin(), blocks.end(),
+                                  [&](const GazeboCamera& b) { return b.link == spec.link; });
+  const GazeboCamera* g = found == blocks.end() ? nullptr : &*found;
+  const std::string gazebo = g ? " (from the Gazebo " + g->type + " sensor '" + g->sensor_name +
+                                     "' of link '" + g->link +
+                                     "'; set the parameter to override it)"
+                               : "";
+  const auto pick = [&](bool set, const char* name) {
+    return set ? std::string(name) : g ? std::string("Gazebo") : std::string("default");
+  };
+  spec.pose_in_body = offset * (g ? g->pose : Eigen::Isometry3d::Identity());
+  spec.optical_in_link = opticalFrame(g ? g->pose : Eigen::Isometry3d::Identity());
+  spec.sensor_name = g ? g->sensor_name : "";
+
+  CameraIntrinsics& c = spec.intrinsics;
+  if (g) c = g->intrinsics;  // else CameraIntrinsics' defaults: 64 x 64, 1.047 rad, [0.05, 10]
+  if (config.width > 0) c.width = config.width;
+  if (config.height > 0) c.height = config.height;
+  spec.size_from = pick(config.width > 0 || config.height > 0, "camera/width, camera/height");
+  if (config.horizontal_fov > 0.0) c.horizontal_fov = config.horizontal_fov;
+  spec.fov_from = pick(config.horizontal_fov > 0.0, "camera/horizontal_fov");
+  if (config.clip.size() == 2) {
+    c.near = config.clip[0];
+    c.far = config.clip[1];
+  }
+  spec.clip_from = pick(config.clip.size() == 2, "camera/clip");
+  if (config.distortion.size() == 5) {
+    c.k1 = config.distortion[0];
+    c.k2 = config.distortion[1];
+    c.k3 = config.distortion[2];
+    c.p1 = config.distortion[3];
+    c.p2 = config.distortion[4];
+  }
+  spec.distortion_from = pick(config.distortion.size() == 5, "camera/distortion");
+  try {
+    validateIntrinsics(c, "camera/");
+  } catch (const ConfigError& e) {
+    throw ConfigError(e.what() + gazebo);
+  }
+
+  const bool depth_block = g && (g->type == "depth" || !g->depth_image_topic.empty());
+  if (config.images.empty()) {
+    spec.depth = depth_block;
+  } else {
+    const auto has = [&](const char* name) {
+      return std::find(config.images.begin(), config.images.end(), name) != config.images.end();
+    };
+    spec.rgb = has("rgb");
+    spec.depth = has("depth");
+    spec.label = has("label");
+  }
+  spec.images_from = pick(!config.images.empty(), "camera/images");
+  spec.format = g ? g->format : CameraFormat::kRgb8;
+
+  if (config.noise_std >= 0.0) {
+    spec.noise_std = config.noise_std;
+  } else if (g) {
+    spec.noise_mean = g->noise_mean;
+    spec.noise_std = g->noise_stddev;
+  }
+  spec.noise_from = pick(config.noise_std >= 0.0, "camera/noise_std");
+  if (!(spec.noise_std >= 0.0 && std::isfinite(spec.noise_std) && std::isfinite(spec.noise_mean))) {
+    throwInvalid("camera/noise_std", spec.noise_std, "must be >= 0, finite" + gazebo);
+  }
+
+  // The plugin's <updateRate> is what its topics run at; else the sensor's <update_rate>.
+  const double rate = !g                            ? 0.0
+                      : g->plugin_update_rate > 0.0 ? g->plugin_update_rate
+                                                    : g->update_rate;
+  if (config.update_every > 0) {
+    spec.update_every = config.update_every;
+  } else if (rate > 0.0) {
+    if (!std::isfinite(rate)) {
+      throwInvalid("camera/update_every", rate, "the update rate must be finite" + gazebo);
+    }
+    spec.update_every = std::max(1, static_cast<int>(std::lround(1.0 / (rate * control_dt))));
+  }
+  spec.update_from = pick(config.update_every > 0, "camera/update_every");
+  if (config.update_every == 0 && rate <= 0.0) spec.update_from = "default";
+
+  // gazebo_ros_camera's and gazebo_ros_openni_kinect's names and defaults.
+  const std::string space = g && !g->camera_topic.empty() ? g->camera_topic : "camera";
+  const auto topic = [&](const std::string& given, const char* fallback) {
+    return joinTopic(space, given.empty() ? fallback : given);
+  };
+  spec.image_topic = topic(g ? g->image_topic : "", "image_raw");
+  spec.info_topic = topic(g ? g->info_topic : "", "camera_info");
+  spec.depth_image_topic = topic(g ? g->depth_image_topic : "", "depth/image_raw");
+  spec.depth_info_topic = topic(g ? g->depth_info_topic : "", "depth/camera_info");
+  spec.label_topic = joinTopic(space, "label/image_raw");
+  spec.frame = g && !g->frame_name.empty() ? g->frame_name : spec.link + "_optical_frame";
+  if (spec.frame.front() == '/') spec.frame = spec.frame.substr(1);
+  return spec;
+}
+
+std::string describeCamera(const CameraSpec& s) {
+  std::ostringstream out;
+  const CameraIntrinsics& c = s.intrinsics;
+  out << "camera on link '" << s.link << "' (" << s.link_from << "): " << c.width << " x "
+      << c.height << " px (" << s.size_from << "), horizontal fov " << c.horizontal_fov << " rad ("
+      << s.fov_from << "), clip [" << c.near << ", " << c.far << "] m (" << s.clip_from
+      << "), distortion [" << c.k1 << ", " << c.k2 << ", " << c.k3 << ", " << c.p1 << ", " << c.p2
+      << "] (" << s.distortion_from << "), images";
+  for (const auto& [on, name] :
+       {std::pair<bool, const char*>{s.rgb, " rgb"}, {s.depth, " depth"}, {s.label, " label"}}) {
+    if (on) out << name;
+  }
+  out << " (" << s.images_from << "), noise mean " << s.noise_mean << " std " << s.noise_std << " ("
+      << s.noise_from << "), every " << s.update_every << " control steps (" << s.update_from
+      << "), frame '" << s.frame << "'";
+  return out.str();
+}
+
+}  // namespace jetbot_rl
