@@ -1,6 +1,11 @@
 #!/usr/bin/python3
 """jetbot_ppo_trainer and jetbot_policy_node refuse bad parameters at start-up: non-zero exit and
-a FATAL line naming the parameter and its value."""
+a FATAL line naming the parameter and its value.
+
+Each refused start loads libtorch (about a second): the class first runs every test's starts
+three at a time (each test once, collecting what it would start), then each test checks its own
+runs' exit codes and output."""
+import concurrent.futures
 import os
 import tempfile
 import unittest
@@ -15,8 +20,42 @@ RUN_TIMEOUT = 60.0
 URDF = open(os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'urdf', 'jetbot.urdf')).read()
 
 
+PARALLEL_STARTS = 3
+
+
 class TestRefuseStartPpo(unittest.TestCase):
-    count = 0
+    collecting = False
+    starts = {}   # (test, k): (node type, node name, params, lists), filled while collecting
+    results = {}  # (test, k): (exit code, output)
+
+    @classmethod
+    def setUpClass(cls):
+        # The in-process env of some runs reads the robot from here.
+        rospy.set_param('/robot_description', URDF)
+        cls.collecting = True
+        for name in sorted(n for n in dir(cls) if n.startswith('test_')):
+            getattr(cls(name), name)()
+        cls.collecting = False
+        with concurrent.futures.ThreadPoolExecutor(PARALLEL_STARTS) as pool:
+            futures = {key: pool.submit(cls.start, *spec) for key, spec in cls.starts.items()}
+            cls.results = {key: f.result() for key, f in futures.items()}
+
+    @classmethod
+    def tearDownClass(cls):
+        rospy.delete_param('/robot_description')
+
+    @staticmethod
+    def start(node_type, name, params, lists):
+        for key, value in lists.items():
+            rospy.set_param('/%s/%s' % (name, key), value)
+        try:
+            return run_node(node_type, name, params, timeout=RUN_TIMEOUT)
+        finally:
+            for key in lists:
+                rospy.delete_param('/%s/%s' % (name, key))
+
+    def setUp(self):
+        self.calls = 0
 
     @staticmethod
     def shipped(name):
@@ -38,12 +77,13 @@ class TestRefuseStartPpo(unittest.TestCase):
 
     def refuses(self, node_type, params, *texts, lists=None):
         """`lists`: private parameters set on the server (a command line gives only scalars)."""
-        TestRefuseStartPpo.count += 1
-        name = 'refuse_%d' % TestRefuseStartPpo.count
-        for key, value in (lists or {}).items():
-            rospy.set_param('/%s/%s' % (name, key), value)
-            self.addCleanup(rospy.delete_param, '/%s/%s' % (name, key))
-        code, output = run_node(node_type, name, params, timeout=RUN_TIMEOUT)
+        self.calls = getattr(self, 'calls', 0) + 1
+        key = (self._testMethodName, self.calls)
+        if TestRefuseStartPpo.collecting:
+            name = 'refuse_%s_%d' % key
+            TestRefuseStartPpo.starts[key] = (node_type, name, params, lists or {})
+            return
+        code, output = TestRefuseStartPpo.results[key]
         self.assertNotEqual(code, 0, output)
         fatal = [line for line in output.splitlines() if 'FATAL' in line]
         self.assertTrue(fatal, 'no FATAL line in:\n' + output)
@@ -79,8 +119,6 @@ class TestRefuseStartPpo(unittest.TestCase):
         # ~env_config holds the env node's parameters: the same rename is refused there. With a
         # robot loaded and a small run, only the parameter can stop the trainer, whatever it reads
         # first (and were it not refused, the run would end quickly, in a scratch directory).
-        rospy.set_param('/robot_description', URDF)
-        self.addCleanup(rospy.delete_param, '/robot_description')
         self.refuses('jetbot_ppo_trainer',
                      {'env_in_process': 'true', 'iterations': 1,
                       'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_'),
@@ -98,8 +136,6 @@ class TestRefuseStartPpo(unittest.TestCase):
 
     def test_recurrent_minibatches_beyond_the_envs(self):
         # A recurrent minibatch holds whole env sequences: no more of them than envs.
-        rospy.set_param('/robot_description', URDF)
-        self.addCleanup(rospy.delete_param, '/robot_description')
         self.refuses('jetbot_ppo_trainer',
                      {'env_in_process': 'true', 'iterations': 1, 'rnn_type': 'gru',
                       'num_mini_batches': 4,

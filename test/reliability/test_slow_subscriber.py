@@ -18,7 +18,7 @@ from jetbot_rl_test.raw_tcpros import StalledSubscriber
 
 STALLED = 4
 QUEUE = 16  # ~env_step's advertised queue
-WINDOW = 10  # diagnostics reports (about 1 s each) per measured window
+WINDOW = 10  # diagnostics reports (every 0.5 s: slow_subscriber.test) per measured window
 FILL = 3  # reports after the kernel send queues are full, before measuring
 MAX_RATE_CHANGE = 0.05
 MAX_FLAT_KB = 2048  # resident set change over the measured window
