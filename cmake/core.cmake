@@ -51,6 +51,7 @@ add_library(jetbot_rl_core
   src/core/sensors/camera_scene.cpp
   src/core/sensors/camera_sensor.cpp
   src/core/sensors/camera_spec.cpp
+  src/core/sensors/floor_image.cpp
   src/core/sensors/laser_scanner.cpp
   src/core/sensors/scan_cast.cpp
   src/core/sensors/scan_reading.cpp
@@ -66,6 +67,7 @@ add_library(jetbot_rl_core
   src/core/world/gazebo/sdf_prepass.cpp
   src/core/world/gazebo/sdf_world_reader.cpp
   src/core/world/gazebo/world_cut.cpp
+  src/core/world/map_yaml.cpp
   src/core/world/occupancy_map.cpp
   src/core/world/solid_surfaces.cpp
   src/core/world/world_generation.cpp

@@ -9,7 +9,10 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
+#include "jetbot_rl/sensors/camera_scene.h"
 #include "jetbot_rl/sensors/camera_spec.h"
+#include "jetbot_rl/sensors/floor_image.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -141,6 +144,15 @@ TEST(CameraSpec, BadValuesAreRefusedNamingTheField) {
   c = test::smallConfig(1);
   c.camera.noise_std = -0.5;
   expectCameraRefused(c, "camera/noise_std");
+  c = test::smallConfig(1);
+  c.camera.light_intensity = {2.0, 1.0};
+  expectCameraRefused(c, "camera/light_intensity");
+  c = test::smallConfig(1);
+  c.camera.exposure = {1.0};
+  expectCameraRefused(c, "camera/exposure");
+  c = test::smallConfig(1);
+  c.camera.pose_jitter = {0.1};
+  expectCameraRefused(c, "camera/pose_jitter");
 }
 
 TEST(CameraBatch, ImagesInTheStepResultAtTheCamerasCadence) {
@@ -206,6 +218,121 @@ TEST(CameraBatch, TheCameraChangesNoTrajectory) {
         << "step " << step;
     ASSERT_EQ(a.state().reset_env_ids, b.state().reset_env_ids);
   }
+}
+
+/// A floor YAML `name`.yaml beside a binary PPM of `width` x `height` pixels (`rgb`, top row
+/// first) at `resolution` with `origin`; its path.
+std::string floorFiles(const std::string& name, int width, int height,
+                       const std::vector<std::uint8_t>& rgb, double resolution,
+                       const std::string& origin) {
+  std::string ppm = "P6\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  ppm.append(rgb.begin(), rgb.end());
+  test::writeTempFile(name + ".ppm", ppm);
+  return test::writeTempFile(name + ".yaml", "image: " + name +
+                                                 ".ppm\nresolution: " + std::to_string(resolution) +
+                                                 "\norigin: " + origin + "\n");
+}
+
+void expectFloorRefused(const std::string& yaml, const std::string& text) {
+  try {
+    FloorImage::fromYamlFile(yaml);
+    ADD_FAILURE() << "accepted; expected an error naming " << text;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("world/floor"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+TEST(CameraFloor, TheFloorImageLiesOnTheGroundAsAMapIsPlaced) {
+  // Two pixels of 1 m: red over x in [-1, 0), blue over [0, 1), y in [-0.5, 0.5).
+  const std::string yaml =
+      floorFiles("floor_two", 2, 1, {255, 0, 0, 0, 0, 255}, 1.0, "[-1.0, -0.5, 0.0]");
+  auto floor = std::make_shared<const FloorImage>(FloorImage::fromYamlFile(yaml));
+  Eigen::Vector3f c;
+  ASSERT_TRUE(floor->colourAt(-0.5f, 0.0f, c));
+  EXPECT_EQ(c, Eigen::Vector3f(1.0f, 0.0f, 0.0f));
+  ASSERT_TRUE(floor->colourAt(0.5f, 0.2f, c));
+  EXPECT_EQ(c, Eigen::Vector3f(0.0f, 0.0f, 1.0f));
+  EXPECT_FALSE(floor->colourAt(1.5f, 0.0f, c));
+  EXPECT_FALSE(floor->colourAt(0.0f, 0.6f, c));
+  // A camera 1 m up looking straight down: the ground left of x = 0 red, right of it blue; the
+  // label is the ground's either way.
+  const CameraWorld world(nullptr, floor);
+  CameraEnvScene scene(world);
+  CameraIntrinsics intrinsics;
+  intrinsics.width = 16;
+  intrinsics.height = 16;
+  intrinsics.horizontal_fov = 0.8;
+  const CameraModel model(intrinsics);
+  const Eigen::Isometry3d down = opticalFrame(Eigen::Translation3d(0.0, 0.0, 1.0) *
+                                              Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitY()));
+  CameraImages images;
+  scene.render(model, down, images);
+  int red = 0, blue = 0;
+  for (int i = 0; i < 16 * 16; ++i) {
+    const std::uint8_t* p = &images.rgb[3 * i];
+    red += p[0] > 200 && p[1] == 0 && p[2] == 0;
+    blue += p[2] > 200 && p[0] == 0 && p[1] == 0;
+    EXPECT_EQ(images.label[i], static_cast<std::uint8_t>(SurfaceClass::kGround));
+  }
+  EXPECT_EQ(red, 16 * 8);
+  EXPECT_EQ(blue, 16 * 8);
+}
+
+TEST(CameraFloor, BadFloorFilesAreRefusedNamingTheFieldAndFile) {
+  expectFloorRefused(::testing::TempDir() + "no_floor.yaml", "no_floor.yaml");
+  expectFloorRefused(test::writeTempFile("floor_no_res.yaml", "image: x.ppm\norigin: [0, 0, 0]\n"),
+                     "resolution");
+  expectFloorRefused(
+      test::writeTempFile("floor_no_image.yaml",
+                          "image: missing.ppm\nresolution: 0.1\norigin: [0, 0, 0]\n"),
+      "missing.ppm");
+  expectFloorRefused(floorFiles("floor_bad_res", 1, 1, {1, 2, 3}, -0.5, "[0, 0, 0]"), "resolution");
+  // A huge image is refused from its header, before it is decoded.
+  expectFloorRefused(
+      floorFiles("floor_huge", 9000, 1, std::vector<std::uint8_t>(27000, 7), 0.1, "[0, 0, 0]"),
+      "at most 8192 px");
+  EnvConfig c = cameraArenaConfig(1, 1);
+  c.world.floor = ::testing::TempDir() + "no_floor.yaml";
+  expectCameraRefused(c, "world/floor");
+}
+
+TEST(CameraBatch, AppearanceRandomisationChangesImagesNotTrajectories) {
+  EnvConfig plain = cameraArenaConfig(3, 1);
+  EnvConfig looks = plain;  // colours, light and exposure: the geometry stays
+  looks.camera.random_colours = true;
+  looks.camera.light_intensity = {0.5, 1.5};
+  looks.camera.random_light_direction = true;
+  looks.camera.exposure = {0.8, 1.2};
+  EnvConfig jittered = looks;
+  jittered.camera.pose_jitter = {0.02, 0.05};
+  BatchedEnv a(cameraJetbot(), plain), b(cameraJetbot(), looks), b2(cameraJetbot(), looks),
+      c(cameraJetbot(), jittered);
+  for (int step = 0; step < 30; ++step) {
+    const std::vector<float> actions = test::randomActions(3, step);
+    const StepResult& ra = a.step(actions);
+    const StepResult& rb = b.step(actions);
+    const StepResult& rc = c.step(actions);
+    ASSERT_TRUE(test::bitEqual(ra.observations, rb.observations)) << "step " << step;
+    ASSERT_TRUE(test::bitEqual(ra.observations, rc.observations)) << "step " << step;
+    EXPECT_NE(ra.images.rgb, rb.images.rgb);
+    EXPECT_EQ(ra.images.label, rb.images.label);  // the same surfaces, seen from the same pose
+    ASSERT_EQ(0, std::memcmp(ra.images.depth.data(), rb.images.depth.data(),
+                             ra.images.depth.size() * sizeof(float)));
+    EXPECT_NE(0, std::memcmp(ra.images.depth.data(), rc.images.depth.data(),
+                             ra.images.depth.size() * sizeof(float)));
+    EXPECT_EQ(b2.step(actions).images.rgb, rb.images.rgb);  // the same seed, the same looks
+  }
+  // Each env and each episode draws its own: the sky of env 0 and env 1 (top-left pixel, above
+  // the walls) differs in brightness with their exposures, and changes with a new episode.
+  const auto sky = [](const BatchedEnv& env, int e) {
+    const EnvImages im = env.view(e).images();
+    return std::vector<std::uint8_t>(im.rgb, im.rgb + 3);
+  };
+  EXPECT_NE(sky(b, 0), sky(b, 1));
+  const std::vector<std::uint8_t> before = sky(b, 0);
+  b.reset({0});
+  EXPECT_NE(sky(b, 0), before);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@ with `-d .../config/NAME.rviz`), the config's "2D Nav Goal" tools publish where 
 launch file listens (a deploy node's goal_topic, from `roslaunch --dump-params`), so that
 world_view.launch, view.launch and play.launch offer none; and every MarkerArray display of an
 env node's ~markers leaves out the half-transparent body boxes (namespace body), which painted
-the robot models' own colours over."""
+the robot models' own colours over; view.launch with the camera Jetbot shows env_0's camera where
+its Gazebo block publishes it."""
 import glob
 import os
 import re
@@ -87,6 +88,18 @@ class TestRvizConfigs(unittest.TestCase):
         topics = {d['Class']: d.get('Marker Topic', d.get('Topic')) for d in displays
                   if 'current_goal' in str(d.get('Marker Topic', d.get('Topic', '')))}
         self.assertEqual(topics, {'rviz/Marker': '/navigate/current_goal_marker'})
+
+    def test_view_launch_shows_the_cameras_image(self):
+        urdf = os.path.join(PKG, 'urdf', 'jetbot_camera.urdf')
+        params = dump('view.launch', 'rviz:=true', 'urdf:=' + urdf)
+        self.assertIn('imx219_160', params['/robot_description'])
+        # The topic the camera block's plugin gives (cameraName/imageTopicName) under env_0/.
+        plugin = ET.parse(urdf).getroot().find('.//sensor/plugin')
+        topic = '/env_0/%s/%s' % (plugin.findtext('cameraName'), plugin.findtext('imageTopicName'))
+        config = self.launches['view.launch'][0]
+        displays = yaml.safe_load(open(config))['Visualization Manager']['Displays']
+        images = [d['Image Topic'] for d in displays if d['Class'] == 'rviz/Image']
+        self.assertEqual(images, [topic])
 
 
 if __name__ == '__main__':

@@ -24,6 +24,12 @@ struct CameraConfig {
   std::vector<std::string> images;  ///< rgb, depth, label; []: rgb (a depth block: rgb, depth).
   double noise_std = -1.0;  ///< Gaussian noise on [0, 1] intensities; -1: the block's (else 0).
   int update_every = 0;     ///< Control steps between images; 0: from the block's update rate.
+  // Appearance randomisation: drawn per env at each reset from its own stream (off: nothing).
+  bool random_colours = false;          ///< Surface colours and the floor image's tint.
+  std::vector<double> light_intensity;  ///< [min, max] of the light's intensity; []: 1.
+  bool random_light_direction = false;  ///< The light's azimuth and elevation.
+  std::vector<double> exposure;         ///< [min, max] gain on intensities; []: 1.
+  std::vector<double> pose_jitter;      ///< [position m, angle rad] of the camera; []: none.
 };
 
 template <typename C, typename V>
@@ -56,10 +62,27 @@ IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
     "Control steps between images; 0: from the block's update rate (the plugin's <updateRate> "
     "when set, else the sensor's <update_rate>: round(1 / (rate x control step)), at least 1), "
     "else every step.");
+  v("camera/random_colours", c.random_colours, AnyValue{},
+    "Appearance randomisation: at each reset each env draws the colour of its ground, walls, "
+    "map blocks, obstacles and movers (each channel uniform in [0.1, 0.9]) and a tint of the "
+    "floor image (each channel uniform in [0.7, 1.3]).");
+  v("camera/light_intensity", c.light_intensity, EachValue<double>{inRange(0.0, 10.0)},
+    "[min, max]: at each reset each env draws its light's intensity uniformly in it; []: 1.");
+  v("camera/random_light_direction", c.random_light_direction, AnyValue{},
+    "At each reset each env draws where its light comes from: azimuth uniform in [-pi, pi), "
+    "elevation uniform in [0.35, 1.4] rad above the horizon.");
+  v("camera/exposure", c.exposure, EachValue<double>{inRange(0.0, 10.0)},
+    "[min, max]: at each reset each env draws its camera's exposure (a gain on every "
+    "intensity, clamped at 1) uniformly in it; []: 1.");
+  v("camera/pose_jitter", c.pose_jitter, EachValue<double>{inRange(0.0, 1.0)},
+    "[position m, angle rad]: at each reset each env moves its camera by up to +-position along "
+    "each axis and turns it by up to +-angle about each axis of its body frame (uniform); []: "
+    "none.");
 }
 
 /// The rules of CameraConfig's fields: clip has 0 or 2 values, distortion 0 or 5, images only
-/// rgb, depth and label, noise_std -1 or >= 0.
+/// rgb, depth and label, noise_std -1 or >= 0, light_intensity and exposure [min, max] with
+/// min <= max, pose_jitter 0 or 2 values.
 void checkFieldRules(const CameraConfig& config);
 
 }  // namespace jetbot_rl

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "jetbot_rl/sensors/camera_model.h"
@@ -17,6 +18,7 @@ struct RTCSceneTy;
 namespace jetbot_rl {
 
 class WorldModel;
+struct FloorImage;
 struct Obstacle;
 
 /// What a pixel shows (the label image's values).
@@ -29,10 +31,25 @@ enum class SurfaceClass : std::uint8_t {
   kMover = 5,     ///< People and the other robots of the env's world
 };
 
-/// The look of a body: its diffuse colour (RGB, each in [0, 1]) and its class.
-struct SurfaceStyle {
-  Eigen::Vector3f colour = Eigen::Vector3f::Constant(0.5f);
-  SurfaceClass label = SurfaceClass::kNone;
+/// How an env's scene looks: the diffuse colour (RGB, each in [0, 1]) of each class of surface,
+/// the light and the camera's exposure. The defaults are the fixed look; appearance randomisation
+/// draws one per env at each reset (CameraSensor).
+struct Appearance {
+  Eigen::Vector3f ground{0.45f, 0.45f, 0.42f};
+  Eigen::Vector3f wall{0.85f, 0.85f, 0.8f};
+  Eigen::Vector3f map{0.6f, 0.62f, 0.65f};
+  Eigen::Vector3f obstacle{0.9f, 0.45f, 0.1f};
+  Eigen::Vector3f mover{0.2f, 0.35f, 0.75f};
+  Eigen::Vector3f sky{0.75f, 0.82f, 0.92f};
+  Eigen::Vector3f floor_tint = Eigen::Vector3f::Ones();  ///< Multiplies the floor image.
+  /// The direction the light shines along (unit, pointing down): from above, ahead of x.
+  Eigen::Vector3f light_direction = Eigen::Vector3f(0.3f, 0.2f, -1.0f).normalized();
+  float light = 1.0f;     ///< The directional light's intensity.
+  float ambient = 0.35f;  ///< The share of a colour lit whatever its side faces.
+  float exposure = 1.0f;  ///< Gain on every intensity (before the clamp to 1).
+
+  /// The colour of surfaces of class `c` (kNone: the sky).
+  const Eigen::Vector3f& colour(SurfaceClass c) const;
 };
 
 /// Where render() writes one camera's images, row by row from the top left; nullptr: an image
@@ -62,9 +79,9 @@ struct CameraImages {
  */
 class CameraWorld {
  public:
-  /// `world` (nullptr: the ground alone). ModelError with Embree's message when Embree cannot
-  /// start.
-  explicit CameraWorld(const WorldModel* world);
+  /// `world` (nullptr: the ground alone), `floor` (nullptr: a plain ground). ModelError with
+  /// Embree's message when Embree cannot start.
+  explicit CameraWorld(const WorldModel* world, std::shared_ptr<const FloorImage> floor = nullptr);
   ~CameraWorld();
   CameraWorld(const CameraWorld&) = delete;
   CameraWorld& operator=(const CameraWorld&) = delete;
@@ -74,15 +91,18 @@ class CameraWorld {
   /// A unit cylinder (radius 1, height 1) or box (sides 1) centred on its origin, upright: the
   /// shape a mover's instance scales and places.
   RTCSceneTy* unitShape(bool cylinder) const { return cylinder ? unit_cylinder_ : unit_box_; }
-  /// The style of the static scene's geometry `id`.
-  const SurfaceStyle& style(unsigned id) const { return styles_.at(id); }
+  /// The class of the static scene's geometry `id`.
+  SurfaceClass surfaceClass(unsigned id) const { return classes_.at(id); }
+  /// The floor image on the ground, or nullptr.
+  const FloorImage* floor() const { return floor_.get(); }
 
  private:
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
   RTCSceneTy* unit_cylinder_ = nullptr;
   RTCSceneTy* unit_box_ = nullptr;
-  std::vector<SurfaceStyle> styles_;  // per geometry id of scene_
+  std::vector<SurfaceClass> classes_;  // per geometry id of scene_
+  std::shared_ptr<const FloorImage> floor_;
 };
 
 /// One env's scene: the shared world, the env's own obstacles and its movers; renders its
@@ -96,6 +116,9 @@ class CameraEnvScene {
 
   /// Replaces the env's obstacles with the placed ones of `obstacles` (env frame).
   void setObstacles(const std::vector<Obstacle>& obstacles);
+  /// How the scene looks from now on.
+  void setAppearance(const Appearance& appearance) { appearance_ = appearance; }
+  const Appearance& appearance() const { return appearance_; }
   /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
   /// an instance of a unit shape, moved without rebuilding any triangles.
   void setMovers(const std::vector<Obstacle>& movers);
@@ -108,9 +131,9 @@ class CameraEnvScene {
   void render(const CameraModel& model, const Eigen::Isometry3d& pose, CameraImages& images) const;
 
  private:
-  /// The style of the geometry a ray hit (`instance`: the world's instance, a mover's, or
+  /// The class of the geometry a ray hit (`instance`: the world's instance, a mover's, or
   /// invalid: the env's obstacles).
-  const SurfaceStyle& styleOf(unsigned geometry, unsigned instance) const;
+  SurfaceClass classOf(unsigned geometry, unsigned instance) const;
 
   /// A mover's instance in scene_: its geometry id and the matrix that takes its unit shape's
   /// normals to the env frame.
@@ -126,6 +149,7 @@ class CameraEnvScene {
   unsigned obstacles_id_;          // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
   std::vector<MoverSlot> movers_;  // one per mover seen so far (unused ones disabled)
   std::vector<int> slot_of_id_;    // per geometry id of scene_: its mover slot, or -1
+  Appearance appearance_;
 };
 
 /// The optical frame of a camera whose body frame (x forward, y left, z up: REP 103) is `body`.

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "jetbot_rl/robot/robot_model.h"
 #include "jetbot_rl/robot/urdf_camera_blocks.h"
@@ -27,6 +28,14 @@ struct CameraSpec {
   double noise_mean = 0.0, noise_std = 0.0;       ///< On [0, 1] intensities.
   int update_every = 1;                           ///< [control steps]
   std::string sensor_name;  ///< The block's sensor (empty: declared by parameters).
+  /// Appearance randomisation (camera/random_colours, ...; CameraConfig's fields).
+  bool random_colours = false, random_light_direction = false;
+  std::vector<double> light_intensity, exposure, pose_jitter;  ///< [] when off.
+  /// True when anything of the appearance is drawn at a reset.
+  bool randomizesAppearance() const {
+    return random_colours || random_light_direction || !light_intensity.empty() ||
+           !exposure.empty() || !pose_jitter.empty();
+  }
   // Topic names relative to the robot's namespace and the optical frame, as the block's ROS
   // plugin gives them (gazebo_ros_camera, gazebo_ros_openni_kinect), else those plugins' defaults.
   std::string image_topic;        ///< e.g. camera/image_raw, camera/rgb/image_raw

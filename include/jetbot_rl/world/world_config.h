@@ -15,6 +15,7 @@ namespace jetbot_rl {
 struct WorldConfig {
   std::string map;           ///< map_server map YAML; empty: none.
   std::string gazebo_world;  ///< Gazebo SDF world file; empty: none.
+  std::string floor;         ///< The camera's floor image YAML; empty: a plain ground.
   double cut_height = 0.0;   ///< Where the Gazebo world is cut for its grid [m]; 0: the scanner's.
   double map_resolution = 0.05;            ///< Cell size of the Gazebo world's grid [m].
   std::vector<double> spawn{0.0, 0.0};     ///< [x, y]: the fixed start, in the env frame [m].
@@ -73,6 +74,11 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
     "map_server map YAML (image, resolution, origin, negate, occupied_thresh, free_thresh, mode) "
     "placed in every env's frame as map_server places it; its image is read relative to the "
     "YAML.");
+  v("world/floor", c.floor, AnyValue{"", "empty: a plain ground"},
+    "The camera's floor image: a YAML beside an image (PNG, PGM, JPEG; at most 8192 px a side) "
+    "with map_server's image, resolution and origin, laid on the ground of every env's frame as "
+    "a map is placed (docs/camera.md); the ground elsewhere keeps its colour. Seen by cameras "
+    "only.");
   v("world/gazebo_world", c.gazebo_world, AnyValue{"", "empty: none"},
     "Gazebo SDF world file (.world) read with sdformat: every model's collision geometry at its "
     "initial pose, <include>s resolved through GAZEBO_MODEL_PATH and ROS_PACKAGE_PATH, shared by "

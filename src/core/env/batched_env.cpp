@@ -12,6 +12,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/scene/movers.h"
+#include "jetbot_rl/sensors/floor_image.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/tasks/task_observer.h"
 #include "robot/physics_model.h"
@@ -55,10 +56,15 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
     sensors_.push_back(scan_.get());
   }
+  // The floor image is read (and a bad one refused) with or without a camera to see it.
+  std::shared_ptr<const FloorImage> floor;
+  if (!config_.world.floor.empty()) {
+    floor = std::make_shared<const FloorImage>(FloorImage::fromYamlFile(config_.world.floor));
+  }
   if (const std::optional<CameraSpec> camera =
           resolveCamera(config_.camera, *robot_, config_.controlDt())) {
-    camera_ =
-        std::make_unique<CameraSensor>(*camera, scene_->world(), n, config_.seed, result_.images);
+    camera_ = std::make_unique<CameraSensor>(*camera, scene_->world(), std::move(floor), n,
+                                             config_.seed, result_.images);
     sensors_.push_back(camera_.get());
   }
   TaskContext context;

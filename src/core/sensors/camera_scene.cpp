@@ -6,25 +6,15 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/sensors/floor_image.h"
 #include "jetbot_rl/world/world_model.h"
 #include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
 namespace {
-
-// The looks of the bodies until materials and appearance randomisation come: a grey floor, light
-// walls, darker map blocks, orange obstacles, a pale sky.
-const SurfaceStyle kGroundStyle{{0.45f, 0.45f, 0.42f}, SurfaceClass::kGround};
-const SurfaceStyle kWallStyle{{0.85f, 0.85f, 0.8f}, SurfaceClass::kWall};
-const SurfaceStyle kMapStyle{{0.6f, 0.62f, 0.65f}, SurfaceClass::kMap};
-const SurfaceStyle kObstacleStyle{{0.9f, 0.45f, 0.1f}, SurfaceClass::kObstacle};
-const SurfaceStyle kMoverStyle{{0.2f, 0.35f, 0.75f}, SurfaceClass::kMover};
-const Eigen::Vector3f kSkyColour(0.75f, 0.82f, 0.92f);
-// One light from above and ahead of the world's x axis, and the ambient share of the colour.
-const Eigen::Vector3f kLightDirection = Eigen::Vector3f(0.3f, 0.2f, -1.0f).normalized();
-constexpr float kAmbient = 0.35f;
 
 /// An intensity in [0, 1] as a byte, rounded to nearest (half up; lround's result, without its
 /// cost per channel).
@@ -79,7 +69,8 @@ CameraImageView CameraImages::resize(int width, int height) {
   return {rgb.data(), depth.data(), label.data()};
 }
 
-CameraWorld::CameraWorld(const WorldModel* world) {
+CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorImage> floor)
+    : floor_(std::move(floor)) {
   // One build thread, the caller's: the same trees every run, no pool beside the env's threads.
   device_ = rtcNewDevice("threads=1,user_threads=0");
   if (!device_) throwEmbree(nullptr, "rtcNewDevice");
@@ -115,11 +106,11 @@ CameraWorld::CameraWorld(const WorldModel* world) {
     rtcCommitScene(unit);
   }
   if (!walls.empty()) {
-    styles_.push_back(kWallStyle);
+    classes_.push_back(SurfaceClass::kWall);
     attachTriangles(device_, scene_, walls);
   }
   if (!blocks.empty()) {
-    styles_.push_back(kMapStyle);
+    classes_.push_back(SurfaceClass::kMap);
     attachTriangles(device_, scene_, blocks);
   }
   rtcCommitScene(scene_);
@@ -208,9 +199,27 @@ void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers) {
   rtcCommitScene(scene_);
 }
 
-const SurfaceStyle& CameraEnvScene::styleOf(unsigned geometry, unsigned instance) const {
-  if (instance == world_id_) return world_.style(geometry);
-  return instance == RTC_INVALID_GEOMETRY_ID ? kObstacleStyle : kMoverStyle;
+SurfaceClass CameraEnvScene::classOf(unsigned geometry, unsigned instance) const {
+  if (instance == world_id_) return world_.surfaceClass(geometry);
+  return instance == RTC_INVALID_GEOMETRY_ID ? SurfaceClass::kObstacle : SurfaceClass::kMover;
+}
+
+const Eigen::Vector3f& Appearance::colour(SurfaceClass c) const {
+  switch (c) {
+    case SurfaceClass::kGround:
+      return ground;
+    case SurfaceClass::kWall:
+      return wall;
+    case SurfaceClass::kMap:
+      return map;
+    case SurfaceClass::kObstacle:
+      return obstacle;
+    case SurfaceClass::kMover:
+      return mover;
+    case SurfaceClass::kNone:
+      break;
+  }
+  return sky;
 }
 
 void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
@@ -226,6 +235,8 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
   const float near = static_cast<float>(model.intrinsics().near);
   const float far = static_cast<float>(model.intrinsics().far);
   const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
+  const FloorImage* floor = world_.floor();
+  const Appearance& a = appearance_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // neighbouring pixels: neighbouring rays
@@ -272,16 +283,24 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
           if (out.depth) out.depth[i] = std::numeric_limits<float>::infinity();
           if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
           for (int c = 0; rgb && c < 3; ++c) {
-            rgb[c] = toByte(kSkyColour[c]);
+            rgb[c] = toByte(std::min(1.0f, a.exposure * a.sky[c]));
           }
           continue;
         }
         const float t = on_ground ? ground[k] : packet.ray.tfar[k];
         if (out.depth) out.depth[i] = t < near ? -std::numeric_limits<float>::infinity() : t;
-        const SurfaceStyle& style =
-            on_ground ? kGroundStyle : styleOf(packet.hit.geomID[k], packet.hit.instID[0][k]);
-        if (out.label) out.label[i] = static_cast<std::uint8_t>(style.label);
+        const SurfaceClass surface = on_ground
+                                         ? SurfaceClass::kGround
+                                         : classOf(packet.hit.geomID[k], packet.hit.instID[0][k]);
+        if (out.label) out.label[i] = static_cast<std::uint8_t>(surface);
         if (!rgb) continue;
+        // The floor image where it lies (tinted), else the surface's own colour.
+        Eigen::Vector3f albedo = a.colour(surface);
+        if (on_ground && floor &&
+            floor->colourAt(origin.x() + t * packet.ray.dir_x[k],
+                            origin.y() + t * packet.ray.dir_y[k], albedo)) {
+          albedo = albedo.cwiseProduct(a.floor_tint);
+        }
         // Lambert's diffuse light on the side facing the camera, plus the ambient share.
         Eigen::Vector3f normal =
             on_ground ? Eigen::Vector3f::UnitZ()
@@ -293,10 +312,10 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
         }
         const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
         if (normal.dot(dir) > 0.0f) normal = -normal;
-        const float lit = std::max(0.0f, -normal.normalized().dot(kLightDirection));
-        const float shade = kAmbient + (1.0f - kAmbient) * lit;
+        const float lit = std::max(0.0f, -normal.normalized().dot(a.light_direction));
+        const float shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * lit);
         for (int c = 0; c < 3; ++c) {
-          rgb[c] = toByte(std::min(1.0f, style.colour[c] * shade));
+          rgb[c] = toByte(std::min(1.0f, albedo[c] * shade));
         }
       }
     }

@@ -2,27 +2,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "env/env_physics.h"
+#include "jetbot_rl/numeric.h"
 #include "robot/bullet_conversions.h"
 
 namespace jetbot_rl {
 namespace {
 
-// Camera noise of env e: the stream of env id e + kCameraStream (another than its other streams).
+// Camera noise of env e: the stream of env id e + kCameraStream (another than its other streams);
+// its appearance draws: e + kAppearanceStream.
 constexpr std::uint64_t kCameraStream = 1ULL << 42;
+constexpr std::uint64_t kAppearanceStream = 1ULL << 43;
+
+/// Each channel uniform in [lo, hi].
+Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
+  Eigen::Vector3f c;
+  for (int k = 0; k < 3; ++k) c[k] = static_cast<float>(uniform(rng, lo, hi));
+  return c;
+}
 
 }  // namespace
 
-CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world, int num_envs,
+CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world,
+                           std::shared_ptr<const FloorImage> floor, int num_envs,
                            std::uint64_t seed, BatchImages& out)
     : spec_(spec),
       model_(spec.intrinsics),
-      world_(world),
+      world_(world, std::move(floor)),
       out_(out),
       pixels_(static_cast<std::size_t>(spec.intrinsics.width) * spec.intrinsics.height),
       poses_(num_envs, Eigen::Isometry3d::Identity()),
-      age_(num_envs, 0) {
+      age_(num_envs, 0),
+      jitter_(num_envs, Eigen::Isometry3d::Identity()) {
   out_.width = spec.intrinsics.width;
   out_.height = spec.intrinsics.height;
   const auto n = static_cast<std::size_t>(num_envs);
@@ -33,11 +46,13 @@ CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world, int 
   for (int e = 0; e < num_envs; ++e) {
     scenes_.push_back(std::make_unique<CameraEnvScene>(world_));
     noise_.emplace_back(seed, e + kCameraStream);
+    appearance_rng_.emplace_back(seed, e + kAppearanceStream);
   }
 }
 
 void CameraSensor::reseed(int env, std::uint64_t seed) {
   noise_[env] = Rng(seed, env + kCameraStream);
+  appearance_rng_[env] = Rng(seed, env + kAppearanceStream);
 }
 
 void CameraSensor::forgetNewReadings() { std::fill(out_.fresh.begin(), out_.fresh.end(), 0); }
@@ -49,13 +64,52 @@ void CameraSensor::afterStep(int env, const SensedEnv& sensed) {
 
 void CameraSensor::afterReset(int env, const SensedEnv& sensed) {
   scenes_[env]->setObstacles(sensed.layout.obstacles);
+  if (spec_.randomizesAppearance()) drawAppearance(env);
   render(env, sensed);
+}
+
+void CameraSensor::drawAppearance(int env) {
+  Rng& rng = appearance_rng_[env];
+  Appearance a;
+  if (spec_.random_colours) {
+    for (Eigen::Vector3f* c : {&a.ground, &a.wall, &a.map, &a.obstacle, &a.mover}) {
+      *c = uniformColour(rng, 0.1, 0.9);
+    }
+    a.floor_tint = uniformColour(rng, 0.7, 1.3);
+  }
+  if (!spec_.light_intensity.empty()) {
+    a.light = static_cast<float>(uniform(rng, spec_.light_intensity[0], spec_.light_intensity[1]));
+  }
+  if (spec_.random_light_direction) {
+    const double azimuth = uniform(rng, -kPi, kPi), elevation = uniform(rng, 0.35, 1.4);
+    a.light_direction =
+        -Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
+                         std::cos(elevation) * std::sin(azimuth), std::sin(elevation))
+             .cast<float>();
+  }
+  if (!spec_.exposure.empty()) {
+    a.exposure = static_cast<float>(uniform(rng, spec_.exposure[0], spec_.exposure[1]));
+  }
+  scenes_[env]->setAppearance(a);
+  if (!spec_.pose_jitter.empty()) {
+    const double p = spec_.pose_jitter[0], q = spec_.pose_jitter[1];
+    Eigen::Isometry3d jitter = Eigen::Isometry3d::Identity();
+    jitter.translation() =
+        Eigen::Vector3d(uniform(rng, -p, p), uniform(rng, -p, p), uniform(rng, -p, p));
+    const double roll = uniform(rng, -q, q), pitch = uniform(rng, -q, q), yaw = uniform(rng, -q, q);
+    jitter.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                       Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                       Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                          .toRotationMatrix();
+    jitter_[env] = jitter;
+  }
 }
 
 void CameraSensor::render(int env, const SensedEnv& sensed) {
   CameraEnvScene& scene = *scenes_[env];
   if (sensed.movers) scene.setMovers(*sensed.movers);
-  poses_[env] = opticalFrame(toEigen(sensed.physics.linkPose(spec_.body)) * spec_.pose_in_body);
+  poses_[env] = opticalFrame(toEigen(sensed.physics.linkPose(spec_.body)) * spec_.pose_in_body *
+                             jitter_[env]);
   const auto e = static_cast<std::size_t>(env);
   CameraImageView view;
   if (spec_.rgb) view.rgb = &out_.rgb[e * pixels_ * 3];

@@ -20,9 +20,10 @@ class WorldModel;
 /// BatchImages, their cadence, and a noise stream per env.
 class CameraSensor : public EnvSensor {
  public:
-  /// `world` (or none) is what the camera sees besides the ground and each env's bodies; images
-  /// go to `out` (sized here), which must outlive the sensor.
-  CameraSensor(const CameraSpec& spec, const WorldModel* world, int num_envs, std::uint64_t seed,
+  /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none) and
+  /// each env's bodies; images go to `out` (sized here), which must outlive the sensor.
+  CameraSensor(const CameraSpec& spec, const WorldModel* world,
+               std::shared_ptr<const FloorImage> floor, int num_envs, std::uint64_t seed,
                BatchImages& out);
 
   void reseed(int env, std::uint64_t seed) override;
@@ -36,11 +37,15 @@ class CameraSensor : public EnvSensor {
   bool isNew(int env) const { return out_.fresh[env] != 0; }
   /// Env `env`'s camera optical frame in its env frame when the images were made.
   const Eigen::Isometry3d& opticalPose(int env) const { return poses_[env]; }
+  /// How env `env`'s scene looks in its current episode.
+  const Appearance& appearance(int env) const { return scenes_[env]->appearance(); }
 
  private:
   void render(int env, const SensedEnv& sensed);
   /// Gazebo's camera noise on env `env`'s rgb image: N(mean, std) per channel on [0, 1].
   void addNoise(int env, std::uint8_t* rgb);
+  /// Appearance randomisation: env `env`'s look and camera pose jitter for its new episode.
+  void drawAppearance(int env);
 
   CameraSpec spec_;
   CameraModel model_;
@@ -48,9 +53,11 @@ class CameraSensor : public EnvSensor {
   std::vector<std::unique_ptr<CameraEnvScene>> scenes_;  // per env
   BatchImages& out_;
   std::size_t pixels_;
-  std::vector<Eigen::Isometry3d> poses_;  // per env
-  std::vector<std::uint32_t> age_;        // per env: control steps since its last images
-  std::vector<Rng> noise_;                // per env
+  std::vector<Eigen::Isometry3d> poses_;   // per env
+  std::vector<std::uint32_t> age_;         // per env: control steps since its last images
+  std::vector<Rng> noise_;                 // per env
+  std::vector<Rng> appearance_rng_;        // per env
+  std::vector<Eigen::Isometry3d> jitter_;  // per env: the camera's offset in its body frame
 };
 
 }  // namespace jetbot_rl

@@ -31,6 +31,16 @@ void checkFieldRules(const CameraConfig& c) {
   if (c.noise_std < 0.0 && c.noise_std != -1.0) {
     throwInvalid("camera/noise_std", c.noise_std, "must be -1 (the block's) or >= 0");
   }
+  for (const auto& [name, range] : {std::make_pair("camera/light_intensity", &c.light_intensity),
+                                    std::make_pair("camera/exposure", &c.exposure)}) {
+    if (!range->empty() && (range->size() != 2 || (*range)[0] > (*range)[1])) {
+      throwInvalid(name, listText(*range), "must be [min, max] with min <= max, or []");
+    }
+  }
+  if (!c.pose_jitter.empty() && c.pose_jitter.size() != 2) {
+    throwInvalid("camera/pose_jitter", listText(c.pose_jitter),
+                 "must be [position m, angle rad] or []");
+  }
   for (const std::string& image : c.images) {
     if (std::find(std::begin(kImageNames), std::end(kImageNames), image) == std::end(kImageNames)) {
       throwInvalid("camera/images", "'" + image + "'", "must be rgb, depth or label");
@@ -64,6 +74,11 @@ std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotM
   spec.pose_in_body = offset * (g ? g->pose : Eigen::Isometry3d::Identity());
   spec.optical_in_link = opticalFrame(g ? g->pose : Eigen::Isometry3d::Identity());
   spec.sensor_name = g ? g->sensor_name : "";
+  spec.random_colours = config.random_colours;
+  spec.random_light_direction = config.random_light_direction;
+  spec.light_intensity = config.light_intensity;
+  spec.exposure = config.exposure;
+  spec.pose_jitter = config.pose_jitter;
 
   CameraIntrinsics& c = spec.intrinsics;
   if (g) c = g->intrinsics;  // else CameraIntrinsics' defaults: 64 x 64, 1.047 rad, [0.05, 10]
@@ -161,6 +176,13 @@ std::string describeCamera(const CameraSpec& s) {
   out << " (" << s.images_from << "), noise mean " << s.noise_mean << " std " << s.noise_std << " ("
       << s.noise_from << "), every " << s.update_every << " control steps (" << s.update_from
       << "), frame '" << s.frame << "'";
+  if (s.randomizesAppearance()) {
+    out << ", appearance randomised (colours " << (s.random_colours ? "on" : "off")
+        << ", light intensity " << (s.light_intensity.empty() ? "1" : listText(s.light_intensity))
+        << ", light direction " << (s.random_light_direction ? "drawn" : "fixed") << ", exposure "
+        << (s.exposure.empty() ? "1" : listText(s.exposure)) << ", pose jitter "
+        << (s.pose_jitter.empty() ? "none" : listText(s.pose_jitter)) << ")";
+  }
   return out.str();
 }
 

@@ -1,6 +1,5 @@
 #include "jetbot_rl/world/occupancy_map.h"
 
-#include <stb/stb_image.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -10,24 +9,9 @@
 
 #include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
+#include "world/map_yaml.h"
 
 namespace jetbot_rl {
-namespace {
-
-/// Field `name` of the map YAML `doc` as T; ConfigError naming the file and the field.
-template <typename T>
-T field(const YAML::Node& doc, const std::string& path, const char* name) {
-  const YAML::Node node = doc[name];
-  if (!node) throw ConfigError(path + ": missing field '" + name + "' (map_server's map YAML)");
-  try {
-    return node.as<T>();
-  } catch (const YAML::Exception&) {
-    throwInvalid(std::string(name), "'" + YAML::Dump(node) + "'",
-                 "is not a valid value (in " + path + ")");
-  }
-}
-
-}  // namespace
 
 bool OccupancyMap::isObstacle(int x, int y) const {
   const std::int8_t v = at(x, y);
@@ -39,59 +23,31 @@ bool OccupancyMap::isObstacle(int x, int y) const {
 }
 
 OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
-  namespace fs = std::filesystem;
   OccupancyMap map;
   map.yaml_path = path;
-  YAML::Node doc;
-  if (const std::string problem = fileProblem(path); !problem.empty()) {
-    throw ConfigError("map YAML '" + path + "' cannot be read: it " + problem);
+  const MapYaml yaml = readMapYaml(path, "map YAML");
+  const YAML::Node& doc = yaml.doc;
+  map.resolution = yaml.resolution;
+  map.origin_x = yaml.origin_x;
+  map.origin_y = yaml.origin_y;
+  map.origin_yaw = yaml.origin_yaw;
+  map.image_path = yaml.image_path;
+  map.negate = mapYamlField<int>(doc, path, "negate") != 0;
+  map.occupied_thresh = mapYamlField<double>(doc, path, "occupied_thresh");
+  map.free_thresh = mapYamlField<double>(doc, path, "free_thresh");
+  if (doc["mode"]) {
+    map.mode = parseEnum<MapMode>("mode", mapYamlField<std::string>(doc, path, "mode"));
   }
-  try {
-    doc = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError("map YAML '" + path + "' cannot be read");
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("map YAML '" + path + "' is not YAML: " + e.what());
-  }
-  if (!doc.IsMap()) throw ConfigError("map YAML '" + path + "' is not a map of fields");
-  const std::string image = field<std::string>(doc, path, "image");
-  map.resolution = field<double>(doc, path, "resolution");
-  const std::vector<double> origin = field<std::vector<double>>(doc, path, "origin");
-  map.negate = field<int>(doc, path, "negate") != 0;
-  map.occupied_thresh = field<double>(doc, path, "occupied_thresh");
-  map.free_thresh = field<double>(doc, path, "free_thresh");
-  if (doc["mode"]) map.mode = parseEnum<MapMode>("mode", field<std::string>(doc, path, "mode"));
   const std::string in = " (in " + path + ")";
-  if (!std::isfinite(map.resolution) || map.resolution <= 0.0) {
-    throwInvalid("resolution", map.resolution, "must be > 0 m" + in);
-  }
-  if (origin.size() != 3 || !std::isfinite(origin[0]) || !std::isfinite(origin[1]) ||
-      !std::isfinite(origin[2])) {
-    throwInvalid("origin", listText(origin), "must be [x, y, yaw], finite" + in);
-  }
-  map.origin_x = origin[0];
-  map.origin_y = origin[1];
-  map.origin_yaw = origin[2];
   if (!(map.free_thresh >= 0.0 && map.free_thresh < map.occupied_thresh &&
         map.occupied_thresh <= 1.0)) {
     throwInvalid("free_thresh", map.free_thresh,
                  "must be in [0, occupied_thresh = " + std::to_string(map.occupied_thresh) +
                      ") with occupied_thresh <= 1" + in);
   }
-  const fs::path image_path =
-      fs::path(image).is_absolute() ? fs::path(image) : fs::path(path).parent_path() / image;
-  map.image_path = image_path.string();
-
-  if (const std::string problem = fileProblem(map.image_path); !problem.empty()) {
-    throwInvalid("image", "'" + map.image_path + "'", problem + in);
-  }
-  int w = 0, h = 0, channels = 0;
-  const std::unique_ptr<unsigned char, void (*)(void*)> pixels(
-      stbi_load(map.image_path.c_str(), &w, &h, &channels, 0), stbi_image_free);
-  if (!pixels) {
-    throwInvalid("image", "'" + map.image_path + "'",
-                 std::string("cannot be read as an image: ") + stbi_failure_reason() + in);
-  }
+  const MapImage image = decodeMapImage(yaml, path);
+  const int w = image.width, h = image.height, channels = image.channels;
+  const unsigned char* const pixels = image.pixels.get();
   map.width = w;
   map.height = h;
   map.data.assign(static_cast<std::size_t>(w) * h, -1);
@@ -102,7 +58,7 @@ OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
   const int averaged = (map.mode == MapMode::kTrinary || !has_alpha) ? channels : channels - 1;
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
-      const unsigned char* p = pixels.get() + (static_cast<std::size_t>(j) * w + i) * channels;
+      const unsigned char* p = pixels + (static_cast<std::size_t>(j) * w + i) * channels;
       int sum = 0;
       for (int k = 0; k < averaged; ++k) sum += p[k];
       double color = static_cast<double>(sum) / averaged;
