@@ -140,6 +140,12 @@ TEST(OccupancyMap, BadFilesAreRefusedNamingTheFieldAndValue) {
   EXPECT_NE(e.find("cannot be read as an image"), std::string::npos) << e;
   e = loadError(::testing::TempDir() + "no_such_map.yaml");
   EXPECT_NE(e.find("cannot be read"), std::string::npos) << e;
+  // A map image larger than 8192 px a side is refused from its header, before it is decoded (a
+  // PGM whose header says 20000 x 20000 and holds one row).
+  test::writeTempFile("huge.pgm", "P5\n20000 20000\n255\n" + std::string(20000, '\xfe'));
+  e = loadError(test::writeMapYaml("huge.yaml", "huge.pgm", good_fields));
+  EXPECT_NE(e.find("20000 x 20000 px: at most 8192 px a side"), std::string::npos) << e;
+  EXPECT_NE(e.find("huge.pgm"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 // What a camera sees, as Embree scenes (Intel's ray-tracing kernels, on the CPU): the world's
 // static bodies once, shared by every env (CameraWorld: the model), and per env a scene holding an
 // instance of it and the env's own bodies (CameraEnvScene: the data). Rendering traces one ray per
-// pixel in packets of 8.
+// pixel in packets of 16.
 
 #include <Eigen/Geometry>
 #include <cstdint>

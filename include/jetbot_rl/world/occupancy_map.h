@@ -23,6 +23,10 @@ inline const EnumNameList<MapMode>& enumNames(MapMode) {
   return names;
 }
 
+/// The largest map image side accepted [px]: 67 M cells at most (under 1 GB for the world's
+/// grids at about 13 bytes a cell); a larger image is refused before it is decoded.
+constexpr int kMaxMapSide = 8192;
+
 /**
  * An occupancy grid as ROS users have them: map_server's map YAML (image, resolution, origin,
  * negate, occupied_thresh, free_thresh, mode) and its PGM or PNG image, turned into cells exactly
@@ -42,7 +46,8 @@ struct OccupancyMap {
   std::vector<std::int8_t> data;  ///< Row-major from the lower-left cell (OccupancyGrid order).
 
   /// Loads a map YAML and its image. Throws ConfigError naming the file and the missing or
-  /// invalid field and its value, or the image that cannot be read or decoded.
+  /// invalid field and its value, or the image that cannot be read or decoded or has a side
+  /// above kMaxMapSide.
   static OccupancyMap fromYamlFile(const std::string& path);
 
   /// The cell's value (OccupancyGrid data) at column x, row y (from the bottom).

@@ -45,7 +45,7 @@ OccupancyMap OccupancyMap::fromYamlFile(const std::string& path) {
                  "must be in [0, occupied_thresh = " + std::to_string(map.occupied_thresh) +
                      ") with occupied_thresh <= 1" + in);
   }
-  const MapImage image = decodeMapImage(yaml, path);
+  const MapImage image = decodeMapImage(yaml, path, 0, kMaxMapSide);
   const int w = image.width, h = image.height, channels = image.channels;
   const unsigned char* const pixels = image.pixels.get();
   map.width = w;
