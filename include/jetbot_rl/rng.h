@@ -5,6 +5,17 @@
 
 namespace jetbot_rl {
 
+/// The offsets of an env's random streams besides its own (env id e: its layouts, starts and
+/// randomisation): stream e + offset for each other purpose, one offset per purpose, so that no
+/// two purposes draw the same numbers (all here, where a new one can be checked against the rest).
+namespace streams {
+inline constexpr std::uint64_t kNoise = 1ULL << 40;       ///< Observation and action noise.
+inline constexpr std::uint64_t kScan = 1ULL << 41;        ///< The laser scanner's noise.
+inline constexpr std::uint64_t kMovers = 1ULL << 42;      ///< The people's walks.
+inline constexpr std::uint64_t kCamera = 1ULL << 43;      ///< The camera's noise.
+inline constexpr std::uint64_t kAppearance = 1ULL << 44;  ///< The camera's appearance draws.
+}  // namespace streams
+
 /// Small counter-based random stream (SplitMix64): one per env, reproducible on every platform.
 class Rng {
  public:

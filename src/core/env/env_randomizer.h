@@ -21,7 +21,7 @@ class EnvRandomizer {
  public:
   /// Noise stream of env e: the stream of env id e + kNoiseStream under the batch's seed (ids are
   /// below 2^20, so it is no other env's stream).
-  static constexpr std::uint64_t kNoiseStream = 1ULL << 40;
+  static constexpr std::uint64_t kNoiseStream = streams::kNoise;
 
   /// Throws ConfigError for an obs_noise_std of the wrong length, ModelError when initial_speed
   /// is set for a robot that is no differential drive.

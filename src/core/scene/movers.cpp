@@ -11,7 +11,7 @@ namespace jetbot_rl {
 namespace {
 
 // An env's mover stream: the stream of env id e + kMoverStream (not its layouts' or its scan's).
-constexpr std::uint64_t kMoverStream = 1ULL << 42;
+constexpr std::uint64_t kMoverStream = streams::kMovers;
 // Room a mover keeps from the world and from the other movers where it is drawn [m].
 constexpr double kMargin = 0.05;
 // Waypoint draws per mover and control step once it has arrived; without a clear one it stands

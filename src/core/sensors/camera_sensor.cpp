@@ -13,8 +13,8 @@ namespace {
 
 // Camera noise of env e: the stream of env id e + kCameraStream (another than its other streams);
 // its appearance draws: e + kAppearanceStream.
-constexpr std::uint64_t kCameraStream = 1ULL << 42;
-constexpr std::uint64_t kAppearanceStream = 1ULL << 43;
+constexpr std::uint64_t kCameraStream = streams::kCamera;
+constexpr std::uint64_t kAppearanceStream = streams::kAppearance;
 
 /// Each channel uniform in [lo, hi].
 Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {

@@ -9,7 +9,7 @@ namespace jetbot_rl {
 namespace {
 
 // Scan noise of env e: the stream of env id e + kScanStream (another than its noise stream's).
-constexpr std::uint64_t kScanStream = 1ULL << 41;
+constexpr std::uint64_t kScanStream = streams::kScan;
 
 }  // namespace
 
