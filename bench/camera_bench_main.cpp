@@ -22,6 +22,7 @@ struct Options {
   int frames = 20;  // per env
   int threads = 2;
   int obstacles = 10;  // per env
+  int people = 0;      // per env: movers, moved before every frame as the batch moves them
   std::string map = JETBOT_RL_DEFAULT_MAP;
   std::string save;  // env 0's images as SAVE_rgb.ppm and SAVE_label.pgm, to look at
 };
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
         if (option == "--threads") return parseWholeNumber(option, value, 1, 256, o.threads, err);
         if (option == "--obstacles")
           return parseWholeNumber(option, value, 0, 10000, o.obstacles, err);
+        if (option == "--people") return parseWholeNumber(option, value, 0, 1000, o.people, err);
         if (option == "--map") {
           o.map = value;
           return true;
@@ -69,8 +71,8 @@ int main(int argc, char** argv) {
   if (!parsed) {
     std::fprintf(stderr,
                  "jetbot_rl_camera_bench: %s\nusage: jetbot_rl_camera_bench [--num-envs N] "
-                 "[--width W] [--height H] [--frames F] [--threads T] [--obstacles K] [--map "
-                 "YAML] [--save PREFIX]\n",
+                 "[--width W] [--height H] [--frames F] [--threads T] [--obstacles K] [--people P] "
+                 "[--map YAML] [--save PREFIX]\n",
                  error.c_str());
     return 2;
   }
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
     // heading, as a robot's would.
     std::vector<std::unique_ptr<CameraEnvScene>> scenes;
     std::vector<Eigen::Isometry3d> poses;
+    std::vector<std::vector<Obstacle>> people(o.num_envs);
     for (int e = 0; e < o.num_envs; ++e) {
       Rng rng(1, static_cast<std::uint64_t>(e));
       std::vector<Obstacle> obstacles;
@@ -106,6 +109,14 @@ int main(int argc, char** argv) {
       }
       scenes.push_back(std::make_unique<CameraEnvScene>(camera_world));
       scenes.back()->setObstacles(obstacles);
+      for (int k = 0; k < o.people; ++k) {
+        Obstacle person;
+        person.shape = Obstacle::Shape::kCylinder;
+        person.center = world.drawFreePoint(rng, 0.3).value_or(Eigen::Vector2d::Zero());
+        person.radius = 0.2;
+        person.height = 1.7;
+        people[e].push_back(person);
+      }
       const Eigen::Vector2d at = world.drawFreePoint(rng, 0.2).value_or(Eigen::Vector2d::Zero());
       poses.push_back(
           opticalFrame(Eigen::Translation3d(at.x(), at.y(), 0.1) *
@@ -120,8 +131,13 @@ int main(int argc, char** argv) {
       workers.emplace_back([&, t] {
         CameraImages images;
         for (int f = 0; f < o.frames; ++f) {
-          for (int e = t; e < o.num_envs; e += o.threads)
+          for (int e = t; e < o.num_envs; e += o.threads) {
+            if (o.people > 0) {  // each a step of 2 cm, as the batch moves them before an image
+              for (Obstacle& p : people[e]) p.center.x() += f % 2 ? -0.02 : 0.02;
+              scenes[e]->setMovers(people[e]);
+            }
             scenes[e]->render(model, poses[e], images);
+          }
         }
       });
     }
@@ -129,8 +145,9 @@ int main(int argc, char** argv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double frames = static_cast<double>(o.frames) * o.num_envs;
-    std::printf("envs=%d threads=%d image=%dx%d frames=%.0f wall_s=%.3f scenes_build_s=%.3f\n",
-                o.num_envs, o.threads, o.width, o.height, frames, seconds, build_s);
+    std::printf(
+        "envs=%d threads=%d image=%dx%d people=%d frames=%.0f wall_s=%.3f scenes_build_s=%.3f\n",
+        o.num_envs, o.threads, o.width, o.height, o.people, frames, seconds, build_s);
     std::printf("frames_per_s=%.0f\n", frames / seconds);
     std::printf("megarays_per_s=%.1f\n", frames * o.width * o.height / seconds / 1e6);
     if (!o.save.empty()) {
