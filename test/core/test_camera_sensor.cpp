@@ -10,6 +10,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
+#include "jetbot_rl/rng.h"
 #include "jetbot_rl/sensors/camera_scene.h"
 #include "jetbot_rl/sensors/camera_spec.h"
 #include "jetbot_rl/sensors/floor_image.h"
@@ -153,6 +154,21 @@ TEST(CameraSpec, BadValuesAreRefusedNamingTheField) {
   c = test::smallConfig(1);
   c.camera.pose_jitter = {0.1};
   expectCameraRefused(c, "camera/pose_jitter");
+}
+
+TEST(CameraBatch, EveryRandomStreamHasAPurposeOfItsOwn) {
+  // Stream e + offset per purpose: offsets 2^40 apart keep the streams of every env id below 2^40
+  // apart (the camera's noise once shared the people's offset).
+  const std::vector<std::uint64_t> offsets{streams::kNoise, streams::kScan, streams::kMovers,
+                                           streams::kCamera, streams::kAppearance};
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    EXPECT_GE(offsets[i], 1ULL << 40) << i;
+    for (std::size_t j = i + 1; j < offsets.size(); ++j) {
+      const std::uint64_t gap =
+          offsets[i] > offsets[j] ? offsets[i] - offsets[j] : offsets[j] - offsets[i];
+      EXPECT_GE(gap, 1ULL << 40) << i << " and " << j;
+    }
+  }
 }
 
 TEST(CameraBatch, ImagesInTheStepResultAtTheCamerasCadence) {
