@@ -116,7 +116,7 @@ void CameraSensor::render(int env, const SensedEnv& sensed) {
   if (spec_.depth) view.depth = &out_.depth[e * pixels_];
   if (spec_.label) view.label = &out_.label[e * pixels_];
   scene.render(model_, poses_[env], view);
-  if (view.rgb && spec_.noise_std > 0.0) addNoise(env, view.rgb);
+  if (view.rgb && (spec_.noise_std > 0.0 || spec_.noise_mean != 0.0)) addNoise(env, view.rgb);
   age_[env] = 0;
   out_.fresh[env] = 1;
 }
