@@ -41,13 +41,17 @@ def main():
                         help='env node(s), stepped as one batch (default /jetbot_env)')
     parser.add_argument('--timeout', type=float, default=30.0,
                         help='[s] for the node to appear and to answer (default 30)')
+    parser.add_argument('--observation', default='vector', choices=['vector', 'image', 'dict'],
+                        help="JetbotVecEnv's observation (default vector; image, dict: with a "
+                        "camera)")
     parser.add_argument('--envs', action=Renamed, new='--num-envs')
     parser.add_argument('--node', action=Renamed, new='--env-nodes')
     args = parser.parse_args()
     if args.num_envs < 1 or args.steps < 1:
         parser.error('--num-envs and --steps must be >= 1')
 
-    env = JetbotVecEnv(env_nodes=args.env_nodes, timeout=args.timeout)
+    env = JetbotVecEnv(env_nodes=args.env_nodes, timeout=args.timeout,
+                       observation=args.observation)
     if env.num_envs != args.num_envs:
         sys.exit('python_bench.py: %s: %d envs, not --num-envs %d: launch with num_envs:=%d'
                  % (' '.join(args.env_nodes), env.num_envs, args.num_envs, args.num_envs))

@@ -40,13 +40,14 @@ install(TARGETS jetbot_rl_lockstep_bench
 install(TARGETS jetbot_rl_bench jetbot_rl_camera_bench jetbot_rl_ros_bench jetbot_rl_nodes_bench
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(PROGRAMS bench/bench.sh bench/bench16.sh bench/bench_nodes.sh bench/bench_world.sh bench/bench_team.sh
+  bench/bench_camera_ros.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # Sourced by the bench scripts from their own folder: installed beside them, not as a program.
 install(FILES bench/bench_common.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # bench_world.sh's inputs (world_map.yaml names ../maps/office.yaml: beside the installed maps).
 install(FILES bench/world_obstacles.yaml bench/world_map.yaml bench/world_gazebo.yaml bench/cylinders_500.world bench/world_clutter.yaml
   bench/world_people.yaml bench/world_team.yaml bench/world_team_solo.yaml
-  bench/scan_24.yaml bench/scan_360.yaml bench/scan_360_every_step.yaml
+  bench/scan_24.yaml bench/scan_360.yaml bench/scan_360_every_step.yaml bench/camera_64.yaml
   DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
 install(FILES bench/bench_nodelets.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/bench)
 catkin_install_python(PROGRAMS bench/python_bench.py bench/soak.py bench/move_base_goals.py

@@ -121,7 +121,8 @@ add_rostest(test/multi/two_nodes.test DEPENDENCIES ${_nodes})
 add_rostest(test/multi/multi_host.test DEPENDENCIES ${_nodes})
 
 # ---- the Python client ----
-foreach(_scenario vec_env determinism bad_input timeout multi_node ppo_example ppo_example_signals)
+foreach(_scenario vec_env determinism bad_input timeout multi_node ppo_example ppo_example_signals
+    camera)
   add_rostest(test/python/python_${_scenario}.test)
 endforeach()
 

@@ -38,12 +38,50 @@ class EnvRejectedError(RuntimeError):
             '%s rejected the request: %s%s' % (node, reason, (' (%s)' % hint) if hint else ''))
 
 
+#: Per image kind of EnvSpec.image_kinds: its EnvStep fields, numpy dtype and channels.
+IMAGE_KINDS = {'rgb': ('images_rgb', 'final_images_rgb', np.uint8, 3),
+               'depth': ('images_depth', 'final_images_depth', np.float32, 1),
+               'label': ('images_label', 'final_images_label', np.uint8, 1)}
+
+
+class ImageLayout(object):
+    """The images a node's EnvSteps carry (EnvSpec image_kinds, image_height, image_width)."""
+
+    def __init__(self, spec):
+        self.kinds = list(spec.image_kinds)
+        self.height = int(spec.image_height)
+        self.width = int(spec.image_width)
+
+    def shape(self, kind):
+        """(height, width, channels) of one image of `kind`."""
+        return (self.height, self.width, IMAGE_KINDS[kind][3])
+
+    def read(self, msg, count, final, node):
+        """{kind: array (count, height, width, channels)} of `msg`'s images (final: the ended
+        episodes' ones); RuntimeError naming the node and field when a size does not fit."""
+        out = {}
+        for kind in self.kinds:
+            field = IMAGE_KINDS[kind][1 if final else 0]
+            dtype = IMAGE_KINDS[kind][2]
+            data = getattr(msg, field)
+            values = (np.frombuffer(data, dtype=dtype) if isinstance(data, (bytes, bytearray))
+                      else np.asarray(data, dtype=dtype))
+            shape = (count,) + self.shape(kind)
+            if values.size != int(np.prod(shape)):
+                raise RuntimeError('%s: EnvStep %d: %s has %d values, expected %d (%d images of '
+                                   '%s)' % (node, msg.step, field, values.size,
+                                            int(np.prod(shape)), count, shape[1:]))
+            out[kind] = values.reshape(shape)
+        return out
+
+
 class Batch(object):
     """One node's EnvStep as numpy arrays (shapes from the spec)."""
     __slots__ = ('step', 'obs', 'rewards', 'terminated', 'truncated', 'episode_steps',
-                 'reset_env_ids', 'final_obs', 'outcomes')
+                 'reset_env_ids', 'final_obs', 'outcomes', 'images', 'final_images',
+                 'image_fresh')
 
-    def __init__(self, msg, num_envs, obs_dim, node):
+    def __init__(self, msg, num_envs, obs_dim, node, images=None):
         # np.asarray is free for numpy_msg arrays; a plain message (a service answer, or a
         # subscriber of this process created with the plain class first) is converted.
         self.step = msg.step
@@ -65,6 +103,12 @@ class Batch(object):
                 or np.any(self.outcomes > EnvStep.OUTCOME_WAITED)):
             raise RuntimeError('%s: EnvStep %d does not match its spec (%d envs, obs_dim %d)'
                                % (node, msg.step, num_envs, obs_dim))
+        # The images (ImageLayout `images`): {kind: (n, height, width, channels)}, views of the
+        # message's buffers (read-only), and the ended episodes' last ones.
+        self.images = images.read(msg, num_envs, False, node) if images else {}
+        self.final_images = (images.read(msg, self.reset_env_ids.shape[0], True, node)
+                             if images else {})
+        self.image_fresh = _flags(msg.images_fresh)
 
 
 def _flags(data):
@@ -124,6 +168,7 @@ class NodeLink(object):
         self.num_envs = int(self.spec.num_envs)
         self.obs_dim = int(self.spec.obs_dim)
         self.action_dim = int(self.spec.action_dim)
+        self.images = ImageLayout(self.spec)
         mode = rospy.get_param(self.name + '/mode', 'lockstep')
         if mode != 'lockstep':
             raise ValueError("%s runs in mode '%s': JetbotVecEnv needs lockstep mode (launch it "
@@ -142,7 +187,9 @@ class NodeLink(object):
             self._pub = rospy.Publisher(self.name + '/wheel_targets', _NumpyWheelTargets,
                                         queue_size=None, tcp_nodelay=True,
                                         subscriber_listener=_TargetsListener(self._events))
-        message_bytes = 64 + self.num_envs * (4 * (2 * self.obs_dim + 3) + 2)
+        image_bytes = sum(np.dtype(IMAGE_KINDS[k][2]).itemsize * int(np.prod(self.images.shape(k)))
+                          for k in self.images.kinds)
+        message_bytes = 64 + self.num_envs * (4 * (2 * self.obs_dim + 3) + 3 + 2 * image_bytes)
         self._sub = rospy.Subscriber(self.name + '/env_step', _NumpyEnvStep, self._on_env_step,
                                      queue_size=4, tcp_nodelay=True,
                                      buff_size=max(65536, 2 * message_bytes))
@@ -253,7 +300,7 @@ class NodeLink(object):
         """Makes the answer of a ~reset the current state, once our subscription is known to
         work (the reset's state arrived on ~env_step): otherwise a step's answer could be lost.
         Returns False when it has not arrived within RESET_CONFIRM: reset again."""
-        batch = Batch(state, self.num_envs, self.obs_dim, self.name)
+        batch = Batch(state, self.num_envs, self.obs_dim, self.name, self.images)
         with self._events:
             self._step = state.step
             self._answer = None  # anything older, or this reset's own publication
@@ -327,7 +374,7 @@ class NodeLink(object):
             raise EnvRejectedError(
                 self.name, 'expected EnvStep %d, got %d' % (expected, msg.step),
                 'is another client stepping %s? reset() re-synchronises' % self.name)
-        batch = Batch(msg, self.num_envs, self.obs_dim, self.name)
+        batch = Batch(msg, self.num_envs, self.obs_dim, self.name, self.images)
         with self._events:
             self._step = msg.step
             if self._answer is not None and self._answer.step <= msg.step:

@@ -7,7 +7,8 @@ It subclasses stable_baselines3.common.vec_env.VecEnv when SB3 is importable and
 class with the same methods otherwise. SB3's conventions: reset() -> obs; step() -> (obs,
 rewards, dones, infos) with infos a list of one dict per env holding "TimeLimit.truncated" (every
 env), "terminal_observation" (envs that ended in this step; obs already holds the next episode's
-first observation) and, for a task with goals, "is_success" (envs that ended in this step), which
+first observation; an image or a dict as the observation is, see JetbotVecEnv's
+`observation`) and, for a task with goals, "is_success" (envs that ended in this step), which
 SB3's rollout/success_rate, EvalCallback and evaluate_policy's callbacks read.
 """
 import numpy as np
@@ -75,7 +76,9 @@ class JetbotSB3VecEnv(_Base):
         if 'final_obs' in infos:
             final_obs = infos['final_obs']
             for i in np.flatnonzero(infos['_final_obs']):
-                out[i]['terminal_observation'] = final_obs[i]
+                out[i]['terminal_observation'] = (
+                    {k: v[i] for k, v in final_obs.items()} if isinstance(final_obs, dict)
+                    else final_obs[i])
         if self._jetbot.has_goals and 'outcome' in infos:
             success = (infos['outcome'] == EnvStep.OUTCOME_SUCCESS).tolist()
             waited = (infos['outcome'] == EnvStep.OUTCOME_WAITED).tolist()

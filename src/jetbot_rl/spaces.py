@@ -1,9 +1,13 @@
-"""Observation and action spaces: gymnasium's `Box` when gymnasium is importable, else `Box` below.
+"""Observation and action spaces: gymnasium's `Box` and `Dict` when gymnasium is importable, else
+`Box` and `Dict` below.
 
-Neither gymnasium nor Stable-Baselines3 is a dependency of jetbot_rl; the stand-in has what a
+Neither gymnasium nor Stable-Baselines3 is a dependency of jetbot_rl; the stand-ins have what a
 learner needs from a box space (`shape`, `low`, `high`, `dtype`, `sample()`, `seed()`,
-`contains()`), with gymnasium's semantics.
+`contains()`) and a dict of them (`spaces`, `[key]`, `sample()`, `contains()`), with gymnasium's
+semantics.
 """
+import collections
+
 import numpy as np
 
 try:  # optional
@@ -38,7 +42,10 @@ class Box(object):
 
     def sample(self):
         """A random point: uniform where both bounds are finite, else (as gymnasium) normal,
-        exponential from the finite bound, or normal."""
+        exponential from the finite bound, or normal; integers: uniform on [low, high]."""
+        if np.issubdtype(self.dtype, np.integer):
+            return self.np_random.integers(self.low, self.high, size=self.shape,
+                                           endpoint=True).astype(self.dtype)
         low, high = self.low.astype(np.float64), self.high.astype(np.float64)
         lo_ok, hi_ok = np.isfinite(low), np.isfinite(high)
         out = self.np_random.normal(size=self.shape)
@@ -68,10 +75,55 @@ class Box(object):
         return 'Box(%s, %s, %s, %s)' % (self.low.min(), self.high.max(), self.shape, self.dtype)
 
 
-def make_box(low, high, shape):
-    """A float32 box: gymnasium.spaces.Box when gymnasium is importable, else the stand-in."""
-    low = np.broadcast_to(np.asarray(low, dtype=np.float32), shape)
-    high = np.broadcast_to(np.asarray(high, dtype=np.float32), shape)
+class Dict(object):
+    """A dict of named spaces (the stand-in for gymnasium.spaces.Dict): `spaces` in key order."""
+
+    def __init__(self, spaces):
+        self.spaces = collections.OrderedDict(spaces)
+
+    def __getitem__(self, key):
+        return self.spaces[key]
+
+    def keys(self):
+        return self.spaces.keys()
+
+    def items(self):
+        return self.spaces.items()
+
+    def seed(self, seed=None):
+        """Reseeds every member (member k with seed + k); returns the seeds."""
+        return [s.seed(None if seed is None else seed + k)[0]
+                for k, s in enumerate(self.spaces.values())]
+
+    def sample(self):
+        return collections.OrderedDict((k, s.sample()) for k, s in self.spaces.items())
+
+    def contains(self, x):
+        return (isinstance(x, dict) and set(x) == set(self.spaces)
+                and all(s.contains(x[k]) for k, s in self.spaces.items()))
+
+    def __contains__(self, x):
+        return self.contains(x)
+
+    def __eq__(self, other):
+        return isinstance(other, Dict) and self.spaces == other.spaces
+
+    def __repr__(self):
+        return 'Dict(%s)' % ', '.join('%r: %r' % kv for kv in self.spaces.items())
+
+
+def make_box(low, high, shape, dtype=np.float32):
+    """A box of `dtype`: gymnasium.spaces.Box when gymnasium is importable, else the stand-in."""
+    low = np.broadcast_to(np.asarray(low, dtype=dtype), shape)
+    high = np.broadcast_to(np.asarray(high, dtype=dtype), shape)
     if HAVE_GYMNASIUM:
-        return _gymnasium.spaces.Box(low=low, high=high, shape=shape, dtype=np.float32)
-    return Box(low, high, shape, np.float32)
+        return _gymnasium.spaces.Box(low=low, high=high, shape=shape, dtype=dtype)
+    return Box(low, high, shape, dtype)
+
+
+def make_dict(spaces):
+    """A dict space of (key, space) pairs in that order: gymnasium.spaces.Dict when gymnasium is
+    importable, else the stand-in."""
+    if HAVE_GYMNASIUM:
+        return _gymnasium.spaces.Dict(collections.OrderedDict(spaces))
+    return Dict(spaces)

@@ -8,6 +8,11 @@
 The node resets an env that ends within the same step (gymnasium's same-step auto-reset):
 the returned observation is the new episode's first, the last one is in infos["final_obs"], and
 how the episode ended in infos["outcome"] (masks "_final_obs", "_outcome").
+
+With a camera (docs/camera.md), `observation="image"` makes the observation the camera's rgb8
+image, a uint8 Box (H, W, 3) per env (channels last, in R, G, B order, rows from the top):
+Stable-Baselines3's CnnPolicy takes it as is. `observation="dict"` gives a Dict of the vector
+observation and every image the node sends (SB3's MultiInputPolicy).
 """
 import numbers
 import time
@@ -16,8 +21,8 @@ import numpy as np
 import rospy
 
 from jetbot_rl.msg import EnvSpec
-from jetbot_rl.node_link import EnvRejectedError, NodeLink, call_bounded
-from jetbot_rl.spaces import make_box
+from jetbot_rl.node_link import IMAGE_KINDS, EnvRejectedError, NodeLink, call_bounded
+from jetbot_rl.spaces import make_box, make_dict
 from jetbot_rl.srv import ResetRequest
 
 try:  # optional: subclass gymnasium's VectorEnv and name its auto-reset mode when installed
@@ -37,7 +42,11 @@ NODE_SEED_STRIDE = ResetRequest.NODE_SEED_STRIDE
 #: ~spec fields every node of one JetbotVecEnv must agree on: every EnvSpec field but num_envs
 #: (read from the message, so that a field added to EnvSpec.msg is checked too).
 SHARED_SPEC_FIELDS = tuple(f for f in EnvSpec.__slots__ if f != 'num_envs')
+#: What JetbotVecEnv's `observation` may be.
+OBSERVATIONS = ('vector', 'image', 'dict')
 _INT64_MAX = 2 ** 63 - 1
+# Per image kind: the bounds of its observation space (depth: REP 118's infinities included).
+_IMAGE_BOUNDS = {'rgb': (0, 255), 'depth': (-np.inf, np.inf), 'label': (0, 255)}
 
 
 class JetbotVecEnv(_Base):
@@ -53,6 +62,13 @@ class JetbotVecEnv(_Base):
     action_high]; True: every action component in [-1, 1] (the action spaces are Box(-1, 1)),
     mapped linearly onto [action_low, action_high] before it is sent; values outside [-1, 1] are
     clipped to it.
+    `observation`: "vector" (default): float32 (num_envs, obs_dim), the task's observation;
+    "image": the camera's rgb8 images, uint8 (num_envs, H, W, 3), channels last in R, G, B order
+    (the node must send rgb: EnvSpec image_kinds); "dict": {"vector": the task's observation, and
+    per image kind the node sends, "rgb" uint8 (H, W, 3), "depth" float32 (H, W, 1) [m] along the
+    optical axis (REP 118: +inf beyond the far clip, -inf nearer than the near one), "label" uint8
+    (H, W, 1)}. infos["final_obs"] has the observation's structure; with images,
+    infos["image_fresh"] (bool, num_envs) says where the camera made them in this step.
     Calls rospy.init_node (anonymous, disable_signals=True) unless this process already did.
     """
 
@@ -60,7 +76,7 @@ class JetbotVecEnv(_Base):
     render_mode = None
 
     def __init__(self, env_nodes='/jetbot_env', timeout=10.0, normalize_actions=False,
-                 **renamed):
+                 observation='vector', **renamed):
         self.closed = True  # until every node is connected
         self._links = []
         if 'envs' in renamed:
@@ -78,6 +94,9 @@ class JetbotVecEnv(_Base):
         if not isinstance(normalize_actions, (bool, np.bool_)):
             raise TypeError('JetbotVecEnv: normalize_actions must be True or False, got %r'
                             % (normalize_actions,))
+        if observation not in OBSERVATIONS:
+            raise ValueError('JetbotVecEnv: observation must be one of %s, got %r'
+                             % (', '.join(OBSERVATIONS), observation))
         if not rospy.core.is_initialized():
             rospy.init_node('jetbot_vec_env', anonymous=True, disable_signals=True)
         try:
@@ -122,18 +141,55 @@ class JetbotVecEnv(_Base):
             high = np.full(self.action_dim, 1.0, dtype=np.float32)
         else:
             low, high = self.action_low, self.action_high
-        self.single_observation_space = make_box(self.observation_low, self.observation_high,
-                                                 (self.obs_dim,))
+        self.observation = observation
+        self._image_layout = self._links[0].images
+        if observation == 'image' and 'rgb' not in self._image_layout.kinds:
+            self.close()
+            raise ValueError("JetbotVecEnv: observation='image' needs the camera's rgb images, "
+                             "but %s sends image_kinds %s (set camera/images to include rgb, "
+                             "camera/batch_images true, and give the robot a camera: "
+                             "docs/camera.md)" % (self.nodes[0], self._image_layout.kinds))
+        self.single_observation_space = self._observation_space(())
         self.single_action_space = make_box(low, high, (self.action_dim,))
-        self.observation_space = make_box(np.tile(self.observation_low, (n, 1)),
-                                          np.tile(self.observation_high, (n, 1)),
-                                          (n, self.obs_dim))
+        self.observation_space = self._observation_space((n,))
         self.action_space = make_box(np.tile(low, (n, 1)), np.tile(high, (n, 1)),
                                      (n, self.action_dim))
         # float64: the ends of [-1, 1] map exactly onto the float32 bounds
         self._action_offset = self.action_low.astype(np.float64)
         self._action_scale = (self.action_high.astype(np.float64) - self._action_offset) / 2.0
         self._all_envs = np.ones(n, dtype=bool)
+
+    def _observation_space(self, batch):
+        """The space of one env's observation (`batch` ()) or of the batch's ((num_envs,))."""
+        vector = make_box(np.tile(self.observation_low, batch + (1,)).reshape(batch + (-1,)),
+                          np.tile(self.observation_high, batch + (1,)).reshape(batch + (-1,)),
+                          batch + (self.obs_dim,))
+        images = []
+        for kind in self._image_layout.kinds:
+            low, high = _IMAGE_BOUNDS[kind]
+            images.append((kind, make_box(low, high, batch + self._image_layout.shape(kind),
+                                          IMAGE_KINDS[kind][2])))
+        if self.observation == 'vector':
+            return vector
+        if self.observation == 'image':
+            return dict(images)['rgb']
+        return make_dict([('vector', vector)] + images)
+
+    def _observe(self, vectors, images):
+        """The observation of `vectors` (k, obs_dim) and `images` ({kind: (k, H, W, C)})."""
+        if self.observation == 'vector':
+            return vectors
+        if self.observation == 'image':
+            return images['rgb']
+        out = {'vector': vectors}
+        out.update(images)
+        return out
+
+    def _gather_images(self, batches, final):
+        """{kind: every node's images concatenated} (final: of the ended episodes)."""
+        return {kind: np.concatenate([(b.final_images if final else b.images)[kind]
+                                      for b in batches])
+                for kind in self._image_layout.kinds}
 
     @staticmethod
     def _check_same_spec(first, link):
@@ -189,7 +245,8 @@ class JetbotVecEnv(_Base):
                                                       self.timeout))
         self._needs_reset = False
         batches = [link.state for link in self._links]
-        obs = np.concatenate([b.obs for b in batches])
+        obs = self._observe(np.concatenate([b.obs for b in batches]),
+                            self._gather_images(batches, False))
         return obs, self._episode_infos(batches)
 
     def step(self, actions):
@@ -214,7 +271,8 @@ class JetbotVecEnv(_Base):
         batches = [link.wait(s) for link, s in zip(links, sent)]
         self._needs_reset = False
 
-        obs = np.concatenate([b.obs for b in batches])
+        obs = self._observe(np.concatenate([b.obs for b in batches]),
+                            self._gather_images(batches, False))
         rewards = np.concatenate([b.rewards for b in batches])
         terminations = np.concatenate([b.terminated for b in batches])
         truncations = np.concatenate([b.truncated for b in batches])
@@ -223,8 +281,9 @@ class JetbotVecEnv(_Base):
                  for k, b in enumerate(batches) if b.reset_env_ids.size]
         if ended:
             ids = np.concatenate(ended)
-            final_obs = np.zeros((self.num_envs, self.obs_dim), dtype=np.float32)
-            final_obs[ids] = np.concatenate([b.final_obs for b in batches])
+            final_obs = _scatter(self._observe(np.concatenate([b.final_obs for b in batches]),
+                                               self._gather_images(batches, True)),
+                                 ids, self.num_envs)
             final_mask = np.zeros(self.num_envs, dtype=bool)
             final_mask[ids] = True
             infos['final_obs'] = final_obs
@@ -357,7 +416,11 @@ class JetbotVecEnv(_Base):
 
     def _episode_infos(self, batches):
         steps = np.concatenate([b.episode_steps for b in batches]).astype(np.int64)
-        return {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
+        infos = {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
+        if self.observation != 'vector' and self._image_layout.kinds:
+            infos['image_fresh'] = np.concatenate([b.image_fresh for b in batches])
+            infos['_image_fresh'] = self._all_envs.copy()
+        return infos
 
 
 def _spec_value(value, slot_type):
@@ -376,6 +439,15 @@ def _spec_value(value, slot_type):
     return value
 
 
+def _scatter(values, ids, n):
+    """Rows `values` (an array, or a dict of arrays) placed at `ids` of `n` zero rows."""
+    if isinstance(values, dict):
+        return {k: _scatter(v, ids, n) for k, v in values.items()}
+    out = np.zeros((n,) + values.shape[1:], dtype=values.dtype)
+    out[ids] = values
+    return out
+
+
 def _bound(values, size, unbounded):
     """A float32 array of `size` bounds from a spec field: `unbounded` (+-inf) everywhere when the
     field is empty; a negated zero (-0., e.g. a twist action's lower bound forwards only) is 0."""
@@ -385,4 +457,4 @@ def _bound(values, size, unbounded):
 
 
 __all__ = ['JetbotVecEnv', 'EnvRejectedError', 'NODE_SEED_STRIDE', 'SHARED_SPEC_FIELDS',
-           'SAME_STEP']
+           'SAME_STEP', 'OBSERVATIONS']

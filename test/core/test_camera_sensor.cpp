@@ -220,6 +220,50 @@ TEST(CameraBatch, ImagesAreBitForBitOnOneAndTwoThreads) {
   EXPECT_EQ(one.reset({}, 7).images.rgb, before);
 }
 
+TEST(CameraBatch, AnEndedEpisodesLastImagesAreItsFinalImages) {
+  // Two batches alike but for their episodes' length: where the short one's episodes end, the
+  // long one's images at that step are what the short one keeps as the final images.
+  EnvConfig short_config = cameraArenaConfig(3, 1);
+  short_config.camera.noise_std = 0.02;
+  short_config.episode_length_s = 0.5;
+  EnvConfig long_config = short_config;
+  long_config.episode_length_s = 5.0;
+  BatchedEnv a(cameraJetbot(), short_config), b(cameraJetbot(), long_config);
+  const std::size_t pixels = 32 * 24;
+  bool ended = false;
+  for (int step = 0; step < a.maxEpisodeLength() && !ended; ++step) {
+    const std::vector<float> actions = test::randomActions(3, step);
+    const StepResult& ra = a.step(actions);
+    const StepResult& rb = b.step(actions);
+    if (ra.reset_env_ids.empty()) {
+      ASSERT_TRUE(ra.final_images.rgb.empty());
+      ASSERT_EQ(ra.images.rgb, rb.images.rgb) << "step " << step;
+      continue;
+    }
+    ended = true;
+    ASSERT_EQ(ra.reset_env_ids, (std::vector<std::uint32_t>{0, 1, 2}));
+    EXPECT_EQ(ra.final_images.width, 32);
+    EXPECT_EQ(ra.final_images.rgb, rb.images.rgb);
+    EXPECT_EQ(ra.final_images.label, rb.images.label);
+    ASSERT_EQ(ra.final_images.depth.size(), 3 * pixels);
+    EXPECT_EQ(0, std::memcmp(ra.final_images.depth.data(), rb.images.depth.data(),
+                             3 * pixels * sizeof(float)));
+    EXPECT_NE(ra.images.rgb, rb.images.rgb);  // the new episodes' first images
+  }
+  EXPECT_TRUE(ended);
+  EXPECT_TRUE(a.reset().final_images.rgb.empty());
+  // Without batch_images nothing is kept, and the spec names no images.
+  EXPECT_EQ(a.spec().image_kinds, (std::vector<std::string>{"rgb", "depth", "label"}));
+  EXPECT_EQ(a.spec().image_width, 32);
+  short_config.camera.batch_images = false;
+  BatchedEnv c(cameraJetbot(), short_config);
+  EXPECT_TRUE(c.spec().image_kinds.empty());
+  EXPECT_EQ(c.spec().image_height, 0);
+  for (int step = 0; step < c.maxEpisodeLength(); ++step) {
+    EXPECT_TRUE(c.step(test::randomActions(3, step)).final_images.rgb.empty());
+  }
+}
+
 TEST(CameraBatch, TheCameraChangesNoTrajectory) {
   EnvConfig seen = cameraArenaConfig(3, 1);
   seen.camera.noise_std = 0.05;

@@ -41,6 +41,9 @@ BatchSpec sampleSpec() {
   s.observation_high = {1.0f, 1.0f, std::numeric_limits<float>::infinity()};
   s.observer.wheel_radius = 0.03;
   s.observer.wheel_separation = 0.1;
+  s.image_kinds = {"rgb", "depth"};
+  s.image_width = 4;
+  s.image_height = 2;
   return s;
 }
 
@@ -81,6 +84,27 @@ TEST(SpecSchema, AnInconsistentMessageIsRefusedNamingTheField) {
   msg = toMsg(sampleSpec());
   msg.scan_range.clear();
   EXPECT_THROW(fromMsg(msg), Error);
+  // Image kinds: known ones, each once, in order; a size with them and none without.
+  const auto refused = [](const EnvSpec& bad, const std::string& text) {
+    try {
+      fromMsg(bad);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  };
+  for (const std::vector<std::string>& kinds :
+       std::vector<std::vector<std::string>>{{"rgb", "colour"}, {"depth", "rgb"}, {"rgb", "rgb"}}) {
+    msg = toMsg(sampleSpec());
+    msg.image_kinds = kinds;
+    refused(msg, "invalid image_kinds = " + kinds[1]);
+  }
+  msg = toMsg(sampleSpec());
+  msg.image_width = 0;
+  refused(msg, "invalid image_width = 0: must be in [1, 4096] px");
+  msg = toMsg(sampleSpec());
+  msg.image_kinds.clear();
+  refused(msg, "invalid image_width = 4: must be 0 without image_kinds");
 }
 
 TEST(SpecSchema, ItsYamlReadsBackEqualInfinitiesIncluded) {
@@ -121,6 +145,72 @@ TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
   EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
 }
 
+/// A step of `spec` whose images hold distinct values, with envs 2, 5 and 6 ended.
+StepResult sampleStep(const BatchSpec& spec) {
+  StepResult r;
+  const auto n = static_cast<std::size_t>(spec.num_envs);
+  const auto pixels = static_cast<std::size_t>(spec.image_width) * spec.image_height;
+  r.images.width = r.final_images.width = spec.image_width;
+  r.images.height = r.final_images.height = spec.image_height;
+  for (std::size_t i = 0; i < n * pixels * 3; ++i) r.images.rgb.push_back(i % 251);
+  for (std::size_t i = 0; i < n * pixels; ++i) r.images.depth.push_back(0.5f * i);
+  r.images.depth[1] = std::numeric_limits<float>::infinity();  // REP 118 crosses
+  r.images.label.assign(n * pixels, 3);
+  r.images.fresh.assign(n, 1);
+  r.images.fresh[4] = 0;
+  for (std::size_t i = 0; i < 3 * pixels * 3; ++i) r.final_images.rgb.push_back(i % 7);
+  for (std::size_t i = 0; i < 3 * pixels; ++i) r.final_images.depth.push_back(-0.25f * i);
+  return r;
+}
+
+TEST(StepConversion, TheImagesOfTheSpecsKindsCrossBothWaysAndOthersStayHome) {
+  const BatchSpec spec = sampleSpec();  // rgb and depth, not label
+  StepResult r = sampleStep(spec);
+  r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
+  r.rewards.assign(spec.num_envs, 0.0f);
+  r.terminated.assign(spec.num_envs, 0);
+  r.truncated.assign(spec.num_envs, 0);
+  r.episode_steps.assign(spec.num_envs, 0);
+  r.reset_env_ids = {2, 5, 6};
+  r.final_observations.assign(3 * spec.obs_dim, 0.0f);
+  r.outcomes.assign(3, 0);
+  EnvStep msg;
+  toMsg(r, spec, ros::Time(1.0), msg);
+  EXPECT_EQ(msg.images_rgb.size(), 7u * 8 * 3);
+  EXPECT_TRUE(msg.images_label.empty());  // label is not among the spec's kinds
+  StepResult back;
+  fromMsg(msg, spec, back);
+  EXPECT_EQ(back.images.rgb, r.images.rgb);
+  EXPECT_EQ(back.images.depth, r.images.depth);
+  EXPECT_EQ(back.images.fresh, r.images.fresh);
+  EXPECT_TRUE(back.images.label.empty());
+  EXPECT_EQ(back.final_images.rgb, r.final_images.rgb);
+  EXPECT_EQ(back.final_images.depth, r.final_images.depth);
+  EXPECT_EQ(back.images.width, 4);
+  EXPECT_EQ(back.final_images.height, 2);
+  // A message whose images do not fit the spec is refused, naming the field.
+  const auto refused = [&](EnvStep bad, const std::string& field) {
+    try {
+      fromMsg(bad, spec, back);
+      ADD_FAILURE() << field << " of a wrong size accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(field + " has"), std::string::npos) << e.what();
+    }
+  };
+  EnvStep bad = msg;
+  bad.images_rgb.pop_back();
+  refused(bad, "images_rgb");
+  bad = msg;
+  bad.images_label.assign(7 * 8, 0);
+  refused(bad, "images_label");
+  bad = msg;
+  bad.final_images_depth.resize(2 * 8);
+  refused(bad, "final_images_depth");
+  bad = msg;
+  bad.images_fresh.clear();
+  refused(bad, "images_fresh");
+}
+
 TEST(StepConversion, MoverAndRobotCollisionsAndWaitsCrossAndAnUnknownOutcomeIsRefused) {
   const BatchSpec spec = sampleSpec();
   StepResult r;
@@ -131,11 +221,13 @@ TEST(StepConversion, MoverAndRobotCollisionsAndWaitsCrossAndAnUnknownOutcomeIsRe
   r.episode_steps.assign(spec.num_envs, 0);
   r.reset_env_ids = {2, 5, 6};
   r.final_observations.assign(3 * spec.obs_dim, 0.0f);
+  r.images = sampleStep(spec).images;
+  r.final_images = sampleStep(spec).final_images;
   r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
                 static_cast<std::uint8_t>(Outcome::kWaited),
                 static_cast<std::uint8_t>(Outcome::kCollisionRobot)};
   EnvStep msg;
-  toMsg(r, spec.num_envs, spec.obs_dim, ros::Time(1.0), msg);
+  toMsg(r, spec, ros::Time(1.0), msg);
   EXPECT_EQ(msg.outcomes[0], EnvStep::OUTCOME_COLLISION_MOVER);
   EXPECT_EQ(msg.outcomes[1], EnvStep::OUTCOME_WAITED);
   EXPECT_EQ(msg.outcomes[2], EnvStep::OUTCOME_COLLISION_ROBOT);

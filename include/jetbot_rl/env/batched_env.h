@@ -140,6 +140,8 @@ class BatchedEnv {
   void observeRow(int env);
   /// Rounds: a waiting row's step (reward 0, no end, its observation kept).
   void holdRow(int env);
+  /// The camera keeps each ended episode's last images for StepResult::final_images.
+  bool keepsFinalImages() const;
   /// Rounds: ends the waiting rows' stand-in episodes (outcome kWaited) and starts all the
   /// robots of env `group` anew, together.
   void startRound(int group);

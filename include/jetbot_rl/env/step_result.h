@@ -28,6 +28,14 @@ struct BatchImages {
   std::vector<std::uint8_t> fresh;  ///< num_envs: 1 where the images were made in the last call.
 };
 
+/// Empties `images`' buffers (keeps their size in pixels).
+inline void clearImages(BatchImages& images) {
+  images.rgb.clear();
+  images.depth.clear();
+  images.label.clear();
+  images.fresh.clear();
+}
+
 /// The batch after a step or a reset: what the core returns and what every learner sees
 /// (in-process or through the EnvStep message, whose fields it mirrors; images in-process only).
 struct StepResult {
@@ -42,8 +50,11 @@ struct StepResult {
   /// len(reset_env_ids): how each ended episode ended (Outcome: 0 time-out, 1 success, 2 failure).
   std::vector<std::uint8_t> outcomes;
   std::vector<Divergence> divergences;  ///< Envs among reset_env_ids that diverged.
-  /// The camera's images, after auto-reset as the observations (none of an ended episode's end).
+  /// The camera's images, after auto-reset as the observations.
   BatchImages images;
+  /// len(reset_env_ids) envs' last images of their ended episodes (in reset_env_ids order; no
+  /// `fresh`): what SB3 keeps as an image policy's terminal_observation.
+  BatchImages final_images;
 };
 
 /// What a learner needs to know about a batch (the content of the EnvSpec message). One schema
@@ -68,6 +79,11 @@ struct BatchSpec {
   /// The observation contract: the scan, goal and path settings and the robot's geometry the
   /// observation depends on (makeObserver() builds the observer from this spec).
   ObserverSpec observer;
+  /// The camera images every step carries (StepResult::images, EnvStep images_*): a subset of
+  /// rgb, depth, label in that order; empty: none (no camera, or camera/batch_images false).
+  std::vector<std::string> image_kinds;
+  int image_width = 0;   ///< [px]; 0 without image_kinds.
+  int image_height = 0;  ///< [px]; 0 without image_kinds.
 };
 
 /// The fields of BatchSpec a trained policy is bound to: an env it acts on must have the same
@@ -102,6 +118,19 @@ IfConfig<C, BatchSpec> visitFields(C& c, V&& v) {
     "The task has goals: its episodes end in success (OUTCOME_SUCCESS) or collision as well as "
     "time-outs.");
   visitGoalAndRobotFields(c.observer, v);
+  v("image_kinds", c.image_kinds, AnyValue{},
+    "The camera images each step carries, of rgb (rgb8), depth (32FC1 [m]), label (mono8), in "
+    "that order; [] when none.");
+  v("image_width", c.image_width, AnyValue{"px"}, "Their width; 0 without images.");
+  v("image_height", c.image_height, AnyValue{"px"}, "Their height; 0 without images.");
+}
+
+/// True when `spec`'s steps carry images of `kind` (rgb, depth or label).
+inline bool carriesImage(const BatchSpec& spec, const std::string& kind) {
+  for (const std::string& k : spec.image_kinds) {
+    if (k == kind) return true;
+  }
+  return false;
 }
 
 /// The action names of action_space twist (v [m/s], omega [rad/s]).
@@ -113,7 +142,8 @@ inline const std::vector<std::string>& twistActionNames() {
 inline bool actsByTwist(const BatchSpec& spec) { return spec.action_names == twistActionNames(); }
 
 /// Sizes that fit: num_envs, obs_dim and action_dim >= 1, as many names and bounds as
-/// components, max_episode_length >= 2, control_dt > 0, the observer's rules (observer_spec.h);
+/// components, max_episode_length >= 2, control_dt > 0, image kinds among rgb, depth, label in
+/// that order with a size in [1, 4096] px (0 without), the observer's rules (observer_spec.h);
 /// ConfigError naming the field and its value.
 void checkFieldRules(const BatchSpec& spec);
 

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <sstream>
 
 #include "jetbot_rl/env/step_result.h"
@@ -35,6 +36,20 @@ void checkFieldRules(const BatchSpec& s) {
   sized("observation_high", s.observation_high.size(), s.obs_dim, "obs_dim");
   need(s.max_episode_length >= 2, "max_episode_length", text(s.max_episode_length), "must be >= 2");
   need(s.control_dt > 0.0, "control_dt", text(s.control_dt), "must be > 0");
+  const std::vector<std::string> kinds{"rgb", "depth", "label"};
+  std::size_t next = 0;  // each kind once, in that order
+  for (const std::string& kind : s.image_kinds) {
+    const auto at = std::find(kinds.begin(), kinds.end(), kind);
+    need(at != kinds.end() && static_cast<std::size_t>(at - kinds.begin()) >= next, "image_kinds",
+         kind, "must be among rgb, depth, label, each once and in that order");
+    next = static_cast<std::size_t>(at - kinds.begin()) + 1;
+  }
+  const int low = s.image_kinds.empty() ? 0 : 1, high = s.image_kinds.empty() ? 0 : 4096;
+  const std::string range =
+      s.image_kinds.empty() ? "must be 0 without image_kinds" : "must be in [1, 4096] px";
+  need(s.image_width >= low && s.image_width <= high, "image_width", text(s.image_width), range);
+  need(s.image_height >= low && s.image_height <= high, "image_height", text(s.image_height),
+       range);
   checkFieldRules(s.observer);
 }
 

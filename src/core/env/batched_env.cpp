@@ -63,8 +63,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   }
   if (const std::optional<CameraSpec> camera =
           resolveCamera(config_.camera, *robot_, config_.controlDt())) {
-    camera_ = std::make_unique<CameraSensor>(*camera, scene_->world(), std::move(floor), n,
-                                             config_.seed, result_.images);
+    camera_ =
+        std::make_unique<CameraSensor>(*camera, scene_->world(), std::move(floor), n, config_.seed,
+                                       result_.images, config_.camera.batch_images);
     sensors_.push_back(camera_.get());
   }
   TaskContext context;
@@ -152,9 +153,11 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   result_.final_observations.clear();
   result_.outcomes.clear();
   result_.divergences.clear();
+  clearImages(result_.final_images);
   for (int e = 0; e < n; ++e) {
     if (!ended_[e]) continue;
     result_.reset_env_ids.push_back(static_cast<std::uint32_t>(e));
+    if (keepsFinalImages()) camera_->appendFinal(e, result_.final_images);
     result_.outcomes.push_back(outcome_[e]);
     const float* f = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     result_.final_observations.insert(result_.final_observations.end(), f, f + obs_dim_);
@@ -226,6 +229,7 @@ void BatchedEnv::finishStep(int e) {
     scene_->episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
+    if (keepsFinalImages()) camera_->keepFinal(e);
     if (diverged) {
       std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
     } else if (randomizer_->noisesObservations()) {
@@ -341,8 +345,11 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   result_.final_observations.clear();
   result_.outcomes.clear();
   result_.divergences.clear();
+  clearImages(result_.final_images);
   return result_;
 }
+
+bool BatchedEnv::keepsFinalImages() const { return camera_ && config_.camera.batch_images; }
 
 BatchSpec BatchedEnv::spec() const {
   BatchSpec spec;
@@ -371,6 +378,14 @@ BatchSpec BatchedEnv::spec() const {
     // No differential drive: its kinematics stay 0.
   }
   spec.observer.footprint_radius = robot_->footprintRadius();
+  if (camera_ && config_.camera.batch_images) {
+    const CameraSpec& camera = camera_->spec();
+    if (camera.rgb) spec.image_kinds.push_back("rgb");
+    if (camera.depth) spec.image_kinds.push_back("depth");
+    if (camera.label) spec.image_kinds.push_back("label");
+    spec.image_width = camera.intrinsics.width;
+    spec.image_height = camera.intrinsics.height;
+  }
   return spec;
 }
 

@@ -6,6 +6,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "scene/env_scene.h"
 #include "scene/robot_team.h"
+#include "sensors/camera_sensor.h"
 #include "sensors/env_sensor.h"
 
 namespace jetbot_rl {
@@ -57,6 +58,7 @@ void BatchedEnv::startRound(int group) {
     result_.truncated[e] = 1;
     const float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
     std::copy(obs, obs + obs_dim_, &final_scratch_[static_cast<std::size_t>(e) * obs_dim_]);
+    if (keepsFinalImages()) camera_->keepFinal(e);
   }
   scene_->beginRound(group);
   for (int e = first; e < first + k; ++e) resetEnv(e);

@@ -82,8 +82,18 @@ const StepResult& MultiVecEnv::gather(const std::vector<const StepResult*>& resu
   r.final_observations.clear();
   r.outcomes.clear();
   r.divergences.clear();
+  clearImages(r.images);
+  clearImages(r.final_images);
+  r.images.width = r.final_images.width = spec_.image_width;
+  r.images.height = r.final_images.height = spec_.image_height;
   const auto append = [](auto& to, const auto& from) {
     to.insert(to.end(), from.begin(), from.end());
+  };
+  const auto appendImages = [&append](BatchImages& to, const BatchImages& from) {
+    append(to.rgb, from.rgb);
+    append(to.depth, from.depth);
+    append(to.label, from.label);
+    append(to.fresh, from.fresh);
   };
   for (std::size_t k = 0; k < results.size(); ++k) {
     const StepResult& p = *results[k];
@@ -96,6 +106,8 @@ const StepResult& MultiVecEnv::gather(const std::vector<const StepResult*>& resu
     for (std::uint32_t id : p.reset_env_ids) r.reset_env_ids.push_back(id + offset);
     append(r.final_observations, p.final_observations);
     append(r.outcomes, p.outcomes);
+    appendImages(r.images, p.images);
+    appendImages(r.final_images, p.final_images);
     for (const Divergence& d : p.divergences) {
       r.divergences.push_back({d.env + offset, names_[k] + ": " + d.reason});
     }

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "env/env_physics.h"
+#include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
 #include "robot/bullet_conversions.h"
 
@@ -27,7 +28,7 @@ Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
 
 CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world,
                            std::shared_ptr<const FloorImage> floor, int num_envs,
-                           std::uint64_t seed, BatchImages& out)
+                           std::uint64_t seed, BatchImages& out, bool keep_finals)
     : spec_(spec),
       model_(spec.intrinsics),
       world_(world, std::move(floor)),
@@ -43,6 +44,11 @@ CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world,
   out_.depth.assign(spec.depth ? n * pixels_ : 0, 0.0f);
   out_.label.assign(spec.label ? n * pixels_ : 0, 0);
   out_.fresh.assign(n, 0);
+  if (keep_finals) {
+    finals_.rgb.assign(out_.rgb.size(), 0);
+    finals_.depth.assign(out_.depth.size(), 0.0f);
+    finals_.label.assign(out_.label.size(), 0);
+  }
   for (int e = 0; e < num_envs; ++e) {
     scenes_.push_back(std::make_unique<CameraEnvScene>(world_));
     noise_.emplace_back(seed, e + kCameraStream);
@@ -56,6 +62,48 @@ void CameraSensor::reseed(int env, std::uint64_t seed) {
 }
 
 void CameraSensor::forgetNewReadings() { std::fill(out_.fresh.begin(), out_.fresh.end(), 0); }
+
+namespace {
+
+/// Copies image `from` of `count` values each of `src` to image `to` of `dst`.
+template <typename T>
+void copyImage(const std::vector<T>& src, std::size_t from, std::vector<T>& dst, std::size_t to,
+               std::size_t count) {
+  if (src.empty()) return;
+  std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(from * count), count,
+              dst.begin() + static_cast<std::ptrdiff_t>(to * count));
+}
+
+/// Appends image `from` of `count` values each of `src` to `dst`.
+template <typename T>
+void appendImage(const std::vector<T>& src, std::size_t from, std::vector<T>& dst,
+                 std::size_t count) {
+  if (src.empty()) return;
+  const auto first = src.begin() + static_cast<std::ptrdiff_t>(from * count);
+  dst.insert(dst.end(), first, first + static_cast<std::ptrdiff_t>(count));
+}
+
+}  // namespace
+
+void CameraSensor::keepFinal(int env) {
+  if (finals_.rgb.size() != out_.rgb.size() || finals_.depth.size() != out_.depth.size() ||
+      finals_.label.size() != out_.label.size()) {
+    throw Error("CameraSensor::keepFinal: the sensor was made without keep_finals");
+  }
+  const auto e = static_cast<std::size_t>(env);
+  copyImage(out_.rgb, e, finals_.rgb, e, pixels_ * 3);
+  copyImage(out_.depth, e, finals_.depth, e, pixels_);
+  copyImage(out_.label, e, finals_.label, e, pixels_);
+}
+
+void CameraSensor::appendFinal(int env, BatchImages& out) const {
+  const auto e = static_cast<std::size_t>(env);
+  out.width = out_.width;
+  out.height = out_.height;
+  appendImage(finals_.rgb, e, out.rgb, pixels_ * 3);
+  appendImage(finals_.depth, e, out.depth, pixels_);
+  appendImage(finals_.label, e, out.label, pixels_);
+}
 
 void CameraSensor::afterStep(int env, const SensedEnv& sensed) {
   out_.fresh[env] = 0;

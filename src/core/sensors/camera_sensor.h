@@ -22,9 +22,10 @@ class CameraSensor : public EnvSensor {
  public:
   /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none) and
   /// each env's bodies; images go to `out` (sized here), which must outlive the sensor.
+  /// `keep_finals`: keepFinal() is used (memory for a second image of every env).
   CameraSensor(const CameraSpec& spec, const WorldModel* world,
                std::shared_ptr<const FloorImage> floor, int num_envs, std::uint64_t seed,
-               BatchImages& out);
+               BatchImages& out, bool keep_finals);
 
   void reseed(int env, std::uint64_t seed) override;
   void forgetNewReadings() override;
@@ -33,6 +34,10 @@ class CameraSensor : public EnvSensor {
 
   const CameraSpec& spec() const { return spec_; }
   const CameraModel& model() const { return model_; }
+  /// Keeps env `env`'s current images as its ended episode's last (its reset renders anew).
+  void keepFinal(int env);
+  /// Appends env `env`'s kept images to `out` (whose width and height it sets).
+  void appendFinal(int env, BatchImages& out) const;
   /// True when env `env`'s images were made in the last step or reset.
   bool isNew(int env) const { return out_.fresh[env] != 0; }
   /// Env `env`'s camera optical frame in its env frame when the images were made.
@@ -52,6 +57,7 @@ class CameraSensor : public EnvSensor {
   CameraWorld world_;
   std::vector<std::unique_ptr<CameraEnvScene>> scenes_;  // per env
   BatchImages& out_;
+  BatchImages finals_;  // per env: its ended episode's last images (keepFinal())
   std::size_t pixels_;
   std::vector<Eigen::Isometry3d> poses_;   // per env
   std::vector<std::uint32_t> age_;         // per env: control steps since its last images

@@ -14,7 +14,7 @@
 namespace jetbot_rl {
 
 EnvServer::EnvServer(BatchedEnv& env, EnvMode mode, double action_timeout)
-    : env_(env), mode_(mode), action_timeout_(action_timeout) {
+    : env_(env), spec_(env.spec()), mode_(mode), action_timeout_(action_timeout) {
   const std::size_t action_count = static_cast<std::size_t>(env_.numEnvs()) * env_.actionDim();
   zero_targets_.assign(action_count, 0.0f);
   current_targets_.reserve(action_count);
@@ -25,8 +25,7 @@ EnvServer::EnvServer(BatchedEnv& env, EnvMode mode, double action_timeout)
 
 void EnvServer::updateState() {
   auto msg = boost::make_shared<EnvStep>();
-  toMsg(env_.state(), env_.numEnvs(), env_.obsDim(), simTime(env_.state().step, env_.controlDt()),
-        *msg);
+  toMsg(env_.state(), spec_, simTime(env_.state().step, env_.controlDt()), *msg);
   state_ = msg;
   counters_.obstacles_left_out = env_.obstaclesGivenUp();
   counters_.layouts_unmade = env_.layoutsUnmade();

@@ -10,10 +10,9 @@
 
 namespace jetbot_rl {
 
-/// Copies `result` into `msg`, reusing the capacity of its arrays (no allocation once warm).
-/// `stamp` is the simulation time of the state [s].
-void toMsg(const StepResult& result, int num_envs, int obs_dim, const ros::Time& stamp,
-           EnvStep& msg);
+/// Copies `result` of a batch of `spec` into `msg` (the images its image_kinds names), reusing
+/// the capacity of its arrays (no allocation once warm). `stamp`: the state's simulation time [s].
+void toMsg(const StepResult& result, const BatchSpec& spec, const ros::Time& stamp, EnvStep& msg);
 /// Copies `msg` into `result` (divergences are not carried by the message); Error naming the
 /// field when its sizes do not fit `spec`.
 void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& result);

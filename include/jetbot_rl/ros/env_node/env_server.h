@@ -96,6 +96,7 @@ class EnvServer {
   void updateState();
 
   BatchedEnv& env_;
+  const BatchSpec spec_;  // what each EnvStep carries (its image kinds)
   EnvMode mode_;
   std::chrono::duration<double> action_timeout_;
   EnvCounters counters_;
