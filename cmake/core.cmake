@@ -41,6 +41,7 @@ add_library(jetbot_rl_core
   src/core/robot/package_path.cpp
   src/core/robot/physics_model.cpp
   src/core/robot/robot_model.cpp
+  src/core/robot/robot_visuals.cpp
   src/core/robot/urdf_camera_blocks.cpp
   src/core/robot/urdf_gazebo_blocks.cpp
   src/core/scene/env_scene.cpp
@@ -48,9 +49,11 @@ add_library(jetbot_rl_core
   src/core/scene/people_bodies.cpp
   src/core/scene/robot_team.cpp
   src/core/sensors/camera_model.cpp
+  src/core/sensors/camera_robot.cpp
   src/core/sensors/camera_scene.cpp
   src/core/sensors/camera_sensor.cpp
   src/core/sensors/camera_spec.cpp
+  src/core/sensors/embree_geometry.cpp
   src/core/sensors/floor_image.cpp
   src/core/sensors/laser_scanner.cpp
   src/core/sensors/scan_cast.cpp

@@ -25,6 +25,20 @@ struct CollisionGeometry {
   std::string mesh_uri;
 };
 
+/// One visual element (URDF <visual>), expressed in its body's link frame: what a camera sees of
+/// the robot (docs/camera.md).
+struct VisualGeometry {
+  /// Its shape: type, size and origin as a collision's; a mesh keeps its URI and scale (`size`)
+  /// and is read when a camera needs its triangles (mesh_path), not at parse time.
+  CollisionGeometry shape;
+  std::string link;  ///< The URDF link it belongs to.
+  /// Diffuse RGB in [0, 1]: its material's colour (inline or named at the robot's top level),
+  /// else grey.
+  Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
+  std::string mesh_path;   ///< Mesh: the file, resolved; empty when it could not be (mesh_error).
+  std::string mesh_error;  ///< Mesh: why mesh_path is empty, naming the link and the URI.
+};
+
 /// A link rigidly attached to a body by fixed joints (kept for tf and visualisation).
 struct AttachedLink {
   std::string name;
@@ -57,6 +71,7 @@ struct BodyModel {
   /// Principal moments of inertia [kg m^2].
   Eigen::Vector3d principal_inertia = Eigen::Vector3d::Zero();
   std::vector<CollisionGeometry> collisions;
+  std::vector<VisualGeometry> visuals;  ///< Of this link and its fixed-joint descendants.
   /// This link followed by its fixed-joint descendants.
   std::vector<AttachedLink> links;
 };
@@ -67,8 +82,8 @@ struct BodyModel {
  * Supports a tree of links joined by revolute, continuous and fixed joints with box, cylinder,
  * sphere and mesh collision shapes (meshes become their convex hull); fixed children are merged
  * into their parent body, so a massless root link (base_footprint) fixed to the chassis is the
- * root body's link frame. Visual elements are ignored. Every error throws ModelError naming the
- * link or joint.
+ * root body's link frame. Visual elements are kept for cameras (VisualGeometry). Every error
+ * throws ModelError naming the link or joint.
  */
 class RobotModel {
  public:

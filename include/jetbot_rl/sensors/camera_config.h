@@ -22,9 +22,10 @@ struct CameraConfig {
   std::vector<double> clip;     ///< [near, far] [m]; []: the block's (without: [0.05, 10]).
   std::vector<double> distortion;   ///< [k1, k2, k3, p1, p2]; []: the block's (without: none).
   std::vector<std::string> images;  ///< rgb, depth, label; []: rgb (a depth block: rgb, depth).
-  double noise_std = -1.0;   ///< Gaussian noise on [0, 1] intensities; -1: the block's (else 0).
-  int update_every = 0;      ///< Control steps between images; 0: from the block's update rate.
-  bool batch_images = true;  ///< The images go into every step's result for learners.
+  double noise_std = -1.0;    ///< Gaussian noise on [0, 1] intensities; -1: the block's (else 0).
+  int update_every = 0;       ///< Control steps between images; 0: from the block's update rate.
+  bool batch_images = true;   ///< The images go into every step's result for learners.
+  bool robot_visuals = true;  ///< The robots are drawn by their URDF visuals.
   // Appearance randomisation: drawn per env at each reset from its own stream (off: nothing).
   bool random_colours = false;          ///< Surface colours and the floor image's tint.
   std::vector<double> light_intensity;  ///< [min, max] of the light's intensity; []: 1.
@@ -66,6 +67,11 @@ IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
   v("camera/batch_images", c.batch_images, AnyValue{},
     "The images go into every step for learners (~env_step's images_* fields, the vec envs' "
     "observations, EnvSpec image_kinds); false: only into the robot view's image topics.");
+  v("camera/robot_visuals", c.robot_visuals, AnyValue{},
+    "The robots (the camera's own, without its camera link's visuals, and the others of its "
+    "world) are drawn by their URDF <visual> shapes and material colours; false: none of its own, "
+    "the others as the cylinders the scanner sees (for a robot whose visual meshes are not at "
+    "hand).");
   v("camera/random_colours", c.random_colours, AnyValue{},
     "Appearance randomisation: at each reset each env draws the colour of its ground, walls, "
     "map blocks, obstacles and movers (each channel uniform in [0.1, 0.9]) and a tint of the "

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "jetbot_rl/sensors/camera_model.h"
@@ -16,7 +17,8 @@ struct RTCDeviceTy;
 struct RTCSceneTy;
 
 namespace jetbot_rl {
-
+class CameraRobot;
+class RobotModel;
 class WorldModel;
 struct FloorImage;
 struct Obstacle;
@@ -28,7 +30,8 @@ enum class SurfaceClass : std::uint8_t {
   kWall = 2,      ///< The arena walls
   kMap = 3,       ///< The map's obstacle cells and a Gazebo world's solids
   kObstacle = 4,  ///< The env's obstacles
-  kMover = 5,     ///< People and the other robots of the env's world
+  kMover = 5,     ///< People (and the other robots of a world drawn as cylinders: none yet)
+  kRobot = 6,     ///< The robots of the env's world, its own and the others, by their visuals
 };
 
 /// How an env's scene looks: the diffuse colour (RGB, each in [0, 1]) of each class of surface,
@@ -95,6 +98,12 @@ class CameraWorld {
   SurfaceClass surfaceClass(unsigned id) const { return classes_.at(id); }
   /// The floor image on the ground, or nullptr.
   const FloorImage* floor() const { return floor_.get(); }
+  /// Makes `robot`'s URDF visuals what the env scenes draw their robots with; `hidden_link`: the
+  /// camera's own link, left out of a robot's view of itself. ModelError naming the link of a
+  /// visual mesh that cannot be read.
+  void setRobot(const RobotModel& robot, const std::string& hidden_link);
+  /// The robot of setRobot(), or nullptr.
+  const CameraRobot* robot() const { return robot_.get(); }
 
  private:
   RTCDeviceTy* device_ = nullptr;
@@ -103,6 +112,13 @@ class CameraWorld {
   RTCSceneTy* unit_box_ = nullptr;
   std::vector<SurfaceClass> classes_;  // per geometry id of scene_
   std::shared_ptr<const FloorImage> floor_;
+  std::unique_ptr<CameraRobot> robot_;
+};
+
+/// One robot of an env's world where it stands: its bodies' link frames in the env frame.
+struct RobotPose {
+  bool own = false;  ///< The robot whose camera renders (seen without its camera's housing).
+  std::vector<Eigen::Isometry3d> bodies;
 };
 
 /// One env's scene: the shared world, the env's own obstacles and its movers; renders its
@@ -121,7 +137,11 @@ class CameraEnvScene {
   const Appearance& appearance() const { return appearance_; }
   /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
   /// an instance of a unit shape, moved without rebuilding any triangles.
-  void setMovers(const std::vector<Obstacle>& movers);
+  void setMovers(const std::vector<Obstacle>& movers, bool commit = true);
+  /// Places the robots of the env's world (none before the first call), each body an instance of
+  /// CameraWorld's robot at its pose; robots beyond `robots.size()` are hidden. Needs
+  /// CameraWorld::setRobot().
+  void setRobots(const std::vector<RobotPose>& robots, bool commit = true);
   /// Renders what `model` sees from `pose` (its optical frame in the env frame: z forward, x
   /// right, y down) into `out`'s images, each model.width() x model.height(). Safe to call from
   /// several threads at once.
@@ -142,13 +162,28 @@ class CameraEnvScene {
     bool cylinder = true;
     Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
   };
+  /// A robot body's instance in scene_: its geometry id, the body, which view of it, and the
+  /// rotation that takes its normals to the env frame.
+  struct RobotSlot {
+    unsigned id = 0;
+    int body = 0;
+    bool own = false;
+    Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
+  };
+  /// What an instance of scene_ is: a mover's slot or a robot body's, or neither (-1).
+  struct InstanceOf {
+    int mover = -1, robot = -1;
+  };
+  /// A new instance of `shape` in scene_ (its slot of what it is set by the caller).
+  unsigned addInstance(RTCSceneTy* shape);
 
   const CameraWorld& world_;
   RTCSceneTy* scene_ = nullptr;
   unsigned world_id_;              // the world's instance in scene_
   unsigned obstacles_id_;          // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
   std::vector<MoverSlot> movers_;  // one per mover seen so far (unused ones disabled)
-  std::vector<int> slot_of_id_;    // per geometry id of scene_: its mover slot, or -1
+  std::vector<RobotSlot> robots_;  // robot r's body b: r x bodies + b (unused ones disabled)
+  std::vector<InstanceOf> of_id_;  // per geometry id of scene_
   Appearance appearance_;
 };
 

@@ -63,9 +63,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   }
   if (const std::optional<CameraSpec> camera =
           resolveCamera(config_.camera, *robot_, config_.controlDt())) {
-    camera_ =
-        std::make_unique<CameraSensor>(*camera, scene_->world(), std::move(floor), n, config_.seed,
-                                       result_.images, config_.camera.batch_images);
+    camera_ = std::make_unique<CameraSensor>(
+        *camera, *robot_, scene_->world(), std::move(floor), n, config_.seed, result_.images,
+        config_.camera.batch_images, config_.camera.robot_visuals);
     sensors_.push_back(camera_.get());
   }
   TaskContext context;

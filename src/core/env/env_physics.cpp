@@ -310,6 +310,8 @@ btTransform EnvPhysics::comPose(int body) const {
   return colliders_[body]->getWorldTransform();
 }
 
+int EnvPhysics::numBodies() const { return static_cast<int>(model_.bodies().size()); }
+
 btTransform EnvPhysics::linkPose(int body) const {
   return comPose(body) * model_.bodies()[body].com_in_link.inverse();
 }

@@ -127,6 +127,8 @@ class EnvPhysics {
   double robotTop() const;
   /// Contact points of the last collision detection, and the pairs they belong to.
   int contactPoints(int* pairs = nullptr) const;
+  /// The robot's rigid bodies (linkPose()'s range).
+  int numBodies() const;
 
  private:
   /// World transform of body `body`'s principal COM frame.

@@ -14,6 +14,8 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
 #include "jetbot_rl/robot/urdf_errors.h"
+#include "robot/robot_visuals.h"
+#include "robot/urdf_pose.h"
 
 namespace jetbot_rl {
 namespace {
@@ -45,16 +47,6 @@ urdf::ModelInterfaceSharedPtr parseCapturingErrors(const std::string& xml, std::
   console_bridge::useOutputHandler(previous);
   errors += handler.text();
   return model;
-}
-
-Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() << pose.position.x, pose.position.y, pose.position.z;
-  t.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-          .normalized()
-          .toRotationMatrix();
-  return t;
 }
 
 /// Inertial of one URDF link, validated, expressed in the body's link frame.
@@ -248,6 +240,9 @@ class BodyBuilder {
     for (const auto& collision : link.collision_array) {
       if (collision)
         body.collisions.push_back(collisionGeometry(link, *collision, offset, resolver_));
+    }
+    for (const auto& visual : link.visual_array) {
+      if (visual) body.visuals.push_back(visualGeometry(link, *visual, offset, resolver_));
     }
     for (const auto& child : link.child_links) {
       const urdf::Joint& joint = *child->parent_joint;

@@ -179,7 +179,10 @@ SensedEnv EnvScene::sensed(int row) const {
     }
     moving = &all;
   }
-  return {*(*envs_)[row], layouts_[row], moving};
+  SensedEnv sensed{*(*envs_)[row], layouts_[row], moving};
+  if (people_) sensed.people = &people_->bodies(row);
+  if (team_) sensed.robots = {envs_, &present_, row / k_ * k_, k_};
+  return sensed;
 }
 
 }  // namespace jetbot_rl

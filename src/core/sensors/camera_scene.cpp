@@ -11,6 +11,8 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/floor_image.h"
 #include "jetbot_rl/world/world_model.h"
+#include "sensors/camera_robot.h"
+#include "sensors/embree_geometry.h"
 #include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
@@ -29,35 +31,6 @@ inline void intersect(const int* valid, RTCScene scene, RTCIntersectContext* con
 /// cost per channel).
 inline std::uint8_t toByte(float intensity) {
   return static_cast<std::uint8_t>(255.0f * intensity + 0.5f);
-}
-
-[[noreturn]] void throwEmbree(RTCDevice device, const std::string& what) {
-  const RTCError code = device ? rtcGetDeviceError(device) : RTC_ERROR_UNKNOWN;
-  throw ModelError("Embree: " + what + " failed (error " + std::to_string(code) + ")");
-}
-
-/// Triangles (three corners each) as one Embree triangle geometry of `scene`; its id.
-unsigned attachTriangles(RTCDevice device, RTCScene scene,
-                         const std::vector<Eigen::Vector3d>& corners) {
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (!geometry) throwEmbree(device, "a triangle geometry");
-  const std::size_t count = corners.size() / 3;
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), corners.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
-  if (!vertices || !indices) {
-    rtcReleaseGeometry(geometry);
-    throwEmbree(device, "a triangle buffer");
-  }
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = static_cast<float>(corners[i][k]);
-    indices[i] = static_cast<unsigned>(i);
-  }
-  rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(scene, geometry);
-  rtcReleaseGeometry(geometry);
-  return id;
 }
 
 /// Appends the surface of obstacle `o` (standing on the ground) in the env frame.
@@ -125,7 +98,12 @@ CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorIma
   rtcCommitScene(scene_);
 }
 
+void CameraWorld::setRobot(const RobotModel& robot, const std::string& hidden_link) {
+  robot_ = std::make_unique<CameraRobot>(device_, robot, hidden_link);
+}
+
 CameraWorld::~CameraWorld() {
+  robot_.reset();  // its scenes belong to device_
   if (scene_) rtcReleaseScene(scene_);
   if (unit_cylinder_) rtcReleaseScene(unit_cylinder_);
   if (unit_box_) rtcReleaseScene(unit_box_);
@@ -165,18 +143,23 @@ void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
   rtcCommitScene(scene_);
 }
 
-void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers) {
+unsigned CameraEnvScene::addInstance(RTCSceneTy* shape) {
   RTCDevice device = world_.device();
+  RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  if (!instance) throwEmbree(device, "an instance");
+  rtcSetGeometryInstancedScene(instance, shape);
+  const unsigned id = rtcAttachGeometry(scene_, instance);
+  rtcReleaseGeometry(instance);
+  if (of_id_.size() <= id) of_id_.resize(id + 1);
+  return id;
+}
+
+void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit) {
   for (std::size_t i = 0; i < std::max(movers.size(), movers_.size()); ++i) {
     if (i == movers_.size()) {
-      RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-      if (!instance) throwEmbree(device, "an instance");
-      rtcSetGeometryInstancedScene(instance, world_.unitShape(true));
       MoverSlot slot;
-      slot.id = rtcAttachGeometry(scene_, instance);
-      rtcReleaseGeometry(instance);
-      if (slot_of_id_.size() <= slot.id) slot_of_id_.resize(slot.id + 1, -1);
-      slot_of_id_[slot.id] = static_cast<int>(i);
+      slot.id = addInstance(world_.unitShape(true));
+      of_id_[slot.id].mover = static_cast<int>(i);
       movers_.push_back(slot);
     }
     MoverSlot& slot = movers_[i];
@@ -205,12 +188,59 @@ void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers) {
     rtcEnableGeometry(instance);
     rtcCommitGeometry(instance);
   }
-  rtcCommitScene(scene_);
+  if (commit) rtcCommitScene(scene_);
+}
+
+void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit) {
+  const CameraRobot* robot = world_.robot();
+  if (!robot) throw Error("CameraEnvScene::setRobots: the world has no robot (setRobot())");
+  const auto bodies = static_cast<std::size_t>(robot->numBodies());
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    if (robots[r].bodies.size() != bodies) {
+      throw Error("CameraEnvScene::setRobots: robot " + std::to_string(r) + " has " +
+                  std::to_string(robots[r].bodies.size()) + " body poses, not " +
+                  std::to_string(bodies));
+    }
+  }
+  for (std::size_t i = 0; i < std::max(robots.size() * bodies, robots_.size()); ++i) {
+    const std::size_t r = i / bodies;
+    const int b = static_cast<int>(i % bodies);
+    const bool own = r < robots.size() && robots[r].own;
+    RTCScene shape = r < robots.size() ? robot->body(b, own) : nullptr;
+    if (i == robots_.size()) {
+      RobotSlot slot;
+      // An empty scene stands in for a body without visuals: every slot keeps an instance.
+      slot.id = addInstance(shape ? shape : world_.unitShape(true));
+      slot.body = b;
+      of_id_[slot.id].robot = static_cast<int>(i);
+      robots_.push_back(slot);
+    }
+    RobotSlot& slot = robots_[i];
+    RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
+    if (!shape) {
+      rtcDisableGeometry(instance);
+      continue;
+    }
+    if (own != slot.own || shape != robot->body(b, slot.own)) {
+      rtcSetGeometryInstancedScene(instance, shape);
+      slot.own = own;
+    }
+    const Eigen::Isometry3d& pose = robots[r].bodies[static_cast<std::size_t>(b)];
+    Eigen::Matrix<float, 3, 4> transform;  // column-major, as Embree reads it
+    transform.leftCols<3>() = pose.linear().cast<float>();
+    transform.col(3) = pose.translation().cast<float>();
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
+    slot.normals = transform.leftCols<3>();  // a rotation: its own inverse transpose
+    rtcEnableGeometry(instance);
+    rtcCommitGeometry(instance);
+  }
+  if (commit) rtcCommitScene(scene_);
 }
 
 SurfaceClass CameraEnvScene::classOf(unsigned geometry, unsigned instance) const {
   if (instance == world_id_) return world_.surfaceClass(geometry);
-  return instance == RTC_INVALID_GEOMETRY_ID ? SurfaceClass::kObstacle : SurfaceClass::kMover;
+  if (instance == RTC_INVALID_GEOMETRY_ID) return SurfaceClass::kObstacle;
+  return of_id_[instance].robot >= 0 ? SurfaceClass::kRobot : SurfaceClass::kMover;
 }
 
 const Eigen::Vector3f& Appearance::colour(SurfaceClass c) const {
@@ -224,6 +254,7 @@ const Eigen::Vector3f& Appearance::colour(SurfaceClass c) const {
     case SurfaceClass::kObstacle:
       return obstacle;
     case SurfaceClass::kMover:
+    case SurfaceClass::kRobot:  // robots have their URDF colours (render())
       return mover;
     case SurfaceClass::kNone:
       break;
@@ -304,8 +335,14 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
                                          : classOf(packet.hit.geomID[k], packet.hit.instID[0][k]);
         if (out.label) out.label[i] = static_cast<std::uint8_t>(surface);
         if (!rgb) continue;
-        // The floor image where it lies (tinted), else the surface's own colour.
-        Eigen::Vector3f albedo = a.colour(surface);
+        // The floor image where it lies (tinted), a robot's visual's colour, else the class's.
+        const unsigned instance = packet.hit.instID[0][k];
+        const RobotSlot* robot = surface == SurfaceClass::kRobot
+                                     ? &robots_[static_cast<std::size_t>(of_id_[instance].robot)]
+                                     : nullptr;
+        Eigen::Vector3f albedo =
+            robot ? world_.robot()->colour(robot->body, robot->own, packet.hit.geomID[k])
+                  : a.colour(surface);
         if (on_ground && floor &&
             floor->colourAt(origin.x() + t * packet.ray.dir_x[k],
                             origin.y() + t * packet.ray.dir_y[k], albedo)) {
@@ -315,10 +352,11 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
         Eigen::Vector3f normal =
             on_ground ? Eigen::Vector3f::UnitZ()
                       : Eigen::Vector3f(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
-        // A mover's normal comes in its unit shape's frame.
-        const unsigned instance = packet.hit.instID[0][k];
-        if (!on_ground && instance != RTC_INVALID_GEOMETRY_ID && instance != world_id_) {
-          normal = movers_[slot_of_id_[instance]].normals * normal;
+        // A mover's normal comes in its unit shape's frame, a robot body's in its link frame.
+        if (robot) {
+          normal = robot->normals * normal;
+        } else if (!on_ground && instance != RTC_INVALID_GEOMETRY_ID && instance != world_id_) {
+          normal = movers_[static_cast<std::size_t>(of_id_[instance].mover)].normals * normal;
         }
         const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
         if (normal.dot(dir) > 0.0f) normal = -normal;

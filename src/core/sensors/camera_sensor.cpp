@@ -26,9 +26,10 @@ Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
 
 }  // namespace
 
-CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world,
+CameraSensor::CameraSensor(const CameraSpec& spec, const RobotModel& robot, const WorldModel* world,
                            std::shared_ptr<const FloorImage> floor, int num_envs,
-                           std::uint64_t seed, BatchImages& out, bool keep_finals)
+                           std::uint64_t seed, BatchImages& out, bool keep_finals,
+                           bool robot_visuals)
     : spec_(spec),
       model_(spec.intrinsics),
       world_(world, std::move(floor)),
@@ -36,7 +37,17 @@ CameraSensor::CameraSensor(const CameraSpec& spec, const WorldModel* world,
       pixels_(static_cast<std::size_t>(spec.intrinsics.width) * spec.intrinsics.height),
       poses_(num_envs, Eigen::Isometry3d::Identity()),
       age_(num_envs, 0),
-      jitter_(num_envs, Eigen::Isometry3d::Identity()) {
+      jitter_(num_envs, Eigen::Isometry3d::Identity()),
+      robots_(num_envs) {
+  if (robot_visuals) {
+    try {
+      world_.setRobot(robot, spec.link);
+    } catch (const ModelError& e) {
+      throw ModelError(std::string(e.what()) +
+                       " (the camera draws the robots by their visuals; camera/robot_visuals: "
+                       "false draws none)");
+    }
+  }
   out_.width = spec.intrinsics.width;
   out_.height = spec.intrinsics.height;
   const auto n = static_cast<std::size_t>(num_envs);
@@ -155,7 +166,12 @@ void CameraSensor::drawAppearance(int env) {
 
 void CameraSensor::render(int env, const SensedEnv& sensed) {
   CameraEnvScene& scene = *scenes_[env];
-  if (sensed.movers) scene.setMovers(*sensed.movers);
+  if (world_.robot()) {
+    if (sensed.people) scene.setMovers(*sensed.people, /*commit=*/false);
+    scene.setRobots(robotPoses(env, sensed));
+  } else if (sensed.movers) {  // people and the other robots as cylinders
+    scene.setMovers(*sensed.movers);
+  }
   poses_[env] = opticalFrame(toEigen(sensed.physics.linkPose(spec_.body)) * spec_.pose_in_body *
                              jitter_[env]);
   const auto e = static_cast<std::size_t>(env);
@@ -167,6 +183,28 @@ void CameraSensor::render(int env, const SensedEnv& sensed) {
   if (view.rgb && (spec_.noise_std > 0.0 || spec_.noise_mean != 0.0)) addNoise(env, view.rgb);
   age_[env] = 0;
   out_.fresh[env] = 1;
+}
+
+const std::vector<RobotPose>& CameraSensor::robotPoses(int env, const SensedEnv& sensed) {
+  std::vector<RobotPose>& robots = robots_[env];
+  const WorldRobots& world = sensed.robots;
+  std::size_t count = 1;
+  for (int row = world.first; row < world.first + world.count; ++row) {
+    count += row != env && (*world.present)[static_cast<std::size_t>(row)] ? 1 : 0;
+  }
+  robots.resize(count);
+  const auto place = [](RobotPose& pose, const EnvPhysics& physics, bool own) {
+    pose.own = own;
+    pose.bodies.resize(static_cast<std::size_t>(physics.numBodies()));
+    for (int b = 0; b < physics.numBodies(); ++b) pose.bodies[b] = toEigen(physics.linkPose(b));
+  };
+  place(robots[0], sensed.physics, true);
+  std::size_t next = 1;
+  for (int row = world.first; row < world.first + world.count; ++row) {
+    if (row == env || !(*world.present)[static_cast<std::size_t>(row)]) continue;
+    place(robots[next++], *(*world.physics)[static_cast<std::size_t>(row)], false);
+  }
+  return robots;
 }
 
 void CameraSensor::addNoise(int env, std::uint8_t* rgb) {

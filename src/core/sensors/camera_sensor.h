@@ -13,6 +13,7 @@
 
 namespace jetbot_rl {
 
+class RobotModel;
 class WorldModel;
 
 /// The camera of every env (docs/camera.md): one Embree scene of the shared world, one scene per
@@ -20,12 +21,14 @@ class WorldModel;
 /// BatchImages, their cadence, and a noise stream per env.
 class CameraSensor : public EnvSensor {
  public:
-  /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none) and
-  /// each env's bodies; images go to `out` (sized here), which must outlive the sensor.
-  /// `keep_finals`: keepFinal() is used (memory for a second image of every env).
-  CameraSensor(const CameraSpec& spec, const WorldModel* world,
+  /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none), each
+  /// env's bodies and its robots (`robot`'s URDF visuals; ModelError for a visual mesh that
+  /// cannot be read); images go to `out` (sized here), which must outlive the sensor.
+  /// `keep_finals`: keepFinal() is used (memory for a second image of every env);
+  /// `robot_visuals`: the robots are drawn by `robot`'s visuals (else the others as cylinders).
+  CameraSensor(const CameraSpec& spec, const RobotModel& robot, const WorldModel* world,
                std::shared_ptr<const FloorImage> floor, int num_envs, std::uint64_t seed,
-               BatchImages& out, bool keep_finals);
+               BatchImages& out, bool keep_finals, bool robot_visuals);
 
   void reseed(int env, std::uint64_t seed) override;
   void forgetNewReadings() override;
@@ -47,6 +50,8 @@ class CameraSensor : public EnvSensor {
 
  private:
   void render(int env, const SensedEnv& sensed);
+  /// Env `env`'s robots where they stand: its own first, then the others present in its world.
+  const std::vector<RobotPose>& robotPoses(int env, const SensedEnv& sensed);
   /// Gazebo's camera noise on env `env`'s rgb image: N(mean, std) per channel on [0, 1].
   void addNoise(int env, std::uint8_t* rgb);
   /// Appearance randomisation: env `env`'s look and camera pose jitter for its new episode.
@@ -59,11 +64,12 @@ class CameraSensor : public EnvSensor {
   BatchImages& out_;
   BatchImages finals_;  // per env: its ended episode's last images (keepFinal())
   std::size_t pixels_;
-  std::vector<Eigen::Isometry3d> poses_;   // per env
-  std::vector<std::uint32_t> age_;         // per env: control steps since its last images
-  std::vector<Rng> noise_;                 // per env
-  std::vector<Rng> appearance_rng_;        // per env
-  std::vector<Eigen::Isometry3d> jitter_;  // per env: the camera's offset in its body frame
+  std::vector<Eigen::Isometry3d> poses_;        // per env
+  std::vector<std::uint32_t> age_;              // per env: control steps since its last images
+  std::vector<Rng> noise_;                      // per env
+  std::vector<Rng> appearance_rng_;             // per env
+  std::vector<Eigen::Isometry3d> jitter_;       // per env: the camera's offset in its body frame
+  std::vector<std::vector<RobotPose>> robots_;  // per env: its world's robots at its last image
 };
 
 }  // namespace jetbot_rl

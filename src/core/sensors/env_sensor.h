@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace jetbot_rl {
@@ -9,12 +10,23 @@ class EnvPhysics;
 struct EnvLayout;
 struct Obstacle;
 
-/// What a sensor reads an env from: its physics, its layout of the current episode and its
-/// movers where they stand (or none).
+/// The robots of one world: rows [first, first + count) of `physics`, those with `present[row]`
+/// in the world now.
+struct WorldRobots {
+  const std::vector<std::unique_ptr<EnvPhysics>>* physics = nullptr;
+  const std::vector<std::uint8_t>* present = nullptr;
+  int first = 0, count = 0;
+};
+
+/// What a sensor reads an env from: its physics, its layout of the current episode, its movers
+/// where they stand (or none: people and the other robots, as cylinders), the people alone, and
+/// the robots of its world (count 0: it alone).
 struct SensedEnv {
   const EnvPhysics& physics;
   const EnvLayout& layout;
   const std::vector<Obstacle>* movers = nullptr;
+  const std::vector<Obstacle>* people = nullptr;
+  WorldRobots robots;
 };
 
 /**
