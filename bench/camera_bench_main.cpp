@@ -23,6 +23,7 @@ struct Options {
   int threads = 2;
   int obstacles = 10;  // per env
   int people = 0;      // per env: movers, moved before every frame as the batch moves them
+  int shadows = 0;     // 1: the light casts shadows
   std::string map = JETBOT_RL_DEFAULT_MAP;
   std::string save;  // env 0's images as SAVE_rgb.ppm and SAVE_label.pgm, to look at
 };
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
         if (option == "--obstacles")
           return parseWholeNumber(option, value, 0, 10000, o.obstacles, err);
         if (option == "--people") return parseWholeNumber(option, value, 0, 1000, o.people, err);
+        if (option == "--shadows") return parseWholeNumber(option, value, 0, 1, o.shadows, err);
         if (option == "--map") {
           o.map = value;
           return true;
@@ -72,7 +74,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "jetbot_rl_camera_bench: %s\nusage: jetbot_rl_camera_bench [--num-envs N] "
                  "[--width W] [--height H] [--frames F] [--threads T] [--obstacles K] [--people P] "
-                 "[--map YAML] [--save PREFIX]\n",
+                 "[--shadows 0|1] [--map YAML] [--save PREFIX]\n",
                  error.c_str());
     return 2;
   }
@@ -109,6 +111,7 @@ int main(int argc, char** argv) {
       }
       scenes.push_back(std::make_unique<CameraEnvScene>(camera_world));
       scenes.back()->setObstacles(obstacles);
+      scenes.back()->setShadows(o.shadows != 0);
       for (int k = 0; k < o.people; ++k) {
         Obstacle person;
         person.shape = Obstacle::Shape::kCylinder;
@@ -146,8 +149,9 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double frames = static_cast<double>(o.frames) * o.num_envs;
     std::printf(
-        "envs=%d threads=%d image=%dx%d people=%d frames=%.0f wall_s=%.3f scenes_build_s=%.3f\n",
-        o.num_envs, o.threads, o.width, o.height, o.people, frames, seconds, build_s);
+        "envs=%d threads=%d image=%dx%d people=%d shadows=%d frames=%.0f wall_s=%.3f "
+        "scenes_build_s=%.3f\n",
+        o.num_envs, o.threads, o.width, o.height, o.people, o.shadows, frames, seconds, build_s);
     std::printf("frames_per_s=%.0f\n", frames / seconds);
     std::printf("megarays_per_s=%.1f\n", frames * o.width * o.height / seconds / 1e6);
     if (!o.save.empty()) {

@@ -219,6 +219,44 @@ TEST_F(CameraRender, NothingWithinFarIsInfinityAndNearerThanNearMinusInfinity) {
   EXPECT_TRUE(std::isinf(images.depth[8 * 16 + 8]) && images.depth[8 * 16 + 8] < 0.0f);
 }
 
+TEST_F(CameraRender, ShadowsFallWhereTheLightIsBlocked) {
+  // A 0.5 m tall post under a light shining along +x at 45 degrees: its shadow lies on the ground
+  // from its +x face to 0.5 m beyond it; a camera 2 m up looks straight down.
+  scene_.setObstacles({standingBox(0.0, 0.0, 0.1, 0.1, 0.5)});
+  Appearance look;
+  look.light_direction = Eigen::Vector3f(1.0f, 0.0f, -1.0f).normalized();
+  scene_.setAppearance(look);
+  const Eigen::Isometry3d pose =
+      opticalFrame(Eigen::Translation3d(0.0, 0.0, 2.0) *
+                   Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitY()));
+  const CameraModel m(cameraIntrinsics(65, 65, 1.2));
+  const auto pixelOf = [&](double x, double y) {
+    const Eigen::Vector2d uv = *m.project(pose.inverse() * Eigen::Vector3d(x, y, 0.0));
+    return static_cast<std::size_t>(uv.y()) * 65 + static_cast<std::size_t>(uv.x());
+  };
+  const std::size_t behind = pixelOf(0.35, 0.0), before = pixelOf(-0.35, 0.0),
+                    aside = pixelOf(0.35, 0.4);
+  CameraImages plain, shadowed;
+  scene_.render(m, pose, plain);
+  scene_.setShadows(true);
+  scene_.render(m, pose, shadowed);
+  for (std::size_t i : {behind, before, aside}) {
+    ASSERT_EQ(shadowed.label[i], static_cast<std::uint8_t>(SurfaceClass::kGround));
+  }
+  // Without shadows the ground is one colour; with them, the shaded ground is the ambient share.
+  EXPECT_EQ(plain.rgb[3 * behind], plain.rgb[3 * before]);
+  const float lit = -Eigen::Vector3f::UnitZ().dot(look.light_direction);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(shadowed.rgb[3 * before + c], plain.rgb[3 * before + c]);
+    EXPECT_EQ(shadowed.rgb[3 * aside + c], plain.rgb[3 * aside + c]);
+    const float ambient = look.ground[c] * look.ambient;
+    EXPECT_NEAR(shadowed.rgb[3 * behind + c], 255.0f * ambient, 1.0f) << "channel " << c;
+    EXPECT_NEAR(plain.rgb[3 * behind + c],
+                255.0f * look.ground[c] * (look.ambient + (1.0f - look.ambient) * lit), 1.0f);
+  }
+  EXPECT_EQ(shadowed.depth, plain.depth);  // shadows change colours only
+}
+
 TEST_F(CameraRender, SameImagesEveryTimeAndFromTwoThreads) {
   scene_.setObstacles(
       {standingBox(1.5, -0.3, 0.2, 0.2, 0.4), standingBox(2.5, 0.6, 0.3, 0.1, 0.8)});

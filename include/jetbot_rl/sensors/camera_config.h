@@ -26,6 +26,7 @@ struct CameraConfig {
   int update_every = 0;       ///< Control steps between images; 0: from the block's update rate.
   bool batch_images = true;   ///< The images go into every step's result for learners.
   bool robot_visuals = true;  ///< The robots are drawn by their URDF visuals.
+  bool shadows = false;       ///< The light casts shadows.
   // Appearance randomisation: drawn per env at each reset from its own stream (off: nothing).
   bool random_colours = false;          ///< Surface colours and the floor image's tint.
   std::vector<double> light_intensity;  ///< [min, max] of the light's intensity; []: 1.
@@ -72,6 +73,9 @@ IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
     "world) are drawn by their URDF <visual> shapes and material colours; false: none of its own, "
     "the others as the cylinders the scanner sees (for a robot whose visual meshes are not at "
     "hand).");
+  v("camera/shadows", c.shadows, AnyValue{},
+    "The directional light casts shadows: a surface it does not reach gets the ambient light "
+    "alone (one more ray per lit pixel).");
   v("camera/random_colours", c.random_colours, AnyValue{},
     "Appearance randomisation: at each reset each env draws the colour of its ground, walls, "
     "map blocks, obstacles and movers (each channel uniform in [0.1, 0.9]) and a tint of the "

@@ -15,6 +15,7 @@
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
+struct RTCRay16;
 
 namespace jetbot_rl {
 class CameraRobot;
@@ -134,6 +135,9 @@ class CameraEnvScene {
   void setObstacles(const std::vector<Obstacle>& obstacles);
   /// How the scene looks from now on.
   void setAppearance(const Appearance& appearance) { appearance_ = appearance; }
+  /// Shadows of the directional light: a surface the light does not reach gets the ambient share
+  /// alone (one more ray per lit pixel). Off by default.
+  void setShadows(bool on) { shadows_ = on; }
   const Appearance& appearance() const { return appearance_; }
   /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
   /// an instance of a unit shape, moved without rebuilding any triangles.
@@ -176,6 +180,10 @@ class CameraEnvScene {
   };
   /// A new instance of `shape` in scene_ (its slot of what it is set by the caller).
   unsigned addInstance(RTCSceneTy* shape);
+  /// Sets `lit` to 0 in the lanes of `valid` whose ray from its origin in `rays` towards the
+  /// light (against `light_direction`) meets anything.
+  void castShadows(const int* valid, const Eigen::Vector3f& light_direction, RTCRay16* rays,
+                   float* lit) const;
 
   const CameraWorld& world_;
   RTCSceneTy* scene_ = nullptr;
@@ -185,6 +193,7 @@ class CameraEnvScene {
   std::vector<RobotSlot> robots_;  // robot r's body b: r x bodies + b (unused ones disabled)
   std::vector<InstanceOf> of_id_;  // per geometry id of scene_
   Appearance appearance_;
+  bool shadows_ = false;
 };
 
 /// The optical frame of a camera whose body frame (x forward, y left, z up: REP 103) is `body`.

@@ -28,6 +28,7 @@ struct CameraSpec {
   double noise_mean = 0.0, noise_std = 0.0;       ///< On [0, 1] intensities.
   int update_every = 1;                           ///< [control steps]
   std::string sensor_name;  ///< The block's sensor (empty: declared by parameters).
+  bool shadows = false;     ///< The directional light casts shadows (camera/shadows).
   /// Appearance randomisation (camera/random_colours, ...; CameraConfig's fields).
   bool random_colours = false, random_light_direction = false;
   std::vector<double> light_intensity, exposure, pose_jitter;  ///< [] when off.

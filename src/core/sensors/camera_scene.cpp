@@ -22,6 +22,8 @@ namespace {
 // this machine's Zen 4, docs/performance.md).
 using Packet = RTCRayHit16;
 constexpr int kLanes = 16, kTileWidth = 4, kTileHeight = 4;
+// [m]: how far a shadow ray starts off its surface, so that it does not hit the surface itself.
+constexpr float kShadowOffset = 1e-4f;
 inline void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
                       Packet* packet) {
   rtcIntersect16(valid, scene, context, packet);
@@ -314,7 +316,16 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
         packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
       }
       intersect(valid, scene_, &context, &packet);
+      // Per lane: the light it gets (-1: no shading, the sky or no rgb), its colour, and whether a
+      // shadow ray asks if the light reaches it.
+      float lit[kLanes];
+      Eigen::Vector3f albedos[kLanes];
+      alignas(64) int shaded[kLanes];
+      alignas(64) RTCRay16 shadow;
       for (int k = 0; k < kLanes; ++k) {
+        lit[k] = -1.0f;
+        shaded[k] = 0;
+        shadow.org_x[k] = shadow.org_y[k] = shadow.org_z[k] = 0.0f;
         if (!valid[k]) continue;
         const std::size_t i =
             static_cast<std::size_t>(y0 + k / kTileWidth) * width + (x0 + k % kTileWidth);
@@ -360,13 +371,48 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
         }
         const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
         if (normal.dot(dir) > 0.0f) normal = -normal;
-        const float lit = std::max(0.0f, -normal.normalized().dot(a.light_direction));
-        const float shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * lit);
+        normal.normalize();
+        lit[k] = std::max(0.0f, -normal.dot(a.light_direction));
+        albedos[k] = albedo;
+        // A shadow ray leaves the surface a little along its normal, towards the light.
+        const Eigen::Vector3f at = origin + t * dir + kShadowOffset * normal;
+        shadow.org_x[k] = at.x();
+        shadow.org_y[k] = at.y();
+        shadow.org_z[k] = at.z();
+        shaded[k] = shadows_ && lit[k] > 0.0f ? -1 : 0;
+      }
+      if (shadows_) castShadows(shaded, a.light_direction, &shadow, lit);
+      for (int k = 0; k < kLanes; ++k) {
+        if (!valid[k] || lit[k] < 0.0f || !out.rgb) continue;
+        std::uint8_t* rgb = out.rgb + 3 * (static_cast<std::size_t>(y0 + k / kTileWidth) * width +
+                                           (x0 + k % kTileWidth));
+        const float shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * lit[k]);
         for (int c = 0; c < 3; ++c) {
-          rgb[c] = toByte(std::min(1.0f, albedo[c] * shade));
+          rgb[c] = toByte(std::min(1.0f, albedos[k][c] * shade));
         }
       }
     }
+  }
+}
+
+void CameraEnvScene::castShadows(const int* valid, const Eigen::Vector3f& light_direction,
+                                 RTCRay16* rays, float* lit) const {
+  for (int k = 0; k < kLanes; ++k) {
+    rays->dir_x[k] = -light_direction.x();
+    rays->dir_y[k] = -light_direction.y();
+    rays->dir_z[k] = -light_direction.z();
+    rays->tnear[k] = 0.0f;
+    rays->tfar[k] = std::numeric_limits<float>::infinity();
+    rays->time[k] = 0.0f;
+    rays->mask[k] = ~0u;
+    rays->id[k] = static_cast<unsigned>(k);
+    rays->flags[k] = 0;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded16(valid, scene_, &context, rays);
+  for (int k = 0; k < kLanes; ++k) {
+    if (valid[k] && rays->tfar[k] < 0.0f) lit[k] = 0.0f;  // Embree's mark of a blocked ray
   }
 }
 

@@ -62,6 +62,7 @@ CameraSensor::CameraSensor(const CameraSpec& spec, const RobotModel& robot, cons
   }
   for (int e = 0; e < num_envs; ++e) {
     scenes_.push_back(std::make_unique<CameraEnvScene>(world_));
+    scenes_.back()->setShadows(spec.shadows);
     noise_.emplace_back(seed, e + kCameraStream);
     appearance_rng_.emplace_back(seed, e + kAppearanceStream);
   }

@@ -74,6 +74,7 @@ std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotM
   spec.pose_in_body = offset * (g ? g->pose : Eigen::Isometry3d::Identity());
   spec.optical_in_link = opticalFrame(g ? g->pose : Eigen::Isometry3d::Identity());
   spec.sensor_name = g ? g->sensor_name : "";
+  spec.shadows = config.shadows;
   spec.random_colours = config.random_colours;
   spec.random_light_direction = config.random_light_direction;
   spec.light_intensity = config.light_intensity;
@@ -176,6 +177,7 @@ std::string describeCamera(const CameraSpec& s) {
   out << " (" << s.images_from << "), noise mean " << s.noise_mean << " std " << s.noise_std << " ("
       << s.noise_from << "), every " << s.update_every << " control steps (" << s.update_from
       << "), frame '" << s.frame << "'";
+  if (s.shadows) out << ", shadows";
   if (s.randomizesAppearance()) {
     out << ", appearance randomised (colours " << (s.random_colours ? "on" : "off")
         << ", light intensity " << (s.light_intensity.empty() ? "1" : listText(s.light_intensity))
