@@ -68,6 +68,8 @@ add_library(jetbot_rl_core
   src/core/world/gazebo/gazebo_world_model.cpp
   src/core/world/gazebo/mesh_loader.cpp
   src/core/world/gazebo/sdf_prepass.cpp
+  src/core/world/gazebo/sdf_shapes.cpp
+  src/core/world/gazebo/sdf_visuals.cpp
   src/core/world/gazebo/sdf_world_reader.cpp
   src/core/world/gazebo/world_cut.cpp
   src/core/world/map_yaml.cpp

@@ -31,6 +31,7 @@ catkin_add_gtest(test_core
   test/core/test_occupancy_map.cpp
   test/core/test_camera.cpp
   test/core/test_camera_blocks.cpp
+  test/core/test_camera_gazebo.cpp
   test/core/test_camera_robots.cpp
   test/core/test_camera_sensor.cpp
   test/core/test_laser_scanner.cpp

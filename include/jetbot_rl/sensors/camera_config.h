@@ -27,6 +27,7 @@ struct CameraConfig {
   bool batch_images = true;   ///< The images go into every step's result for learners.
   bool robot_visuals = true;  ///< The robots are drawn by their URDF visuals.
   bool shadows = false;       ///< The light casts shadows.
+  bool world_visuals = true;  ///< A Gazebo world is drawn by its <visual> elements.
   // Appearance randomisation: drawn per env at each reset from its own stream (off: nothing).
   bool random_colours = false;          ///< Surface colours and the floor image's tint.
   std::vector<double> light_intensity;  ///< [min, max] of the light's intensity; []: 1.
@@ -73,6 +74,10 @@ IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
     "world) are drawn by their URDF <visual> shapes and material colours; false: none of its own, "
     "the others as the cylinders the scanner sees (for a robot whose visual meshes are not at "
     "hand).");
+  v("camera/world_visuals", c.world_visuals, AnyValue{},
+    "A Gazebo world (world/gazebo_world) is drawn by its models' <visual> shapes and material "
+    "colours (read at start-up only with a camera); false: by the shapes the scanner sees, in "
+    "the map colour.");
   v("camera/shadows", c.shadows, AnyValue{},
     "The directional light casts shadows: a surface it does not reach gets the ambient light "
     "alone (one more ray per lit pixel).");

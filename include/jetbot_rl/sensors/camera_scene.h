@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct Appearance {
   float light = 1.0f;     ///< The directional light's intensity.
   float ambient = 0.35f;  ///< The share of a colour lit whatever its side faces.
   float exposure = 1.0f;  ///< Gain on every intensity (before the clamp to 1).
+  /// A Gazebo world's visuals keep their material colours; false (colours randomised): the map's.
+  bool material_colours = true;
 
   /// The colour of surfaces of class `c` (kNone: the sky).
   const Eigen::Vector3f& colour(SurfaceClass c) const;
@@ -78,8 +81,9 @@ struct CameraImages {
 
 /**
  * The static bodies of a WorldModel as one Embree scene, in the env frame: the arena walls, the
- * map's obstacle cells (blocks of world/obstacle_height) and a Gazebo world's upright solids (the
- * ground, the plane z = 0, is the renderer's). Built once; read concurrently by every env's scene.
+ * map's obstacle cells (blocks of world/obstacle_height) and a Gazebo world's visuals in their
+ * colours when it was read with them, else its upright solids and cut cells (the ground, the
+ * plane z = 0, is the renderer's). Built once; read concurrently by every env's scene.
  */
 class CameraWorld {
  public:
@@ -97,6 +101,11 @@ class CameraWorld {
   RTCSceneTy* unitShape(bool cylinder) const { return cylinder ? unit_cylinder_ : unit_box_; }
   /// The class of the static scene's geometry `id`.
   SurfaceClass surfaceClass(unsigned id) const { return classes_.at(id); }
+  /// The material colour of the static scene's geometry `id` (a Gazebo world's visuals), or none
+  /// (its class's colour).
+  std::optional<Eigen::Vector3f> colourOf(unsigned id) const {
+    return id < colours_.size() ? colours_[id] : std::nullopt;
+  }
   /// The floor image on the ground, or nullptr.
   const FloorImage* floor() const { return floor_.get(); }
   /// Makes `robot`'s URDF visuals what the env scenes draw their robots with; `hidden_link`: the
@@ -111,7 +120,8 @@ class CameraWorld {
   RTCSceneTy* scene_ = nullptr;
   RTCSceneTy* unit_cylinder_ = nullptr;
   RTCSceneTy* unit_box_ = nullptr;
-  std::vector<SurfaceClass> classes_;  // per geometry id of scene_
+  std::vector<SurfaceClass> classes_;                    // per geometry id of scene_
+  std::vector<std::optional<Eigen::Vector3f>> colours_;  // per geometry id of scene_
   std::shared_ptr<const FloorImage> floor_;
   std::unique_ptr<CameraRobot> robot_;
 };

@@ -44,6 +44,8 @@ struct WorldConfig {
   double curriculum_success = 0.8;     ///< The success rate that raises the difficulty.
   double curriculum_step = 0.1;        ///< By this much.
   double curriculum_mix = 0.0;         ///< Share of resets drawn at a difficulty below the env's.
+  /// Not a parameter: a Gazebo world's <visual> elements are read too (a camera draws them).
+  bool read_visuals = false;
 
   /// True when the env has any world: a map, walls or obstacles.
   bool enabled() const {

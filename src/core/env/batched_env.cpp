@@ -50,6 +50,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     config_.world.cut_height =
         resolveCutHeight(config_.world, scanner ? scannerHeight(*robot_, *scanner) : 0.0);
   }
+  const std::optional<CameraSpec> camera =
+      resolveCamera(config_.camera, *robot_, config_.controlDt());
+  config_.world.read_visuals = camera && config_.camera.world_visuals;  // only what is drawn
   scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_);
   const int n = config_.numRows();
   if (scanner) {
@@ -61,8 +64,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (!config_.world.floor.empty()) {
     floor = std::make_shared<const FloorImage>(FloorImage::fromYamlFile(config_.world.floor));
   }
-  if (const std::optional<CameraSpec> camera =
-          resolveCamera(config_.camera, *robot_, config_.controlDt())) {
+  if (camera) {
     camera_ = std::make_unique<CameraSensor>(
         *camera, *robot_, scene_->world(), std::move(floor), n, config_.seed, result_.images,
         config_.camera.batch_images, config_.camera.robot_visuals);

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/floor_image.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/world_model.h"
 #include "sensors/camera_robot.h"
 #include "sensors/embree_geometry.h"
@@ -63,11 +65,16 @@ CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorIma
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
 
   std::vector<Eigen::Vector3d> walls, blocks;
+  // A Gazebo world read with its visuals is drawn by them; else by the shapes the scanner sees.
+  const GazeboWorld* gazebo = world ? world->gazebo() : nullptr;
+  const bool visuals = gazebo && !gazebo->visuals.empty();
   if (world) {
     for (const Obstacle& w : world->walls()) addObstacle(w, walls);
-    for (const Obstacle& o : world->worldObstacles()) addObstacle(o, blocks);
+    for (const Obstacle& o : world->worldObstacles()) {
+      if (!visuals) addObstacle(o, blocks);
+    }
   }
-  if (world && world->map()) {
+  if (world && world->map() && !visuals) {
     for (const Eigen::AlignedBox2d& r : world->mapRectangles()) {
       Obstacle block;
       block.center = world->mapPose() * r.center();
@@ -96,6 +103,22 @@ CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorIma
   if (!blocks.empty()) {
     classes_.push_back(SurfaceClass::kMap);
     attachTriangles(device_, scene_, blocks);
+  }
+  if (visuals) {  // one geometry per colour
+    std::vector<std::pair<Eigen::Vector3f, std::vector<Eigen::Vector3d>>> by_colour;
+    for (const WorldVisual& v : gazebo->visuals) {
+      auto at = std::find_if(by_colour.begin(), by_colour.end(),
+                             [&](const auto& c) { return c.first == v.colour; });
+      if (at == by_colour.end()) at = by_colour.insert(by_colour.end(), {v.colour, {}});
+      at->second.insert(at->second.end(), v.triangles.begin(), v.triangles.end());
+    }
+    for (const auto& [colour, corners] : by_colour) {
+      const unsigned id = attachTriangles(device_, scene_, corners);
+      if (classes_.size() <= id) classes_.resize(id + 1, SurfaceClass::kMap);
+      if (colours_.size() <= id) colours_.resize(id + 1);
+      classes_[id] = SurfaceClass::kMap;
+      colours_[id] = colour;
+    }
   }
   rtcCommitScene(scene_);
 }
@@ -351,9 +374,13 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
         const RobotSlot* robot = surface == SurfaceClass::kRobot
                                      ? &robots_[static_cast<std::size_t>(of_id_[instance].robot)]
                                      : nullptr;
+        const std::optional<Eigen::Vector3f> material = instance == world_id_ && a.material_colours
+                                                            ? world_.colourOf(packet.hit.geomID[k])
+                                                            : std::nullopt;
         Eigen::Vector3f albedo =
-            robot ? world_.robot()->colour(robot->body, robot->own, packet.hit.geomID[k])
-                  : a.colour(surface);
+            robot      ? world_.robot()->colour(robot->body, robot->own, packet.hit.geomID[k])
+            : material ? *material
+                       : a.colour(surface);
         if (on_ground && floor &&
             floor->colourAt(origin.x() + t * packet.ray.dir_x[k],
                             origin.y() + t * packet.ray.dir_y[k], albedo)) {

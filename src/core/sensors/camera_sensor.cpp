@@ -132,6 +132,7 @@ void CameraSensor::drawAppearance(int env) {
   Rng& rng = appearance_rng_[env];
   Appearance a;
   if (spec_.random_colours) {
+    a.material_colours = false;
     for (Eigen::Vector3f* c : {&a.ground, &a.wall, &a.map, &a.obstacle, &a.mover}) {
       *c = uniformColour(rng, 0.1, 0.9);
     }

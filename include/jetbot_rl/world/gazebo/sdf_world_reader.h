@@ -1,7 +1,7 @@
 #pragma once
 
 // A Gazebo world as its SDF file describes it (docs/world.md, "Gazebo worlds"): the collision
-// geometry of every model, read with sdformat, placed in the world frame.
+// and visual geometry of every model, read with sdformat, placed in the world frame.
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -26,12 +26,22 @@ struct WorldSolid {
   Eigen::AlignedBox2d bounds;      ///< Its extent in the ground plane [m].
 };
 
+/// One `<visual>` of a Gazebo world, in the world frame: what a camera sees of it.
+struct WorldVisual {
+  std::string name;  ///< Scoped as Gazebo scopes it: model::nested::link::visual.
+  std::vector<Eigen::Vector3d> triangles;  ///< Three corners per triangle [m].
+  /// Diffuse RGB in [0, 1]: its `<material>`'s `<diffuse>`, else its Gazebo script's colour
+  /// (Gazebo/Grey, Gazebo/Wood, ...), else grey.
+  Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
+};
+
 /// A Gazebo world's collision geometry and what was not read of it.
 struct GazeboWorld {
-  std::string path;                ///< The file as given.
-  std::string name;                ///< The `<world name>`.
-  std::vector<WorldSolid> solids;  ///< Every model's collisions, at the models' initial poses.
-  int models = 0;                  ///< Models read, nested ones included.
+  std::string path;                  ///< The file as given.
+  std::string name;                  ///< The `<world name>`.
+  std::vector<WorldSolid> solids;    ///< Every model's collisions, at the models' initial poses.
+  std::vector<WorldVisual> visuals;  ///< Every model's visuals, likewise.
+  int models = 0;                    ///< Models read, nested ones included.
   /// What was not read, for one INFO line (lights, plugins, planes, ...); "" when nothing.
   std::string skipped;
 };
@@ -42,10 +52,12 @@ struct GazeboWorld {
  * (`relative_to`, frames). Boxes, cylinders, spheres, ellipsoids, capsules, meshes (assimp, with
  * `<scale>`; URIs `model://`, `file://`, relative to their SDF file, or through `resolver`) and
  * `<polyline>` extrusions; planes (the ground) and heightmaps are skipped and named in `skipped`.
- * Throws ConfigError naming the file and line as sdformat reports them, the mesh that cannot be
- * read or the model URI that cannot be found.
+ * With `visuals`, every `<visual>` too (GazeboWorld::visuals: the same shapes, with their
+ * materials' colours). Throws ConfigError naming the file and line as sdformat reports them, the
+ * mesh that cannot be read or the model URI that cannot be found.
  */
-GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver = nullptr);
+GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver = nullptr,
+                            bool visuals = false);
 
 /// True when the solid crosses the plane z = `height` [m].
 bool crossesHeight(const WorldSolid& solid, double height);

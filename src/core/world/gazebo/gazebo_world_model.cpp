@@ -24,9 +24,14 @@ void WorldModel::readGazeboWorld() {
   const std::string& path = config_.gazebo_world;
   auto world = std::make_shared<GazeboWorld>();
   try {
-    *world = loadGazeboWorld(path);
+    *world = loadGazeboWorld(path, nullptr, config_.read_visuals);
   } catch (const Error& e) {
-    throw ConfigError(std::string("world/gazebo_world: ") + e.what());
+    const bool visual =
+        config_.read_visuals && std::string(e.what()).find("visual '") != std::string::npos;
+    throw ConfigError(std::string("world/gazebo_world: ") + e.what() +
+                      (visual ? " (the camera draws the world's visuals; camera/world_visuals: "
+                                "false draws the shapes the scanner sees)"
+                              : ""));
   }
   const double height = cutHeight(), resolution = config_.map_resolution;
   const Eigen::AlignedBox2d area = cutArea(world->solids, height, resolution, kGridMargin);

@@ -1,5 +1,5 @@
-// loadGazeboWorld(): an SDF world's collision geometry through sdformat (its parser, its frame
-// semantics, its <include> handling); only the shapes' surfaces are made here.
+// loadGazeboWorld(): an SDF world's collision (and visual) geometry through sdformat (its parser,
+// its frame semantics, its <include> handling); the shapes' surfaces are sdf_shapes.cpp's.
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 
 #include <algorithm>
@@ -17,19 +17,12 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/package_path.h"
 #include "world/gazebo/sdf_prepass.h"
+#include "world/gazebo/sdf_shapes.h"
+#include "world/gazebo/sdf_visuals.h"
 #include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
 namespace {
-
-Eigen::Isometry3d toEigen(const ignition::math::Pose3d& p) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() = Eigen::Vector3d(p.Pos().X(), p.Pos().Y(), p.Pos().Z());
-  t.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z())
-                   .normalized()
-                   .toRotationMatrix();
-  return t;
-}
 
 std::string errorText(const sdf::Errors& errors, const std::string& path) {
   std::ostringstream s;
@@ -46,20 +39,6 @@ std::string errorText(const sdf::Errors& errors, const std::string& path) {
   return s.str();
 }
 
-// What a collision may measure and where it may lie [m]: beyond, it is refused naming it (a size
-// of 1e300 would take the cut's loops for ever; a shape 100 km out, a grid of 4e12 cells).
-constexpr double kMaxShapeSize = 1000.0;
-constexpr double kMaxShapeDistance = 10000.0;
-
-/// "FILE:LINE" of an SDF element (the world's file when sdformat read it from a string).
-std::string whereIs(const sdf::ElementPtr& element, const std::string& world_path) {
-  if (!element) return world_path;
-  const std::string& file = element->FilePath();
-  std::string where = file.rfind('/', 0) == 0 ? file : world_path;
-  if (const std::optional<int> line = element->LineNumber()) where += ":" + std::to_string(*line);
-  return where;
-}
-
 bool deprecationOnly(const sdf::Error& e) {
   return e.Code() == sdf::ErrorCode::VERSION_DEPRECATED ||
          e.Code() == sdf::ErrorCode::ELEMENT_DEPRECATED ||
@@ -68,7 +47,8 @@ bool deprecationOnly(const sdf::Error& e) {
 
 class Reader {
  public:
-  Reader(GazeboWorld& world, const MeshResolver& resolver) : world_(world), resolver_(resolver) {}
+  Reader(GazeboWorld& world, const MeshResolver& resolver, bool visuals)
+      : world_(world), resolver_(resolver), visuals_(visuals) {}
 
   void model(const sdf::Model& m, const Eigen::Isometry3d& pose, const std::string& scope) {
     ++world_.models;
@@ -85,6 +65,17 @@ class Reader {
                             "' cannot be resolved: " + errorText(errors, world_.path));
         }
         shape(collision, pose * toEigen(p), scoped);
+      }
+      for (uint64_t v = 0; visuals_ && v < link.VisualCount(); ++v) {
+        const sdf::Visual& visual = *link.VisualByIndex(v);
+        ignition::math::Pose3d p;
+        const std::string scoped = name + "::" + link.Name() + "::" + visual.Name();
+        if (!visual.SemanticPose().Resolve(p, "__model__").empty()) {
+          skip("visual '" + scoped + "' (its pose cannot be resolved)");
+          continue;
+        }
+        readVisual(visual, pose * toEigen(p), scoped, world_.path, resolver_, world_.visuals,
+                   skipped_);
       }
     }
     for (uint64_t i = 0; i < m.ModelCount(); ++i) {
@@ -116,15 +107,6 @@ class Reader {
       throw ConfigError(whereIs(collision.Element(), world_.path) + ": collision '" + name +
                         "': " + what);
     };
-    const auto sized = [&](const char* what, std::initializer_list<double> values) {
-      for (double v : values) {
-        if (!(v > 0.0 && v <= kMaxShapeSize)) {
-          std::ostringstream s;
-          s << what << " " << v << " must be in (0, " << kMaxShapeSize << "] m";
-          refuse(s.str());
-        }
-      }
-    };
     if (!pose.translation().allFinite() ||
         pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
       std::ostringstream s;
@@ -132,31 +114,7 @@ class Reader {
         << kMaxShapeDistance << " m of the origin on every axis";
       refuse(s.str());
     }
-    switch (g.Type()) {
-      case sdf::GeometryType::BOX: {
-        const auto b = g.BoxShape()->Size();
-        sized("its box size", {b.X(), b.Y(), b.Z()});
-        break;
-      }
-      case sdf::GeometryType::CYLINDER:
-        sized("its cylinder radius and length",
-              {g.CylinderShape()->Radius(), g.CylinderShape()->Length()});
-        break;
-      case sdf::GeometryType::SPHERE:
-        sized("its sphere radius", {g.SphereShape()->Radius()});
-        break;
-      case sdf::GeometryType::ELLIPSOID: {
-        const auto a = g.EllipsoidShape()->Radii();
-        sized("its ellipsoid radii", {a.X(), a.Y(), a.Z()});
-        break;
-      }
-      case sdf::GeometryType::CAPSULE:
-        sized("its capsule radius and length",
-              {g.CapsuleShape()->Radius(), g.CapsuleShape()->Length()});
-        break;
-      default:
-        break;
-    }
+    if (const std::string bad = sdfSizeProblem(g); !bad.empty()) refuse(bad);
     const Eigen::Matrix3d& r = pose.linear();
     WorldSolid solid;
     solid.name = name;
@@ -195,45 +153,29 @@ class Reader {
         }
         break;
       }
-      case sdf::GeometryType::SPHERE:
-        local = ellipsoidSurface(Eigen::Vector3d::Constant(g.SphereShape()->Radius()));
-        break;
-      case sdf::GeometryType::ELLIPSOID: {
-        const auto a = g.EllipsoidShape()->Radii();
-        local = ellipsoidSurface(Eigen::Vector3d(a.X(), a.Y(), a.Z()));
-        break;
-      }
-      case sdf::GeometryType::CAPSULE: {
-        const double radius = g.CapsuleShape()->Radius(), length = g.CapsuleShape()->Length();
-        local = cylinderSurface(radius, length);
-        for (double end : {-0.5 * length, 0.5 * length}) {
-          const auto cap =
-              ellipsoidSurface(Eigen::Vector3d::Constant(radius), Eigen::Vector3d(0, 0, end));
-          local.insert(local.end(), cap.begin(), cap.end());
-        }
-        break;
-      }
-      case sdf::GeometryType::MESH:
-        local = mesh(*g.MeshShape(), name);
-        break;
       case sdf::GeometryType::PLANE:
         skip("plane '" + name + "' (the ground is the simulator's own)");
         return;
       case sdf::GeometryType::HEIGHTMAP:
         skip("heightmap '" + name + "'");
         return;
-      default: {
-        bool any = false;
+      case sdf::GeometryType::MESH:
         try {
-          any = polyline(g, local);
-        } catch (const ConfigError& e) {
+          local = sdfMeshTriangles(*g.MeshShape(), world_.path, resolver_, name, skipped_);
+        } catch (const Error& e) {
+          throw ConfigError(world_.path + ": collision '" + name + "': " + e.what());
+        }
+        break;
+      default:
+        try {
+          local = sdfSurface(g, world_.path, resolver_, name, skipped_);
+        } catch (const Error& e) {
           refuse(e.what());
         }
-        if (!any) {
+        if (local.empty()) {
           skip("empty geometry '" + name + "'");
           return;
         }
-      }
     }
     if (solid.upright) {
       setUpright(solid, *solid.upright, solid.bottom, solid.top);
@@ -243,84 +185,15 @@ class Reader {
     world_.solids.push_back(std::move(solid));
   }
 
-  std::vector<Eigen::Vector3d> mesh(const sdf::Mesh& m, const std::string& name) {
-    std::string path;
-    const std::string& uri = m.Uri();
-    try {
-      path = resolveMeshUri(uri, [&](const std::string& u) {
-        if (u.rfind("model://", 0) == 0) {
-          const std::string found = findGazeboModel(u);
-          if (found.empty()) throw ConfigError("no model folder of that name");
-          return found;
-        }
-        if (resolver_) return resolver_(u);
-        const std::string found = findPackageUri(u);
-        if (found.empty()) throw ConfigError("no such package on ROS_PACKAGE_PATH");
-        return found;
-      });
-      if (!path.empty() && path[0] != '/') {  // relative to the SDF file that names it
-        // Read from a string (sdf_prepass.h), the world's own models have no file path.
-        const std::string& from = m.FilePath().rfind('/', 0) == 0 ? m.FilePath() : world_.path;
-        const auto slash = from.rfind('/');
-        if (slash != std::string::npos) path = from.substr(0, slash + 1) + path;
-      }
-      std::vector<Eigen::Vector3d> triangles = loadMeshTriangles(path);
-      const auto s = m.Scale();
-      const Eigen::Vector3d scale(s.X(), s.Y(), s.Z());
-      for (Eigen::Vector3d& p : triangles) {
-        p = p.cwiseProduct(scale);
-        if (!(p.cwiseAbs().maxCoeff() <= kMaxShapeSize)) {
-          std::ostringstream s;
-          s << "a vertex of mesh '" << uri << "' at scale " << scale.transpose() << " lies at ("
-            << p.transpose() << "), beyond " << kMaxShapeSize << " m of its origin";
-          throw ConfigError(s.str());
-        }
-      }
-      if (!m.Submesh().empty()) skip("submesh choice of '" + name + "' (the whole mesh is used)");
-      return triangles;
-    } catch (const Error& e) {
-      throw ConfigError(world_.path + ": collision '" + name + "': " + e.what());
-    }
-  }
-
-  /// A `<polyline>` (sdformat 12 has no class for it: read from its element). False if none.
-  static bool polyline(const sdf::Geometry& g, std::vector<Eigen::Vector3d>& out) {
-    const sdf::ElementPtr geometry = g.Element();
-    if (!geometry || !geometry->HasElement("polyline")) return false;
-    for (sdf::ElementPtr p = geometry->GetElement("polyline"); p;
-         p = p->GetNextElement("polyline")) {
-      std::vector<Eigen::Vector2d> points;
-      for (sdf::ElementPtr q = p->HasElement("point") ? p->GetElement("point") : nullptr; q;
-           q = q->GetNextElement("point")) {
-        const auto v = q->Get<ignition::math::Vector2d>();
-        if (!(std::abs(v.X()) <= kMaxShapeSize && std::abs(v.Y()) <= kMaxShapeSize)) {
-          std::ostringstream text;
-          text << "its polyline point (" << v.X() << ", " << v.Y() << ") lies beyond "
-               << kMaxShapeSize << " m of its origin";
-          throw ConfigError(text.str());
-        }
-        points.emplace_back(v.X(), v.Y());
-      }
-      if (const double height = p->Get<double>("height");
-          !(height > 0.0 && height <= kMaxShapeSize)) {
-        std::ostringstream text;
-        text << "its polyline height " << height << " must be in (0, " << kMaxShapeSize << "] m";
-        throw ConfigError(text.str());
-      }
-      const auto surface = polylineSurface(points, p->Get<double>("height"));
-      out.insert(out.end(), surface.begin(), surface.end());
-    }
-    return !out.empty();
-  }
-
   GazeboWorld& world_;
   const MeshResolver& resolver_;
+  bool visuals_;
   std::vector<std::string> skipped_;
 };
 
 }  // namespace
 
-GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver) {
+GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver, bool visuals) {
   GazeboWorld world;
   world.path = path;
   sdf::ParserConfig config;
@@ -371,7 +244,7 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   }
   const sdf::World& w = *root->WorldByIndex(0);
   world.name = w.Name();
-  Reader reader(world, resolver);
+  Reader reader(world, resolver, visuals);
   const auto worldPose = [&](const sdf::SemanticPose& pose, const std::string& what) {
     ignition::math::Pose3d p;
     const sdf::Errors e = pose.Resolve(p, "world");
@@ -382,13 +255,15 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
     return toEigen(p);
   };
   std::map<std::string, std::pair<std::size_t, std::size_t>> solids_of;  // model -> [from, to)
+  std::map<std::string, std::pair<std::size_t, std::size_t>> visuals_of;
   std::map<std::string, int> models_in;
   for (uint64_t i = 0; i < w.ModelCount(); ++i) {
     const sdf::Model& m = *w.ModelByIndex(i);
-    const std::size_t from = world.solids.size();
+    const std::size_t from = world.solids.size(), visuals_from = world.visuals.size();
     const int models = world.models;
     reader.model(m, worldPose(m.SemanticPose(), "model '" + m.Name() + "'"), "");
     solids_of[m.Name()] = {from, world.solids.size()};
+    visuals_of[m.Name()] = {visuals_from, world.visuals.size()};
     models_in[m.Name()] = world.models - models;
   }
   for (const RepeatedModel& r : repeats) {
@@ -401,6 +276,13 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
       WorldSolid solid = moved(world.solids[k], move);
       solid.name = r.name + solid.name.substr(r.like.size());
       world.solids.push_back(std::move(solid));
+    }
+    const auto [visuals_from, visuals_to] = visuals_of.at(r.like);
+    for (std::size_t k = visuals_from; k < visuals_to; ++k) {
+      WorldVisual visual = world.visuals[k];
+      for (Eigen::Vector3d& c : visual.triangles) c = move * c;
+      visual.name = r.name + visual.name.substr(r.like.size());
+      world.visuals.push_back(std::move(visual));
     }
     world.models += models_in.at(r.like);
   }

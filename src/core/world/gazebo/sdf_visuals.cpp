@@ -1,0 +1,77 @@
+#include "world/gazebo/sdf_visuals.h"
+
+#include <sstream>
+#include <utility>
+
+#include "jetbot_rl/errors.h"
+#include "world/gazebo/sdf_shapes.h"
+
+namespace jetbot_rl {
+
+bool gazeboScriptColour(const std::string& script, Eigen::Vector3f& colour) {
+  // The diffuse colours of Gazebo 11's media/materials/scripts/gazebo.material, the common ones.
+  static const std::vector<std::pair<const char*, Eigen::Vector3f>> known{
+      {"Gazebo/White", {1.0f, 1.0f, 1.0f}},        {"Gazebo/Grey", {0.7f, 0.7f, 0.7f}},
+      {"Gazebo/Gray", {0.7f, 0.7f, 0.7f}},         {"Gazebo/DarkGrey", {0.35f, 0.35f, 0.35f}},
+      {"Gazebo/DarkGray", {0.35f, 0.35f, 0.35f}},  {"Gazebo/Black", {0.0f, 0.0f, 0.0f}},
+      {"Gazebo/FlatBlack", {0.1f, 0.1f, 0.1f}},    {"Gazebo/Red", {1.0f, 0.0f, 0.0f}},
+      {"Gazebo/Green", {0.0f, 1.0f, 0.0f}},        {"Gazebo/Blue", {0.0f, 0.0f, 1.0f}},
+      {"Gazebo/Yellow", {1.0f, 1.0f, 0.0f}},       {"Gazebo/Orange", {1.0f, 0.5088f, 0.0468f}},
+      {"Gazebo/Purple", {1.0f, 0.0f, 1.0f}},       {"Gazebo/Turquoise", {0.0f, 1.0f, 1.0f}},
+      {"Gazebo/Indigo", {0.33f, 0.0f, 0.5f}},      {"Gazebo/Wood", {0.52f, 0.37f, 0.26f}},
+      {"Gazebo/WoodFloor", {0.6f, 0.45f, 0.3f}},   {"Gazebo/WoodPallet", {0.6f, 0.45f, 0.3f}},
+      {"Gazebo/Bricks", {0.6f, 0.3f, 0.2f}},       {"Gazebo/Gold", {0.8f, 0.65f, 0.0f}},
+      {"Gazebo/CeilingTiled", {0.8f, 0.8f, 0.8f}}, {"Gazebo/PaintedWall", {0.9f, 0.9f, 0.85f}},
+  };
+  for (const auto& [name, rgb] : known) {
+    if (script == name) {
+      colour = rgb;
+      return true;
+    }
+  }
+  return false;
+}
+
+void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const std::string& name,
+                const std::string& world_path, const MeshResolver& resolver,
+                std::vector<WorldVisual>& out, std::vector<std::string>& notes) {
+  const auto refuse = [&](const std::string& what) {
+    throw ConfigError(whereIs(visual.Element(), world_path) + ": visual '" + name + "': " + what);
+  };
+  const sdf::Geometry& g = *visual.Geom();
+  if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own
+  if (!pose.translation().allFinite() ||
+      pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
+    std::ostringstream s;
+    s << "its pose in the world (" << pose.translation().transpose() << ") must lie within "
+      << kMaxShapeDistance << " m of the origin on every axis";
+    refuse(s.str());
+  }
+  if (const std::string bad = sdfSizeProblem(g); !bad.empty()) refuse(bad);
+  WorldVisual v;
+  v.name = name;
+  try {
+    v.triangles = sdfSurface(g, world_path, resolver, name, notes);
+  } catch (const Error& e) {
+    refuse(e.what());
+  }
+  if (v.triangles.empty()) {
+    notes.push_back("empty visual '" + name + "'");
+    return;
+  }
+  for (Eigen::Vector3d& c : v.triangles) c = pose * c;
+  if (const sdf::Material* material = visual.Material()) {
+    const sdf::ElementPtr element = material->Element();
+    if (element && element->HasElement("diffuse")) {
+      const ignition::math::Color d = material->Diffuse();
+      v.colour = Eigen::Vector3f(d.R(), d.G(), d.B()).cwiseMax(0.0f).cwiseMin(1.0f);
+    } else if (!material->ScriptName().empty() &&
+               !gazeboScriptColour(material->ScriptName(), v.colour)) {
+      notes.push_back("material '" + material->ScriptName() + "' of visual '" + name +
+                      "' (drawn grey)");
+    }
+  }
+  out.push_back(std::move(v));
+}
+
+}  // namespace jetbot_rl
