@@ -137,7 +137,9 @@ int main(int argc, char** argv) {
           for (int e = t; e < o.num_envs; e += o.threads) {
             if (o.people > 0) {  // each a step of 2 cm, as the batch moves them before an image
               for (Obstacle& p : people[e]) p.center.x() += f % 2 ? -0.02 : 0.02;
-              scenes[e]->setMovers(people[e]);
+              // As the batch does: those no ray can meet left out (all kept with shadows).
+              const ViewCone view(model, poses[e]);
+              scenes[e]->setMovers(people[e], true, o.shadows ? nullptr : &view);
             }
             scenes[e]->render(model, poses[e], images);
           }

@@ -219,6 +219,51 @@ TEST_F(CameraRender, NothingWithinFarIsInfinityAndNearerThanNearMinusInfinity) {
   EXPECT_TRUE(std::isinf(images.depth[8 * 16 + 8]) && images.depth[8 * 16 + 8] < 0.0f);
 }
 
+TEST_F(CameraRender, MoversNoRayMeetsAreLeftOutAndTheImagesStayTheSame) {
+  // People all around a camera: with its view cone the scene holds only those its rays may meet,
+  // and renders the very same images.
+  std::vector<Obstacle> people;
+  for (int k = 0; k < 24; ++k) {
+    Obstacle p;
+    p.shape = Obstacle::Shape::kCylinder;
+    const double angle = 2.0 * M_PI * k / 24.0, range = 0.8 + 0.3 * (k % 5);
+    p.center = {range * std::cos(angle), range * std::sin(angle)};
+    p.radius = 0.2;
+    p.height = 1.7;
+    people.push_back(p);
+  }
+  CameraIntrinsics c = cameraIntrinsics(48, 32, 1.6);
+  c.k1 = -0.1;  // barrel: the widest rays are not the pinhole's
+  const CameraModel m(c);
+  const Eigen::Isometry3d pose = levelCamera(0.1);
+  CameraImages all, culled;
+  scene_.setMovers(people);
+  scene_.render(m, pose, all);
+  const ViewCone view(m, pose);
+  int seen = 0;
+  for (const Obstacle& p : people) {
+    seen += view.mayMeet(Eigen::Vector3d(p.center.x(), p.center.y(), 0.85), std::hypot(0.2, 0.85));
+  }
+  EXPECT_GT(seen, 4);
+  EXPECT_LT(seen, 18);  // those behind and beside it are left out
+  scene_.setMovers(people, true, &view);
+  scene_.render(m, pose, culled);
+  EXPECT_EQ(culled.rgb, all.rgb);
+  EXPECT_EQ(culled.label, all.label);
+  EXPECT_EQ(0,
+            std::memcmp(culled.depth.data(), all.depth.data(), all.depth.size() * sizeof(float)));
+  EXPECT_GT(std::count(all.label.begin(), all.label.end(),
+                       static_cast<std::uint8_t>(SurfaceClass::kMover)),
+            100);
+  // A far clip short of them all leaves every one out.
+  c.far = 0.3;
+  const CameraModel near_only(c);
+  const ViewCone short_view(near_only, pose);
+  for (const Obstacle& p : people) {
+    EXPECT_FALSE(short_view.mayMeet(Eigen::Vector3d(p.center.x(), p.center.y(), 0.85), 0.21));
+  }
+}
+
 TEST_F(CameraRender, ShadowsFallWhereTheLightIsBlocked) {
   // A 0.5 m tall post under a light shining along +x at 45 degrees: its shadow lies on the ground
   // from its +x face to 0.5 m beyond it; a camera 2 m up looks straight down.

@@ -6,7 +6,8 @@
 // the optical frame of REP 103 (z forward, x right, y down). Pixel (0, 0)'s centre is at (0, 0):
 // the principal point is the image's centre ((width - 1) / 2, (height - 1) / 2).
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,8 @@ class CameraModel {
   Eigen::Vector3d ray(double u, double v) const;
   /// ray() of every pixel centre, row by row (width x height directions, z = 1).
   const std::vector<Eigen::Vector3f>& pixelRays() const { return pixel_rays_; }
+  /// The widest pixel rays: the largest |x| and |y| of pixelRays() (z = 1).
+  const Eigen::Vector2f& rayReach() const { return ray_reach_; }
 
   /// Normalised image coordinates (x/z, y/z) distorted by the Brown-Conrady model.
   Eigen::Vector2d distort(const Eigen::Vector2d& normalised) const;
@@ -69,6 +72,23 @@ class CameraModel {
   double f_ = 0.0, cx_ = 0.0, cy_ = 0.0;
   bool distorted_ = false;
   std::vector<Eigen::Vector3f> pixel_rays_;
+  Eigen::Vector2f ray_reach_ = Eigen::Vector2f::Zero();
+};
+
+/// Where a camera's rays can go, for leaving out what they cannot meet: the planes through its
+/// widest pixel rays and its far clip, at its pose.
+class ViewCone {
+ public:
+  /// `pose`: the camera's optical frame in the env frame.
+  ViewCone(const CameraModel& model, const Eigen::Isometry3d& pose);
+  /// False only when no pixel ray meets the sphere of `radius` [m] about `centre` (env frame)
+  /// within the far clip.
+  bool mayMeet(const Eigen::Vector3d& centre, double radius) const;
+
+ private:
+  Eigen::Isometry3d to_optical_;
+  std::array<Eigen::Vector3d, 4> sides_;  // outward unit normals of the four side planes
+  double far_;
 };
 
 }  // namespace jetbot_rl

@@ -151,7 +151,9 @@ class CameraEnvScene {
   const Appearance& appearance() const { return appearance_; }
   /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
   /// an instance of a unit shape, moved without rebuilding any triangles.
-  void setMovers(const std::vector<Obstacle>& movers, bool commit = true);
+  /// `view`: only the movers its rays may meet are placed (none: all).
+  void setMovers(const std::vector<Obstacle>& movers, bool commit = true,
+                 const ViewCone* view = nullptr);
   /// Places the robots of the env's world (none before the first call), each body an instance of
   /// CameraWorld's robot at its pose; robots beyond `robots.size()` are hidden. Needs
   /// CameraWorld::setRobot().

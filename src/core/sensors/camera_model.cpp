@@ -125,7 +125,10 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics, const std::string& 
   distorted_ = hasDistortion(intrinsics_);
   pixel_rays_.reserve(static_cast<std::size_t>(width()) * height());
   for (int v = 0; v < height(); ++v) {
-    for (int u = 0; u < width(); ++u) pixel_rays_.push_back(ray(u, v).cast<float>());
+    for (int u = 0; u < width(); ++u) {
+      pixel_rays_.push_back(ray(u, v).cast<float>());
+      ray_reach_ = ray_reach_.cwiseMax(pixel_rays_.back().head<2>().cwiseAbs());
+    }
   }
 }
 
@@ -150,6 +153,27 @@ std::optional<Eigen::Vector2d> CameraModel::project(const Eigen::Vector3d& point
 Eigen::Vector3d CameraModel::ray(double u, double v) const {
   const Eigen::Vector2d p = undistort(Eigen::Vector2d((u - cx_) / f_, (v - cy_) / f_));
   return Eigen::Vector3d(p.x(), p.y(), 1.0);
+}
+
+ViewCone::ViewCone(const CameraModel& model, const Eigen::Isometry3d& pose)
+    : to_optical_(pose.inverse()), far_(model.intrinsics().far) {
+  // A side plane through the widest ray x = +-reach (z = 1), its normal pointing out of the cone;
+  // a little wider than the rays, so that rounding never leaves out what a ray meets.
+  const Eigen::Vector2d reach =
+      model.rayReach().cast<double>() * (1.0 + 1e-6) + Eigen::Vector2d::Constant(1e-6);
+  sides_ = {Eigen::Vector3d(1.0, 0.0, -reach.x()).normalized(),
+            Eigen::Vector3d(-1.0, 0.0, -reach.x()).normalized(),
+            Eigen::Vector3d(0.0, 1.0, -reach.y()).normalized(),
+            Eigen::Vector3d(0.0, -1.0, -reach.y()).normalized()};
+}
+
+bool ViewCone::mayMeet(const Eigen::Vector3d& centre, double radius) const {
+  const Eigen::Vector3d c = to_optical_ * centre;
+  if (c.z() < -radius || c.z() > far_ + radius) return false;  // behind, or beyond the far clip
+  for (const Eigen::Vector3d& n : sides_) {
+    if (n.dot(c) > radius) return false;
+  }
+  return true;
 }
 
 }  // namespace jetbot_rl

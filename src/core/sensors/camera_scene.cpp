@@ -37,6 +37,14 @@ inline std::uint8_t toByte(float intensity) {
   return static_cast<std::uint8_t>(255.0f * intensity + 0.5f);
 }
 
+/// Whether `view`'s rays may meet upright `o` (standing on the ground): its bounding sphere.
+bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
+  const double half = 0.5 * o.height;
+  const double across = o.shape == Obstacle::Shape::kCylinder ? o.radius : o.half_extents.norm();
+  return view.mayMeet(Eigen::Vector3d(o.center.x(), o.center.y(), half),
+                      std::sqrt(across * across + half * half));
+}
+
 /// Appends the surface of obstacle `o` (standing on the ground) in the env frame.
 void addObstacle(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
   const std::vector<Eigen::Vector3d> local = uprightSurface(o, o.height);
@@ -179,7 +187,8 @@ unsigned CameraEnvScene::addInstance(RTCSceneTy* shape) {
   return id;
 }
 
-void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit) {
+void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit,
+                               const ViewCone* view) {
   for (std::size_t i = 0; i < std::max(movers.size(), movers_.size()); ++i) {
     if (i == movers_.size()) {
       MoverSlot slot;
@@ -189,7 +198,7 @@ void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit)
     }
     MoverSlot& slot = movers_[i];
     RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
-    if (i >= movers.size() || !movers[i].placed) {
+    if (i >= movers.size() || !movers[i].placed || (view && !mayBeSeen(movers[i], *view))) {
       rtcDisableGeometry(instance);
       continue;
     }

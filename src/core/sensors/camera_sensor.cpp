@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "env/env_physics.h"
@@ -168,14 +169,17 @@ void CameraSensor::drawAppearance(int env) {
 
 void CameraSensor::render(int env, const SensedEnv& sensed) {
   CameraEnvScene& scene = *scenes_[env];
-  if (world_.robot()) {
-    if (sensed.people) scene.setMovers(*sensed.people, /*commit=*/false);
-    scene.setRobots(robotPoses(env, sensed));
-  } else if (sensed.movers) {  // people and the other robots as cylinders
-    scene.setMovers(*sensed.movers);
-  }
   poses_[env] = opticalFrame(toEigen(sensed.physics.linkPose(spec_.body)) * spec_.pose_in_body *
                              jitter_[env]);
+  // Movers no ray can meet are left out of the scene (a shadow ray could meet them: not then).
+  const ViewCone cone_of_view(model_, poses_[env]);
+  const ViewCone* cone = spec_.shadows ? nullptr : &cone_of_view;
+  if (world_.robot()) {
+    if (sensed.people) scene.setMovers(*sensed.people, /*commit=*/false, cone);
+    scene.setRobots(robotPoses(env, sensed));
+  } else if (sensed.movers) {  // people and the other robots as cylinders
+    scene.setMovers(*sensed.movers, /*commit=*/true, cone);
+  }
   const auto e = static_cast<std::size_t>(env);
   CameraImageView view;
   if (spec_.rgb) view.rgb = &out_.rgb[e * pixels_ * 3];
