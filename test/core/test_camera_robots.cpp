@@ -3,6 +3,8 @@
 // housing), and the other robots of a world by their visuals, where geometry puts them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -179,6 +181,45 @@ TEST(CameraRobots, TheOtherRobotsOfAWorldAreSeenByTheirVisuals) {
   plain.setRootState(1, state);
   plain.step(std::vector<float>(4, 0.0f));
   EXPECT_EQ(plain.view(0).images().label[centre], static_cast<std::uint8_t>(SurfaceClass::kMover));
+}
+
+TEST(CameraRobots, BodiesNoRayMeetsAreLeftOutAndTheImagesStayTheSame) {
+  const RobotModelConstPtr robot = RobotModel::fromUrdfString(cameraJetbotText());
+  CameraWorld world(nullptr);
+  world.setRobot(*robot, "camera_link");
+  CameraEnvScene scene(world);
+  // Eight robots on a circle of 0.5 m around a camera 5 cm up, each body at its link's rest pose.
+  std::vector<RobotPose> robots(8);
+  for (int k = 0; k < 8; ++k) {
+    const double angle = 2.0 * M_PI * k / 8.0;
+    const Eigen::Isometry3d root =
+        Eigen::Translation3d(0.5 * std::cos(angle), 0.5 * std::sin(angle), 0.03) *
+        Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ());
+    for (const BodyModel& body : robot->bodies()) {
+      robots[k].bodies.push_back(body.parent < 0 ? root : root * body.joint_origin);
+    }
+  }
+  CameraIntrinsics c;
+  c.width = 40;
+  c.height = 30;
+  c.horizontal_fov = 1.5;
+  c.near = 0.01;
+  c.far = 10.0;
+  const CameraModel m(c);
+  const Eigen::Isometry3d pose = opticalFrame(Eigen::Isometry3d(Eigen::Translation3d(0, 0, 0.05)));
+  CameraImages all, culled;
+  scene.setRobots(robots);
+  scene.render(m, pose, all);
+  const ViewCone view(m, pose);
+  scene.setRobots(robots, true, &view);
+  scene.render(m, pose, culled);
+  EXPECT_EQ(culled.rgb, all.rgb);
+  EXPECT_EQ(culled.label, all.label);
+  EXPECT_EQ(0,
+            std::memcmp(culled.depth.data(), all.depth.data(), all.depth.size() * sizeof(float)));
+  EXPECT_GT(std::count(all.label.begin(), all.label.end(),
+                       static_cast<std::uint8_t>(SurfaceClass::kRobot)),
+            20);  // the robots ahead are in the image
 }
 
 }  // namespace

@@ -156,8 +156,9 @@ class CameraEnvScene {
                  const ViewCone* view = nullptr);
   /// Places the robots of the env's world (none before the first call), each body an instance of
   /// CameraWorld's robot at its pose; robots beyond `robots.size()` are hidden. Needs
-  /// CameraWorld::setRobot().
-  void setRobots(const std::vector<RobotPose>& robots, bool commit = true);
+  /// CameraWorld::setRobot(). `view`: only the bodies its rays may meet are placed.
+  void setRobots(const std::vector<RobotPose>& robots, bool commit = true,
+                 const ViewCone* view = nullptr);
   /// Renders what `model` sees from `pose` (its optical frame in the env frame: z forward, x
   /// right, y down) into `out`'s images, each model.width() x model.height(). Safe to call from
   /// several threads at once.
@@ -184,6 +185,7 @@ class CameraEnvScene {
     unsigned id = 0;
     int body = 0;
     bool own = false;
+    RTCSceneTy* shown = nullptr;  // the scene its instance holds
     Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
   };
   /// What an instance of scene_ is: a mover's slot or a robot body's, or neither (-1).

@@ -10,10 +10,12 @@
 namespace jetbot_rl {
 namespace {
 
-/// A scene of `visuals` (each a geometry, its colour in `colours`), or nullptr for none.
+/// A scene of `visuals` (each a geometry, its colour in `colours`), or nullptr for none;
+/// `sphere`: (centre, radius) of a sphere holding them all.
 RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>& visuals,
-                     std::vector<Eigen::Vector3f>& colours) {
+                     std::vector<Eigen::Vector3f>& colours, Eigen::Vector4d& sphere) {
   if (visuals.empty()) return nullptr;
+  Eigen::AlignedBox3d box;
   RTCScene scene = rtcNewScene(device);
   if (!scene) throwEmbree(device, "rtcNewScene");
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
@@ -21,6 +23,7 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
     for (const VisualGeometry* v : visuals) {
       const std::vector<Eigen::Vector3d> corners = visualTriangles(*v);
       if (corners.empty()) continue;
+      for (const Eigen::Vector3d& c : corners) box.extend(c);
       const unsigned id = attachTriangles(device, scene, corners);
       if (colours.size() <= id) colours.resize(id + 1, v->colour);
       colours[id] = v->colour;
@@ -30,6 +33,10 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
     throw;
   }
   rtcCommitScene(scene);
+  if (!box.isEmpty()) {
+    sphere.head<3>() = box.center();
+    sphere[3] = 0.5 * box.diagonal().norm();
+  }
   return scene;
 }
 
@@ -74,12 +81,13 @@ CameraRobot::CameraRobot(RTCDeviceTy* device, const RobotModel& robot,
         if (v.link != hidden_link) own.push_back(&v);
       }
       Body& body = bodies_[b];
-      body.all = visualScene(device, all, body.colours);
+      body.all = visualScene(device, all, body.colours, body.sphere);
       if (own.size() == all.size()) {
         body.own = body.all;
         body.own_colours = body.colours;
+        body.own_sphere = body.sphere;
       } else {
-        body.own = visualScene(device, own, body.own_colours);
+        body.own = visualScene(device, own, body.own_colours, body.own_sphere);
       }
     }
   } catch (...) {

@@ -30,6 +30,10 @@ class CameraRobot {
   int numBodies() const { return static_cast<int>(bodies_.size()); }
   /// Body `b` as the robot's own camera (`own`) or another robot's sees it; nullptr: nothing.
   RTCSceneTy* body(int b, bool own) const { return own ? bodies_[b].own : bodies_[b].all; }
+  /// A sphere holding all of that scene: its centre in the body's link frame [m] and radius [m].
+  const Eigen::Vector4d& boundingSphere(int b, bool own) const {
+    return own ? bodies_[b].own_sphere : bodies_[b].sphere;
+  }
   /// The colour of geometry `geometry` of that scene.
   const Eigen::Vector3f& colour(int b, bool own, unsigned geometry) const {
     return (own ? bodies_[b].own_colours : bodies_[b].colours).at(geometry);
@@ -40,6 +44,7 @@ class CameraRobot {
     RTCSceneTy* all = nullptr;
     RTCSceneTy* own = nullptr;  // == all when the hidden link is not among its visuals
     std::vector<Eigen::Vector3f> colours, own_colours;  // per geometry id
+    Eigen::Vector4d sphere = Eigen::Vector4d::Zero(), own_sphere = Eigen::Vector4d::Zero();
   };
   void release();
 

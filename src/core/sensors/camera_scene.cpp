@@ -225,7 +225,8 @@ void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit,
   if (commit) rtcCommitScene(scene_);
 }
 
-void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit) {
+void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit,
+                               const ViewCone* view) {
   const CameraRobot* robot = world_.robot();
   if (!robot) throw Error("CameraEnvScene::setRobots: the world has no robot (setRobot())");
   const auto bodies = static_cast<std::size_t>(robot->numBodies());
@@ -243,26 +244,33 @@ void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit
     RTCScene shape = r < robots.size() ? robot->body(b, own) : nullptr;
     if (i == robots_.size()) {
       RobotSlot slot;
-      // An empty scene stands in for a body without visuals: every slot keeps an instance.
-      slot.id = addInstance(shape ? shape : world_.unitShape(true));
+      // A unit shape stands in for a body without visuals: every slot keeps an instance.
+      slot.shown = shape ? shape : world_.unitShape(true);
+      slot.id = addInstance(slot.shown);
       slot.body = b;
       of_id_[slot.id].robot = static_cast<int>(i);
       robots_.push_back(slot);
     }
     RobotSlot& slot = robots_[i];
     RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
-    if (!shape) {
+    const Eigen::Isometry3d* pose =
+        shape ? &robots[r].bodies[static_cast<std::size_t>(b)] : nullptr;
+    if (pose && view) {
+      const Eigen::Vector4d& sphere = robot->boundingSphere(b, own);
+      if (!view->mayMeet(*pose * Eigen::Vector3d(sphere.head<3>()), sphere[3])) pose = nullptr;
+    }
+    if (!pose) {
       rtcDisableGeometry(instance);
       continue;
     }
-    if (own != slot.own || shape != robot->body(b, slot.own)) {
+    if (shape != slot.shown) {
       rtcSetGeometryInstancedScene(instance, shape);
-      slot.own = own;
+      slot.shown = shape;
     }
-    const Eigen::Isometry3d& pose = robots[r].bodies[static_cast<std::size_t>(b)];
+    slot.own = own;
     Eigen::Matrix<float, 3, 4> transform;  // column-major, as Embree reads it
-    transform.leftCols<3>() = pose.linear().cast<float>();
-    transform.col(3) = pose.translation().cast<float>();
+    transform.leftCols<3>() = pose->linear().cast<float>();
+    transform.col(3) = pose->translation().cast<float>();
     rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
     slot.normals = transform.leftCols<3>();  // a rotation: its own inverse transpose
     rtcEnableGeometry(instance);

@@ -176,7 +176,7 @@ void CameraSensor::render(int env, const SensedEnv& sensed) {
   const ViewCone* cone = spec_.shadows ? nullptr : &cone_of_view;
   if (world_.robot()) {
     if (sensed.people) scene.setMovers(*sensed.people, /*commit=*/false, cone);
-    scene.setRobots(robotPoses(env, sensed));
+    scene.setRobots(robotPoses(env, sensed), /*commit=*/true, cone);
   } else if (sensed.movers) {  // people and the other robots as cylinders
     scene.setMovers(*sensed.movers, /*commit=*/true, cone);
   }
