@@ -61,7 +61,14 @@ std::string whereIs(const sdf::ElementPtr& element, const std::string& world_pat
   return where;
 }
 
-std::string sdfSizeProblem(const sdf::Geometry& g) {
+std::string sdfPlacementProblem(const sdf::Geometry& g, const Eigen::Isometry3d& pose) {
+  if (!pose.translation().allFinite() ||
+      pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
+    std::ostringstream s;
+    s << "its pose in the world (" << pose.translation().transpose() << ") must lie within "
+      << kMaxShapeDistance << " m of the origin on every axis";
+    return s.str();
+  }
   const auto sized = [](const char* what, std::initializer_list<double> values) {
     for (double v : values) {
       if (!(v > 0.0 && v <= kMaxShapeSize)) {

@@ -22,8 +22,9 @@ Eigen::Isometry3d toEigen(const ignition::math::Pose3d& p);
 /// "FILE:LINE" of an SDF element (the world's file when sdformat read it from a string).
 std::string whereIs(const sdf::ElementPtr& element, const std::string& world_path);
 
-/// Why `g`'s sizes are refused (each must be in (0, kMaxShapeSize]), or "".
-std::string sdfSizeProblem(const sdf::Geometry& g);
+/// Why `g` at `pose` (in the world) is refused, or "": its pose beyond kMaxShapeDistance of
+/// the origin on an axis, or a size outside (0, kMaxShapeSize].
+std::string sdfPlacementProblem(const sdf::Geometry& g, const Eigen::Isometry3d& pose);
 
 /// The triangles of mesh `m` (assimp), scaled, its URI resolved as Gazebo does (`model://`,
 /// `file://`, relative to the SDF file naming it, else through `resolver` or ROS_PACKAGE_PATH);

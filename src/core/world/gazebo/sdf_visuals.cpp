@@ -40,14 +40,7 @@ void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const 
   };
   const sdf::Geometry& g = *visual.Geom();
   if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own
-  if (!pose.translation().allFinite() ||
-      pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
-    std::ostringstream s;
-    s << "its pose in the world (" << pose.translation().transpose() << ") must lie within "
-      << kMaxShapeDistance << " m of the origin on every axis";
-    refuse(s.str());
-  }
-  if (const std::string bad = sdfSizeProblem(g); !bad.empty()) refuse(bad);
+  if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
   WorldVisual v;
   v.name = name;
   try {

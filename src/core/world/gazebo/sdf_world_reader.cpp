@@ -107,14 +107,7 @@ class Reader {
       throw ConfigError(whereIs(collision.Element(), world_.path) + ": collision '" + name +
                         "': " + what);
     };
-    if (!pose.translation().allFinite() ||
-        pose.translation().cwiseAbs().maxCoeff() > kMaxShapeDistance) {
-      std::ostringstream s;
-      s << "its pose in the world (" << pose.translation().transpose() << ") must lie within "
-        << kMaxShapeDistance << " m of the origin on every axis";
-      refuse(s.str());
-    }
-    if (const std::string bad = sdfSizeProblem(g); !bad.empty()) refuse(bad);
+    if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
     const Eigen::Matrix3d& r = pose.linear();
     WorldSolid solid;
     solid.name = name;
