@@ -11,11 +11,9 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/floor_image.h"
-#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/world_model.h"
 #include "sensors/camera_robot.h"
 #include "sensors/embree_geometry.h"
-#include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
 namespace {
@@ -45,14 +43,6 @@ bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
                       std::sqrt(across * across + half * half));
 }
 
-/// Appends the surface of obstacle `o` (standing on the ground) in the env frame.
-void addObstacle(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
-  const std::vector<Eigen::Vector3d> local = uprightSurface(o, o.height);
-  const Eigen::Isometry3d pose = Eigen::Translation3d(o.center.x(), o.center.y(), 0.5 * o.height) *
-                                 Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ());
-  for (const Eigen::Vector3d& c : local) corners.push_back(pose * c);
-}
-
 }  // namespace
 
 CameraImageView CameraImages::resize(int width, int height) {
@@ -61,86 +51,6 @@ CameraImageView CameraImages::resize(int width, int height) {
   depth.resize(pixels);
   label.resize(pixels);
   return {rgb.data(), depth.data(), label.data()};
-}
-
-CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorImage> floor)
-    : floor_(std::move(floor)) {
-  // One build thread, the caller's: the same trees every run, no pool beside the env's threads.
-  device_ = rtcNewDevice("threads=1,user_threads=0");
-  if (!device_) throwEmbree(nullptr, "rtcNewDevice");
-  scene_ = rtcNewScene(device_);
-  if (!scene_) throwEmbree(device_, "rtcNewScene");
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-
-  std::vector<Eigen::Vector3d> walls, blocks;
-  // A Gazebo world read with its visuals is drawn by them; else by the shapes the scanner sees.
-  const GazeboWorld* gazebo = world ? world->gazebo() : nullptr;
-  const bool visuals = gazebo && !gazebo->visuals.empty();
-  if (world) {
-    for (const Obstacle& w : world->walls()) addObstacle(w, walls);
-    for (const Obstacle& o : world->worldObstacles()) {
-      if (!visuals) addObstacle(o, blocks);
-    }
-  }
-  if (world && world->map() && !visuals) {
-    for (const Eigen::AlignedBox2d& r : world->mapRectangles()) {
-      Obstacle block;
-      block.center = world->mapPose() * r.center();
-      block.yaw = Eigen::Rotation2Dd(world->mapPose().linear()).angle();
-      block.half_extents = 0.5 * r.sizes();
-      block.height = world->config().obstacle_height;
-      addObstacle(block, blocks);
-    }
-  }
-  // The movers' unit shapes, each its own scene for the env scenes to instance.
-  for (const bool cylinder : {true, false}) {
-    RTCScene& unit = cylinder ? unit_cylinder_ : unit_box_;
-    unit = rtcNewScene(device_);
-    if (!unit) throwEmbree(device_, "rtcNewScene");
-    Obstacle shape;
-    shape.shape = cylinder ? Obstacle::Shape::kCylinder : Obstacle::Shape::kBox;
-    shape.radius = 1.0;
-    shape.half_extents = {0.5, 0.5};
-    attachTriangles(device_, unit, uprightSurface(shape, 1.0));
-    rtcCommitScene(unit);
-  }
-  if (!walls.empty()) {
-    classes_.push_back(SurfaceClass::kWall);
-    attachTriangles(device_, scene_, walls);
-  }
-  if (!blocks.empty()) {
-    classes_.push_back(SurfaceClass::kMap);
-    attachTriangles(device_, scene_, blocks);
-  }
-  if (visuals) {  // one geometry per colour
-    std::vector<std::pair<Eigen::Vector3f, std::vector<Eigen::Vector3d>>> by_colour;
-    for (const WorldVisual& v : gazebo->visuals) {
-      auto at = std::find_if(by_colour.begin(), by_colour.end(),
-                             [&](const auto& c) { return c.first == v.colour; });
-      if (at == by_colour.end()) at = by_colour.insert(by_colour.end(), {v.colour, {}});
-      at->second.insert(at->second.end(), v.triangles.begin(), v.triangles.end());
-    }
-    for (const auto& [colour, corners] : by_colour) {
-      const unsigned id = attachTriangles(device_, scene_, corners);
-      if (classes_.size() <= id) classes_.resize(id + 1, SurfaceClass::kMap);
-      if (colours_.size() <= id) colours_.resize(id + 1);
-      classes_[id] = SurfaceClass::kMap;
-      colours_[id] = colour;
-    }
-  }
-  rtcCommitScene(scene_);
-}
-
-void CameraWorld::setRobot(const RobotModel& robot, const std::string& hidden_link) {
-  robot_ = std::make_unique<CameraRobot>(device_, robot, hidden_link);
-}
-
-CameraWorld::~CameraWorld() {
-  robot_.reset();  // its scenes belong to device_
-  if (scene_) rtcReleaseScene(scene_);
-  if (unit_cylinder_) rtcReleaseScene(unit_cylinder_);
-  if (unit_box_) rtcReleaseScene(unit_box_);
-  if (device_) rtcReleaseDevice(device_);
 }
 
 CameraEnvScene::CameraEnvScene(const CameraWorld& world)
@@ -170,7 +80,7 @@ void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
   obstacles_id_ = RTC_INVALID_GEOMETRY_ID;
   std::vector<Eigen::Vector3d> corners;
   for (const Obstacle& o : obstacles) {
-    if (o.placed) addObstacle(o, corners);
+    if (o.placed) appendObstacleSurface(o, corners);
   }
   if (!corners.empty()) obstacles_id_ = attachTriangles(world_.device(), scene_, corners);
   rtcCommitScene(scene_);

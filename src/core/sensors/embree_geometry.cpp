@@ -1,6 +1,7 @@
 #include "sensors/embree_geometry.h"
 
 #include "jetbot_rl/errors.h"
+#include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
 
@@ -30,6 +31,13 @@ unsigned attachTriangles(RTCDevice device, RTCScene scene,
   const unsigned id = rtcAttachGeometry(scene, geometry);
   rtcReleaseGeometry(geometry);
   return id;
+}
+
+void appendObstacleSurface(const Obstacle& o, std::vector<Eigen::Vector3d>& corners) {
+  const std::vector<Eigen::Vector3d> local = uprightSurface(o, o.height);
+  const Eigen::Isometry3d pose = Eigen::Translation3d(o.center.x(), o.center.y(), 0.5 * o.height) *
+                                 Eigen::AngleAxisd(o.yaw, Eigen::Vector3d::UnitZ());
+  for (const Eigen::Vector3d& c : local) corners.push_back(pose * c);
 }
 
 }  // namespace jetbot_rl
