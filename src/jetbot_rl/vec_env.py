@@ -21,8 +21,9 @@ import numpy as np
 import rospy
 
 from jetbot_rl.msg import EnvSpec
-from jetbot_rl.node_link import IMAGE_KINDS, EnvRejectedError, NodeLink, call_bounded
-from jetbot_rl.spaces import make_box, make_dict
+from jetbot_rl.node_link import EnvRejectedError, NodeLink, call_bounded
+from jetbot_rl.observations import OBSERVATIONS, Observations, scatter
+from jetbot_rl.spaces import make_box
 from jetbot_rl.srv import ResetRequest
 
 try:  # optional: subclass gymnasium's VectorEnv and name its auto-reset mode when installed
@@ -42,11 +43,8 @@ NODE_SEED_STRIDE = ResetRequest.NODE_SEED_STRIDE
 #: ~spec fields every node of one JetbotVecEnv must agree on: every EnvSpec field but num_envs
 #: (read from the message, so that a field added to EnvSpec.msg is checked too).
 SHARED_SPEC_FIELDS = tuple(f for f in EnvSpec.__slots__ if f != 'num_envs')
-#: What JetbotVecEnv's `observation` may be.
-OBSERVATIONS = ('vector', 'image', 'dict')
 _INT64_MAX = 2 ** 63 - 1
-# Per image kind: the bounds of its observation space (depth: REP 118's infinities included).
-_IMAGE_BOUNDS = {'rgb': (0, 255), 'depth': (-np.inf, np.inf), 'label': (0, 255)}
+
 
 
 class JetbotVecEnv(_Base):
@@ -142,54 +140,24 @@ class JetbotVecEnv(_Base):
         else:
             low, high = self.action_low, self.action_high
         self.observation = observation
-        self._image_layout = self._links[0].images
-        if observation == 'image' and 'rgb' not in self._image_layout.kinds:
+        layout = self._links[0].images
+        if observation == 'image' and 'rgb' not in layout.kinds:
             self.close()
             raise ValueError("JetbotVecEnv: observation='image' needs the camera's rgb images, "
                              "but %s sends image_kinds %s (set camera/images to include rgb, "
                              "camera/batch_images true, and give the robot a camera: "
-                             "docs/camera.md)" % (self.nodes[0], self._image_layout.kinds))
-        self.single_observation_space = self._observation_space(())
+                             "docs/camera.md)" % (self.nodes[0], layout.kinds))
+        self._observations = Observations(observation, self.observation_low,
+                                          self.observation_high, layout)
+        self.single_observation_space = self._observations.space(())
         self.single_action_space = make_box(low, high, (self.action_dim,))
-        self.observation_space = self._observation_space((n,))
+        self.observation_space = self._observations.space((n,))
         self.action_space = make_box(np.tile(low, (n, 1)), np.tile(high, (n, 1)),
                                      (n, self.action_dim))
         # float64: the ends of [-1, 1] map exactly onto the float32 bounds
         self._action_offset = self.action_low.astype(np.float64)
         self._action_scale = (self.action_high.astype(np.float64) - self._action_offset) / 2.0
         self._all_envs = np.ones(n, dtype=bool)
-
-    def _observation_space(self, batch):
-        """The space of one env's observation (`batch` ()) or of the batch's ((num_envs,))."""
-        vector = make_box(np.tile(self.observation_low, batch + (1,)).reshape(batch + (-1,)),
-                          np.tile(self.observation_high, batch + (1,)).reshape(batch + (-1,)),
-                          batch + (self.obs_dim,))
-        images = []
-        for kind in self._image_layout.kinds:
-            low, high = _IMAGE_BOUNDS[kind]
-            images.append((kind, make_box(low, high, batch + self._image_layout.shape(kind),
-                                          IMAGE_KINDS[kind][2])))
-        if self.observation == 'vector':
-            return vector
-        if self.observation == 'image':
-            return dict(images)['rgb']
-        return make_dict([('vector', vector)] + images)
-
-    def _observe(self, vectors, images):
-        """The observation of `vectors` (k, obs_dim) and `images` ({kind: (k, H, W, C)})."""
-        if self.observation == 'vector':
-            return vectors
-        if self.observation == 'image':
-            return images['rgb']
-        out = {'vector': vectors}
-        out.update(images)
-        return out
-
-    def _gather_images(self, batches, final):
-        """{kind: every node's images concatenated} (final: of the ended episodes)."""
-        return {kind: np.concatenate([(b.final_images if final else b.images)[kind]
-                                      for b in batches])
-                for kind in self._image_layout.kinds}
 
     @staticmethod
     def _check_same_spec(first, link):
@@ -245,8 +213,7 @@ class JetbotVecEnv(_Base):
                                                       self.timeout))
         self._needs_reset = False
         batches = [link.state for link in self._links]
-        obs = self._observe(np.concatenate([b.obs for b in batches]),
-                            self._gather_images(batches, False))
+        obs = self._observations.of(batches)
         return obs, self._episode_infos(batches)
 
     def step(self, actions):
@@ -271,8 +238,7 @@ class JetbotVecEnv(_Base):
         batches = [link.wait(s) for link, s in zip(links, sent)]
         self._needs_reset = False
 
-        obs = self._observe(np.concatenate([b.obs for b in batches]),
-                            self._gather_images(batches, False))
+        obs = self._observations.of(batches)
         rewards = np.concatenate([b.rewards for b in batches])
         terminations = np.concatenate([b.terminated for b in batches])
         truncations = np.concatenate([b.truncated for b in batches])
@@ -281,9 +247,7 @@ class JetbotVecEnv(_Base):
                  for k, b in enumerate(batches) if b.reset_env_ids.size]
         if ended:
             ids = np.concatenate(ended)
-            final_obs = _scatter(self._observe(np.concatenate([b.final_obs for b in batches]),
-                                               self._gather_images(batches, True)),
-                                 ids, self.num_envs)
+            final_obs = scatter(self._observations.of(batches, final=True), ids, self.num_envs)
             final_mask = np.zeros(self.num_envs, dtype=bool)
             final_mask[ids] = True
             infos['final_obs'] = final_obs
@@ -417,7 +381,7 @@ class JetbotVecEnv(_Base):
     def _episode_infos(self, batches):
         steps = np.concatenate([b.episode_steps for b in batches]).astype(np.int64)
         infos = {'episode_steps': steps, '_episode_steps': self._all_envs.copy()}
-        if self.observation != 'vector' and self._image_layout.kinds:
+        if self.observation != 'vector' and self._observations.layout.kinds:
             infos['image_fresh'] = np.concatenate([b.image_fresh for b in batches])
             infos['_image_fresh'] = self._all_envs.copy()
         return infos
@@ -437,15 +401,6 @@ def _spec_value(value, slot_type):
     if slot_type.startswith('float'):
         return float(value)
     return value
-
-
-def _scatter(values, ids, n):
-    """Rows `values` (an array, or a dict of arrays) placed at `ids` of `n` zero rows."""
-    if isinstance(values, dict):
-        return {k: _scatter(v, ids, n) for k, v in values.items()}
-    out = np.zeros((n,) + values.shape[1:], dtype=values.dtype)
-    out[ids] = values
-    return out
 
 
 def _bound(values, size, unbounded):
