@@ -116,30 +116,12 @@ CollisionGeometry collisionGeometry(const urdf::Link& link, const urdf::Collisio
   CollisionGeometry g;
   g.origin = offset * toIsometry(collision.origin);
   if (!collision.geometry) throw ModelError(linkError(link.name, "collision without geometry"));
-  switch (collision.geometry->type) {
-    case urdf::Geometry::BOX: {
-      const auto& box = static_cast<const urdf::Box&>(*collision.geometry);
-      g.type = CollisionGeometry::Type::kBox;
-      g.size << box.dim.x, box.dim.y, box.dim.z;
-      break;
-    }
-    case urdf::Geometry::CYLINDER: {
-      const auto& cyl = static_cast<const urdf::Cylinder&>(*collision.geometry);
-      g.type = CollisionGeometry::Type::kCylinder;
-      g.size << cyl.radius, cyl.length, 0.0;
-      break;
-    }
-    case urdf::Geometry::SPHERE: {
-      const auto& sphere = static_cast<const urdf::Sphere&>(*collision.geometry);
-      g.type = CollisionGeometry::Type::kSphere;
-      g.size << sphere.radius, 0.0, 0.0;
-      break;
-    }
-    case urdf::Geometry::MESH:
-      loadMesh(link, static_cast<const urdf::Mesh&>(*collision.geometry), resolver, g);
-      return g;
-    default:
+  if (!setPrimitive(*collision.geometry, g)) {
+    if (collision.geometry->type != urdf::Geometry::MESH) {
       throw ModelError(linkError(link.name, "unsupported collision geometry type"));
+    }
+    loadMesh(link, static_cast<const urdf::Mesh&>(*collision.geometry), resolver, g);
+    return g;
   }
   const int used = g.type == CollisionGeometry::Type::kBox        ? 3
                    : g.type == CollisionGeometry::Type::kCylinder ? 2

@@ -9,6 +9,29 @@
 
 namespace jetbot_rl {
 
+bool setPrimitive(const urdf::Geometry& geometry, CollisionGeometry& g) {
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(geometry);
+      g.type = CollisionGeometry::Type::kBox;
+      g.size << box.dim.x, box.dim.y, box.dim.z;
+      return true;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+      g.type = CollisionGeometry::Type::kCylinder;
+      g.size << cylinder.radius, cylinder.length, 0.0;
+      return true;
+    }
+    case urdf::Geometry::SPHERE:
+      g.type = CollisionGeometry::Type::kSphere;
+      g.size << static_cast<const urdf::Sphere&>(geometry).radius, 0.0, 0.0;
+      return true;
+    default:
+      return false;
+  }
+}
+
 VisualGeometry visualGeometry(const urdf::Link& link, const urdf::Visual& visual,
                               const Eigen::Isometry3d& offset, const MeshResolver& resolver) {
   VisualGeometry v;
@@ -16,38 +39,19 @@ VisualGeometry visualGeometry(const urdf::Link& link, const urdf::Visual& visual
   CollisionGeometry& g = v.shape;
   g.origin = offset * toIsometry(visual.origin);
   if (!visual.geometry) throw ModelError(linkError(link.name, "visual without geometry"));
-  switch (visual.geometry->type) {
-    case urdf::Geometry::BOX: {
-      const auto& box = static_cast<const urdf::Box&>(*visual.geometry);
-      g.type = CollisionGeometry::Type::kBox;
-      g.size << box.dim.x, box.dim.y, box.dim.z;
-      break;
-    }
-    case urdf::Geometry::CYLINDER: {
-      const auto& cylinder = static_cast<const urdf::Cylinder&>(*visual.geometry);
-      g.type = CollisionGeometry::Type::kCylinder;
-      g.size << cylinder.radius, cylinder.length, 0.0;
-      break;
-    }
-    case urdf::Geometry::SPHERE: {
-      g.type = CollisionGeometry::Type::kSphere;
-      g.size << static_cast<const urdf::Sphere&>(*visual.geometry).radius, 0.0, 0.0;
-      break;
-    }
-    case urdf::Geometry::MESH: {
-      const auto& mesh = static_cast<const urdf::Mesh&>(*visual.geometry);
-      g.type = CollisionGeometry::Type::kMesh;
-      g.mesh_uri = mesh.filename;
-      g.size << mesh.scale.x, mesh.scale.y, mesh.scale.z;
-      try {
-        v.mesh_path = resolveMeshUri(mesh.filename, resolver);
-      } catch (const ModelError& e) {
-        v.mesh_error = linkError(link.name, std::string("visual ") + e.what());
-      }
-      break;
-    }
-    default:
+  if (!setPrimitive(*visual.geometry, g)) {
+    if (visual.geometry->type != urdf::Geometry::MESH) {
       throw ModelError(linkError(link.name, "unsupported visual geometry type"));
+    }
+    const auto& mesh = static_cast<const urdf::Mesh&>(*visual.geometry);
+    g.type = CollisionGeometry::Type::kMesh;
+    g.mesh_uri = mesh.filename;
+    g.size << mesh.scale.x, mesh.scale.y, mesh.scale.z;
+    try {
+      v.mesh_path = resolveMeshUri(mesh.filename, resolver);
+    } catch (const ModelError& e) {
+      v.mesh_error = linkError(link.name, std::string("visual ") + e.what());
+    }
   }
   // A visual of size 0 draws nothing; a negative or non-finite one is an error in the file.
   if (!g.size.allFinite() || (g.type != CollisionGeometry::Type::kMesh && g.size.minCoeff() < 0)) {

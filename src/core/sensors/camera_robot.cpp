@@ -44,6 +44,7 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
 
 std::vector<Eigen::Vector3d> visualTriangles(const VisualGeometry& v) {
   const CollisionGeometry& g = v.shape;
+  if (g.type != CollisionGeometry::Type::kMesh && g.size.maxCoeff() <= 0.0) return {};  // size 0
   std::vector<Eigen::Vector3d> local;
   switch (g.type) {
     case CollisionGeometry::Type::kBox:
@@ -65,7 +66,6 @@ std::vector<Eigen::Vector3d> visualTriangles(const VisualGeometry& v) {
       for (Eigen::Vector3d& c : local) c = c.cwiseProduct(g.size);
       break;
   }
-  if (g.type != CollisionGeometry::Type::kMesh && g.size.maxCoeff() <= 0.0) return {};
   for (Eigen::Vector3d& c : local) c = g.origin * c;
   return local;
 }
