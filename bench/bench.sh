@@ -35,10 +35,7 @@ for n in "${sizes[@]}"; do
     roslaunch jetbot_rl bench_nodelets.launch num_envs:="$n" num_threads:="$t" steps:="$steps" \
       > "$bench_dir/inproc.log" 2>&1 &
     launch_pid=$!
-    until grep -q env_steps_per_s "$bench_dir/inproc.log"; do  # the bench's last line
-      kill -0 "$launch_pid" 2> /dev/null || { echo "bench_nodelets.launch ended early" >&2; exit 1; }
-      sleep 0.2
-    done
+    wait_for_figures "$bench_dir/inproc.log"
     stop_launch
     inproc_out=$(cat "$bench_dir/inproc.log")
     e2e=$(echo "$out" | field env_steps_per_s)

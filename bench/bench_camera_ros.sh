@@ -37,10 +37,7 @@ measure() {
   roslaunch jetbot_rl bench_nodelets.launch num_envs:="$n" num_threads:=2 steps:="$steps" \
     urdf:="$urdf" robot_config:="$config" > "$bench_dir/inproc.log" 2>&1 &
   launch_pid=$!
-  until grep -q env_steps_per_s "$bench_dir/inproc.log"; do  # the bench's last line
-    kill -0 "$launch_pid" 2> /dev/null || { echo "bench_nodelets.launch ended early" >&2; exit 1; }
-    sleep 0.2
-  done
+  wait_for_figures "$bench_dir/inproc.log"
   stop_launch
   inproc=$(grep '^topic' "$bench_dir/inproc.log" | field control_steps_per_s)
   echo "$(awk "BEGIN { print $tcp * $n }") $py $(awk "BEGIN { print $inproc * $n }")"

@@ -22,3 +22,11 @@ stop_launch() {
   wait "$launch_pid" 2> /dev/null || true
   launch_pid=""
 }
+# wait_for_figures LOG: until the background launch's LOG holds the bench's last line
+# (env_steps_per_s); fails when the launch ended first.
+wait_for_figures() {
+  until grep -q env_steps_per_s "$1"; do
+    kill -0 "$launch_pid" 2> /dev/null || { echo "$1: the launch ended early" >&2; exit 1; }
+    sleep 0.2
+  done
+}

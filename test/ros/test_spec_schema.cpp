@@ -145,10 +145,18 @@ TEST(MsgFields, ConstantsAndCommentsAreNoFieldsAndAnUnreadableLineIsRefused) {
   EXPECT_THROW(msgFieldNames("uint8 a b"), Error);
 }
 
-/// A step of `spec` whose images hold distinct values, with envs 2, 5 and 6 ended.
+/// A step of `spec` whose images hold distinct values, with envs 2, 5 and 6 ended (time-outs).
 StepResult sampleStep(const BatchSpec& spec) {
   StepResult r;
   const auto n = static_cast<std::size_t>(spec.num_envs);
+  r.observations.assign(n * spec.obs_dim, 0.0f);
+  r.rewards.assign(n, 0.0f);
+  r.terminated.assign(n, 0);
+  r.truncated.assign(n, 0);
+  r.episode_steps.assign(n, 0);
+  r.reset_env_ids = {2, 5, 6};
+  r.final_observations.assign(3 * spec.obs_dim, 0.0f);
+  r.outcomes.assign(3, 0);
   const auto pixels = static_cast<std::size_t>(spec.image_width) * spec.image_height;
   r.images.width = r.final_images.width = spec.image_width;
   r.images.height = r.final_images.height = spec.image_height;
@@ -165,15 +173,7 @@ StepResult sampleStep(const BatchSpec& spec) {
 
 TEST(StepConversion, TheImagesOfTheSpecsKindsCrossBothWaysAndOthersStayHome) {
   const BatchSpec spec = sampleSpec();  // rgb and depth, not label
-  StepResult r = sampleStep(spec);
-  r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
-  r.rewards.assign(spec.num_envs, 0.0f);
-  r.terminated.assign(spec.num_envs, 0);
-  r.truncated.assign(spec.num_envs, 0);
-  r.episode_steps.assign(spec.num_envs, 0);
-  r.reset_env_ids = {2, 5, 6};
-  r.final_observations.assign(3 * spec.obs_dim, 0.0f);
-  r.outcomes.assign(3, 0);
+  const StepResult r = sampleStep(spec);
   EnvStep msg;
   toMsg(r, spec, ros::Time(1.0), msg);
   EXPECT_EQ(msg.images_rgb.size(), 7u * 8 * 3);
@@ -213,16 +213,7 @@ TEST(StepConversion, TheImagesOfTheSpecsKindsCrossBothWaysAndOthersStayHome) {
 
 TEST(StepConversion, MoverAndRobotCollisionsAndWaitsCrossAndAnUnknownOutcomeIsRefused) {
   const BatchSpec spec = sampleSpec();
-  StepResult r;
-  r.observations.assign(static_cast<std::size_t>(spec.num_envs) * spec.obs_dim, 0.0f);
-  r.rewards.assign(spec.num_envs, 0.0f);
-  r.terminated.assign(spec.num_envs, 0);
-  r.truncated.assign(spec.num_envs, 0);
-  r.episode_steps.assign(spec.num_envs, 0);
-  r.reset_env_ids = {2, 5, 6};
-  r.final_observations.assign(3 * spec.obs_dim, 0.0f);
-  r.images = sampleStep(spec).images;
-  r.final_images = sampleStep(spec).final_images;
+  StepResult r = sampleStep(spec);
   r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
                 static_cast<std::uint8_t>(Outcome::kWaited),
                 static_cast<std::uint8_t>(Outcome::kCollisionRobot)};
