@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
               for (Obstacle& p : people[e]) p.center.x() += f % 2 ? -0.02 : 0.02;
               // As the batch does: those no ray can meet left out (all kept with shadows).
               const ViewCone view(model, poses[e]);
-              scenes[e]->setMovers(people[e], true, o.shadows ? nullptr : &view);
+              scenes[e]->setMovers(people[e], o.shadows ? nullptr : &view);
             }
             scenes[e]->render(model, poses[e], images);
           }

@@ -54,6 +54,7 @@ add_library(jetbot_rl_core
   src/core/sensors/camera_sensor.cpp
   src/core/sensors/camera_spec.cpp
   src/core/sensors/camera_world.cpp
+  src/core/sensors/upright_shapes.cpp
   src/core/sensors/embree_geometry.cpp
   src/core/sensors/floor_image.cpp
   src/core/sensors/laser_scanner.cpp

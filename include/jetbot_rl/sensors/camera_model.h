@@ -28,6 +28,28 @@ struct CameraIntrinsics {
 
 /// The largest image side accepted [px].
 constexpr int kMaxImageSide = 4096;
+/// The side of the square tiles of pixels a renderer traces together [px].
+constexpr int kTileSide = 4;
+/// The side of the square groups of tiles a renderer culls together [tiles].
+constexpr int kGroupSide = 4;
+
+/// The pixel rays of one tile: a cone about `axis` (unit, optical frame) holding each of them.
+struct TileCone {
+  Eigen::Vector3f axis = Eigen::Vector3f::UnitZ();
+  float cos_half = 1.0f, sin_half = 0.0f;  ///< Of the cone's half-angle (a little widened).
+  bool everything = false;  ///< A half-angle of pi / 2 or more: a cone of every direction.
+};
+
+/// The pixel rays of one tile, lane k = (k % kTileSide, k / kTileSide) from its top left corner,
+/// each coordinate in a row (for loops the compiler vectorises). A lane beyond the image's edge
+/// is invalid (its ray: the optical axis).
+struct TileRays {
+  static constexpr int kLanes = kTileSide * kTileSide;
+  alignas(64) float x[kLanes];
+  alignas(64) float y[kLanes];
+  alignas(64) float z[kLanes];
+  alignas(64) int valid[kLanes];  ///< -1: a pixel, 0: none
+};
 
 /// ConfigError naming the field (`prefix` + "width", ...) and value when `intrinsics` is no
 /// camera: a side outside [1, kMaxImageSide], a field of view outside (0, pi), near <= 0,
@@ -61,6 +83,17 @@ class CameraModel {
   const std::vector<Eigen::Vector3f>& pixelRays() const { return pixel_rays_; }
   /// The widest pixel rays: the largest |x| and |y| of pixelRays() (z = 1).
   const Eigen::Vector2f& rayReach() const { return ray_reach_; }
+  /// One cone per tile of kTileSide x kTileSide pixels (the last ones cut by the image's edge),
+  /// row by row of tiles.
+  const std::vector<TileCone>& tileCones() const { return tile_cones_; }
+  /// Tiles per row of tileCones().
+  int tilesAcross() const { return (width() + kTileSide - 1) / kTileSide; }
+  /// pixelRays() tile by tile, row by row of tiles.
+  const std::vector<TileRays>& tileRays() const { return tile_rays_; }
+  /// One cone per group of kGroupSide x kGroupSide tiles, row by row of groups.
+  const std::vector<TileCone>& groupCones() const { return group_cones_; }
+  /// Groups per row of groupCones().
+  int groupsAcross() const { return (tilesAcross() + kGroupSide - 1) / kGroupSide; }
 
   /// Normalised image coordinates (x/z, y/z) distorted by the Brown-Conrady model.
   Eigen::Vector2d distort(const Eigen::Vector2d& normalised) const;
@@ -68,11 +101,16 @@ class CameraModel {
   Eigen::Vector2d undistort(const Eigen::Vector2d& distorted) const;
 
  private:
+  /// The cones of square blocks of `side` pixels, row by row.
+  std::vector<TileCone> blockCones(int side) const;
+
   CameraIntrinsics intrinsics_;
   double f_ = 0.0, cx_ = 0.0, cy_ = 0.0;
   bool distorted_ = false;
   std::vector<Eigen::Vector3f> pixel_rays_;
   Eigen::Vector2f ray_reach_ = Eigen::Vector2f::Zero();
+  std::vector<TileCone> tile_cones_, group_cones_;
+  std::vector<TileRays> tile_rays_;
 };
 
 /// Where a camera's rays can go, for leaving out what they cannot meet: the planes through its

@@ -1,9 +1,10 @@
 #pragma once
 
 // What a camera sees, as Embree scenes (Intel's ray-tracing kernels, on the CPU): the world's
-// static bodies once, shared by every env (CameraWorld: the model), and per env a scene holding an
-// instance of it and the env's own bodies (CameraEnvScene: the data). Rendering traces one ray per
-// pixel in packets of 16.
+// static bodies once, shared by every env (CameraWorld: the model), and per env a scene of the
+// env's own bodies (CameraEnvScene: the data) and its people. Rendering traces one ray per pixel
+// in packets of 16: the people first (exact upright shapes), then the world, then the env's
+// bodies, each against what is left of the rays.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "jetbot_rl/sensors/camera_model.h"
+#include "jetbot_rl/sensors/upright_shapes.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
@@ -96,9 +98,8 @@ class CameraWorld {
 
   RTCDeviceTy* device() const { return device_; }
   RTCSceneTy* scene() const { return scene_; }
-  /// A unit cylinder (radius 1, height 1) or box (sides 1) centred on its origin, upright: the
-  /// shape a mover's instance scales and places.
-  RTCSceneTy* unitShape(bool cylinder) const { return cylinder ? unit_cylinder_ : unit_box_; }
+  /// A scene with nothing in it: what an instance holds while it shows nothing.
+  RTCSceneTy* emptyShape() const { return empty_; }
   /// The class of the static scene's geometry `id`.
   SurfaceClass surfaceClass(unsigned id) const { return classes_.at(id); }
   /// The material colour of the static scene's geometry `id` (a Gazebo world's visuals), or none
@@ -118,8 +119,7 @@ class CameraWorld {
  private:
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
-  RTCSceneTy* unit_cylinder_ = nullptr;
-  RTCSceneTy* unit_box_ = nullptr;
+  RTCSceneTy* empty_ = nullptr;
   std::vector<SurfaceClass> classes_;                    // per geometry id of scene_
   std::vector<std::optional<Eigen::Vector3f>> colours_;  // per geometry id of scene_
   std::shared_ptr<const FloorImage> floor_;
@@ -149,11 +149,10 @@ class CameraEnvScene {
   /// alone (one more ray per lit pixel). Off by default.
   void setShadows(bool on) { shadows_ = on; }
   const Appearance& appearance() const { return appearance_; }
-  /// Replaces the env's movers (people, other robots) with `movers` where they stand now: each
-  /// an instance of a unit shape, moved without rebuilding any triangles.
-  /// `view`: only the movers its rays may meet are placed (none: all).
-  void setMovers(const std::vector<Obstacle>& movers, bool commit = true,
-                 const ViewCone* view = nullptr);
+  /// Replaces the env's movers (people, other robots as cylinders) with `movers` where they
+  /// stand now (upright shapes, intersected exactly). `view`: only the movers its rays may meet
+  /// are kept (none: all).
+  void setMovers(const std::vector<Obstacle>& movers, const ViewCone* view = nullptr);
   /// Places the robots of the env's world (none before the first call), each body an instance of
   /// CameraWorld's robot at its pose; robots beyond `robots.size()` are hidden. Needs
   /// CameraWorld::setRobot(). `view`: only the bodies its rays may meet are placed.
@@ -168,44 +167,42 @@ class CameraEnvScene {
   void render(const CameraModel& model, const Eigen::Isometry3d& pose, CameraImages& images) const;
 
  private:
-  /// The class of the geometry a ray hit (`instance`: the world's instance, a mover's, or
-  /// invalid: the env's obstacles).
+  /// The instance id render() gives a hit in the world's own scene.
+  static constexpr unsigned kWorldHit = 0xfffffffeu;
+  /// The class of the geometry a ray hit (`instance`: kWorldHit, a mover's or a robot body's
+  /// instance, or invalid: the env's obstacles).
   SurfaceClass classOf(unsigned geometry, unsigned instance) const;
 
-  /// A mover's instance in scene_: its geometry id and the matrix that takes its unit shape's
-  /// normals to the env frame.
-  struct MoverSlot {
-    unsigned id = 0;
-    bool cylinder = true;
-    Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
-  };
   /// A robot body's instance in scene_: its geometry id, the body, which view of it, and the
   /// rotation that takes its normals to the env frame.
   struct RobotSlot {
     unsigned id = 0;
     int body = 0;
     bool own = false;
-    RTCSceneTy* shown = nullptr;  // the scene its instance holds
+    RTCSceneTy* shown = nullptr;                       // the scene its instance holds
+    bool enabled = false;                              // placed and maybe seen
+    Eigen::Vector4f sphere = Eigen::Vector4f::Zero();  // bounding: centre and radius [m], env frame
     Eigen::Matrix3f normals = Eigen::Matrix3f::Identity();
   };
-  /// What an instance of scene_ is: a mover's slot or a robot body's, or neither (-1).
-  struct InstanceOf {
-    int mover = -1, robot = -1;
-  };
-  /// A new instance of `shape` in scene_ (its slot of what it is set by the caller).
+  /// A new instance of `shape` in scene_.
   unsigned addInstance(RTCSceneTy* shape);
+  struct Frame;
+  /// Renders the tile of pixels whose top left is (x0, y0) [px] into the frame's images.
+  void renderTile(const Frame& frame, int x0, int y0) const;
   /// Sets `lit` to 0 in the lanes of `valid` whose ray from its origin in `rays` towards the
-  /// light (against `light_direction`) meets anything.
+  /// light (against `light_direction`) meets anything (the movers too).
   void castShadows(const int* valid, const Eigen::Vector3f& light_direction, RTCRay16* rays,
                    float* lit) const;
 
   const CameraWorld& world_;
   RTCSceneTy* scene_ = nullptr;
-  unsigned world_id_;              // the world's instance in scene_
-  unsigned obstacles_id_;          // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
-  std::vector<MoverSlot> movers_;  // one per mover seen so far (unused ones disabled)
+  unsigned obstacles_id_;  // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
+  std::vector<UprightShape> movers_;            // those placed (and maybe seen)
+  std::vector<Eigen::Vector4f> mover_spheres_;  // bounding movers_: centres and radii [m]
+  std::vector<int> mover_of_sphere_;            // the index in movers_ of each
   std::vector<RobotSlot> robots_;  // robot r's body b: r x bodies + b (unused ones disabled)
-  std::vector<InstanceOf> of_id_;  // per geometry id of scene_
+  std::vector<int> robot_of_id_;   // per geometry id of scene_: its slot in robots_, or -1
+  std::vector<Eigen::Vector4f> obstacle_spheres_;  // bounding: centre and radius [m], env frame
   Appearance appearance_;
   bool shadows_ = false;
 };

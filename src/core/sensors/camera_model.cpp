@@ -1,5 +1,6 @@
 #include "jetbot_rl/sensors/camera_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "jetbot_rl/errors.h"
@@ -130,6 +131,56 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics, const std::string& 
       ray_reach_ = ray_reach_.cwiseMax(pixel_rays_.back().head<2>().cwiseAbs());
     }
   }
+  for (int ty = 0; ty < height(); ty += kTileSide) {
+    for (int tx = 0; tx < width(); tx += kTileSide) {
+      TileRays tile;
+      for (int k = 0; k < TileRays::kLanes; ++k) {
+        const int x = tx + k % kTileSide, y = ty + k / kTileSide;
+        const bool valid = x < width() && y < height();
+        const Eigen::Vector3f r = valid ? pixel_rays_[static_cast<std::size_t>(y) * width() + x]
+                                        : Eigen::Vector3f::UnitZ();
+        tile.x[k] = r.x();
+        tile.y[k] = r.y();
+        tile.z[k] = r.z();
+        tile.valid[k] = valid ? -1 : 0;
+      }
+      tile_rays_.push_back(tile);
+    }
+  }
+  tile_cones_ = blockCones(kTileSide);
+  group_cones_ = blockCones(kTileSide * kGroupSide);
+}
+
+std::vector<TileCone> CameraModel::blockCones(int side) const {
+  // [rad]: the cones a little wider than their rays, so that rounding never leaves one out.
+  constexpr double kMargin = 1e-5;
+  std::vector<TileCone> cones;
+  for (int by = 0; by < height(); by += side) {
+    for (int bx = 0; bx < width(); bx += side) {
+      std::vector<Eigen::Vector3d> unit;
+      for (int y = by; y < std::min(height(), by + side); ++y) {
+        for (int x = bx; x < std::min(width(), bx + side); ++x) {
+          unit.push_back(
+              pixel_rays_[static_cast<std::size_t>(y) * width() + x].cast<double>().normalized());
+        }
+      }
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& u : unit) axis += u;
+      axis.normalize();
+      double half = 0.0;
+      for (const Eigen::Vector3d& u : unit) {
+        half = std::max(half, std::atan2(axis.cross(u).norm(), axis.dot(u)));
+      }
+      half += kMargin;
+      TileCone cone;
+      cone.everything = half >= 0.5 * kPi;  // nearly a half-space: no use testing against it
+      cone.axis = axis.cast<float>();
+      cone.cos_half = static_cast<float>(std::cos(half));
+      cone.sin_half = static_cast<float>(std::sin(half));
+      cones.push_back(cone);
+    }
+  }
+  return cones;
 }
 
 Eigen::Vector2d CameraModel::distort(const Eigen::Vector2d& normalised) const {

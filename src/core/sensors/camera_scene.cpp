@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -21,9 +22,12 @@ namespace {
 // Rays go in packets of 16, a tile of 4 x 4 pixels (AVX-512's width; measured faster than 8 on
 // this machine's Zen 4, docs/performance.md).
 using Packet = RTCRayHit16;
-constexpr int kLanes = 16, kTileWidth = 4, kTileHeight = 4;
+constexpr int kLanes = 16, kTileWidth = kTileSide, kTileHeight = kTileSide;
+static_assert(kTileWidth * kTileHeight == kLanes && TileRays::kLanes == kLanes,
+              "a packet is a tile of the camera model");
 // [m]: how far a shadow ray starts off its surface, so that it does not hit the surface itself.
 constexpr float kShadowOffset = 1e-4f;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
                       Packet* packet) {
   rtcIntersect16(valid, scene, context, packet);
@@ -35,15 +39,77 @@ inline std::uint8_t toByte(float intensity) {
   return static_cast<std::uint8_t>(255.0f * intensity + 0.5f);
 }
 
-/// Whether `view`'s rays may meet upright `o` (standing on the ground): its bounding sphere.
-bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
+/// The bounding sphere of upright `o` (standing on the ground): centre and radius [m].
+Eigen::Vector4d boundingSphere(const Obstacle& o) {
   const double half = 0.5 * o.height;
   const double across = o.shape == Obstacle::Shape::kCylinder ? o.radius : o.half_extents.norm();
-  return view.mayMeet(Eigen::Vector3d(o.center.x(), o.center.y(), half),
-                      std::sqrt(across * across + half * half));
+  return {o.center.x(), o.center.y(), half, std::sqrt(across * across + half * half)};
+}
+
+/// Spheres that together bound upright `o`, appended to `out`: a tall one (a person) in a stack
+/// of up to four, each about as high as it is wide, far tighter than one sphere about it all.
+void appendBoundingSpheres(const Obstacle& o, std::vector<Eigen::Vector4f>& out) {
+  const double across = o.shape == Obstacle::Shape::kCylinder ? o.radius : o.half_extents.norm();
+  const int pieces = std::clamp(static_cast<int>(std::ceil(o.height / (2.0 * across))), 1, 4);
+  const double half = 0.5 * o.height / pieces;
+  const float radius = static_cast<float>(std::sqrt(across * across + half * half));
+  for (int k = 0; k < pieces; ++k) {
+    out.emplace_back(o.center.x(), o.center.y(), (2 * k + 1) * half, radius);
+  }
+}
+
+/// Whether `view`'s rays may meet upright `o`.
+bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
+  const Eigen::Vector4d sphere = boundingSphere(o);
+  return view.mayMeet(sphere.head<3>(), sphere[3]);
 }
 
 }  // namespace
+
+/// A bounding sphere as the camera sees it: the direction to its centre and the sine and cosine
+/// of the angle it spans about it (outside the anonymous namespace: CameraEnvScene::Frame holds
+/// them).
+struct SeenSphere {
+  Eigen::Vector3f towards;  // unit, optical frame
+  float sin_span, cos_span;
+  int owner;  // what it bounds (its index), or -1
+  /// Whether any ray of `cone` may meet the sphere: the angle between the centre and the axis
+  /// is at most the cone's half-angle plus the sphere's.
+  bool meets(const TileCone& cone) const {
+    return cone.everything ||
+           towards.dot(cone.axis) >= cone.cos_half * cos_span - cone.sin_half * sin_span;
+  }
+};
+
+/// `spheres` (env frame; `owners`: what each bounds, or nullptr) as seen from `pose`, leaving
+/// out those behind the camera or beyond `far` [m]; a sphere holding the camera spans every
+/// direction.
+void seenSpheres(const std::vector<Eigen::Vector4f>& spheres, const std::vector<int>* owners,
+                 const Eigen::Isometry3d& pose, float far, std::vector<SeenSphere>& out) {
+  out.clear();
+  const Eigen::Matrix3f to_optical = pose.linear().transpose().cast<float>();
+  const Eigen::Vector3f origin = pose.translation().cast<float>();
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const Eigen::Vector4f& s = spheres[k];
+    // A little larger than it is, so that rounding never leaves out what a ray meets.
+    const float radius = s[3] * (1.0f + 1e-5f) + 1e-5f;
+    const Eigen::Vector3f c = to_optical * (s.head<3>() - origin);
+    const float distance = c.norm();
+    if (c.z() < -radius || distance - radius > far) continue;
+    SeenSphere seen;
+    seen.owner = owners ? (*owners)[k] : -1;
+    if (distance <= radius) {
+      seen.towards = Eigen::Vector3f::UnitZ();
+      seen.sin_span = 1.0f;
+      seen.cos_span = -1.0f;  // a span of pi: any direction
+    } else {
+      seen.towards = c / distance;
+      seen.sin_span = radius / distance;
+      seen.cos_span = std::sqrt(1.0f - seen.sin_span * seen.sin_span);
+    }
+    out.push_back(seen);
+  }
+}
 
 CameraImageView CameraImages::resize(int width, int height) {
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
@@ -55,19 +121,12 @@ CameraImageView CameraImages::resize(int width, int height) {
 
 CameraEnvScene::CameraEnvScene(const CameraWorld& world)
     : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID) {
+  // The env's own bodies only; the world's are traced first, in their own scene (render()).
   scene_ = rtcNewScene(world_.device());
   if (!scene_) throwEmbree(world_.device(), "rtcNewScene");
   // Committed at every image with movers: a quick build of its few objects, each kept.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
-  RTCGeometry instance = rtcNewGeometry(world_.device(), RTC_GEOMETRY_TYPE_INSTANCE);
-  if (!instance) throwEmbree(world_.device(), "an instance");
-  rtcSetGeometryInstancedScene(instance, world_.scene());
-  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // 3 x 4, column-major
-  rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-  rtcCommitGeometry(instance);
-  world_id_ = rtcAttachGeometry(scene_, instance);
-  rtcReleaseGeometry(instance);
   rtcCommitScene(scene_);
 }
 
@@ -79,8 +138,11 @@ void CameraEnvScene::setObstacles(const std::vector<Obstacle>& obstacles) {
   if (obstacles_id_ != RTC_INVALID_GEOMETRY_ID) rtcDetachGeometry(scene_, obstacles_id_);
   obstacles_id_ = RTC_INVALID_GEOMETRY_ID;
   std::vector<Eigen::Vector3d> corners;
+  obstacle_spheres_.clear();
   for (const Obstacle& o : obstacles) {
-    if (o.placed) appendObstacleSurface(o, corners);
+    if (!o.placed) continue;
+    appendObstacleSurface(o, corners);
+    appendBoundingSpheres(o, obstacle_spheres_);
   }
   if (!corners.empty()) obstacles_id_ = attachTriangles(world_.device(), scene_, corners);
   rtcCommitScene(scene_);
@@ -93,46 +155,20 @@ unsigned CameraEnvScene::addInstance(RTCSceneTy* shape) {
   rtcSetGeometryInstancedScene(instance, shape);
   const unsigned id = rtcAttachGeometry(scene_, instance);
   rtcReleaseGeometry(instance);
-  if (of_id_.size() <= id) of_id_.resize(id + 1);
+  if (robot_of_id_.size() <= id) robot_of_id_.resize(id + 1, -1);
   return id;
 }
 
-void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, bool commit,
-                               const ViewCone* view) {
-  for (std::size_t i = 0; i < std::max(movers.size(), movers_.size()); ++i) {
-    if (i == movers_.size()) {
-      MoverSlot slot;
-      slot.id = addInstance(world_.unitShape(true));
-      of_id_[slot.id].mover = static_cast<int>(i);
-      movers_.push_back(slot);
-    }
-    MoverSlot& slot = movers_[i];
-    RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
-    if (i >= movers.size() || !movers[i].placed || (view && !mayBeSeen(movers[i], *view))) {
-      rtcDisableGeometry(instance);
-      continue;
-    }
-    const Obstacle& o = movers[i];
-    const bool cylinder = o.shape == Obstacle::Shape::kCylinder;
-    if (cylinder != slot.cylinder) {
-      rtcSetGeometryInstancedScene(instance, world_.unitShape(cylinder));
-      slot.cylinder = cylinder;
-    }
-    const Eigen::Vector3f scale =
-        cylinder ? Eigen::Vector3f(o.radius, o.radius, o.height)
-                 : Eigen::Vector3f(2.0 * o.half_extents.x(), 2.0 * o.half_extents.y(), o.height);
-    const Eigen::Matrix3f rotation =
-        Eigen::AngleAxisf(static_cast<float>(o.yaw), Eigen::Vector3f::UnitZ()).toRotationMatrix();
-    Eigen::Matrix<float, 3, 4> transform;  // column-major, as Embree reads it
-    transform.leftCols<3>() = rotation * scale.asDiagonal();
-    transform.col(3) = Eigen::Vector3f(o.center.x(), o.center.y(), 0.5 * o.height);
-    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
-    // Normals go by the inverse transpose: the rotation and the inverse scale.
-    slot.normals = rotation * scale.cwiseInverse().asDiagonal();
-    rtcEnableGeometry(instance);
-    rtcCommitGeometry(instance);
+void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, const ViewCone* view) {
+  movers_.clear();
+  mover_spheres_.clear();
+  mover_of_sphere_.clear();
+  for (const Obstacle& o : movers) {
+    if (!o.placed || (view && !mayBeSeen(o, *view))) continue;
+    appendBoundingSpheres(o, mover_spheres_);
+    mover_of_sphere_.resize(mover_spheres_.size(), static_cast<int>(movers_.size()));
+    movers_.push_back(UprightShape::of(o));
   }
-  if (commit) rtcCommitScene(scene_);
 }
 
 void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit,
@@ -155,24 +191,29 @@ void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit
     if (i == robots_.size()) {
       RobotSlot slot;
       // A unit shape stands in for a body without visuals: every slot keeps an instance.
-      slot.shown = shape ? shape : world_.unitShape(true);
+      slot.shown = shape ? shape : world_.emptyShape();
       slot.id = addInstance(slot.shown);
       slot.body = b;
-      of_id_[slot.id].robot = static_cast<int>(i);
+      robot_of_id_[slot.id] = static_cast<int>(i);
       robots_.push_back(slot);
     }
     RobotSlot& slot = robots_[i];
     RTCGeometry instance = rtcGetGeometry(scene_, slot.id);
     const Eigen::Isometry3d* pose =
         shape ? &robots[r].bodies[static_cast<std::size_t>(b)] : nullptr;
-    if (pose && view) {
-      const Eigen::Vector4d& sphere = robot->boundingSphere(b, own);
-      if (!view->mayMeet(*pose * Eigen::Vector3d(sphere.head<3>()), sphere[3])) pose = nullptr;
+    slot.enabled = false;
+    Eigen::Vector4d sphere;
+    if (pose) {
+      sphere = robot->boundingSphere(b, own);
+      sphere.head<3>() = *pose * Eigen::Vector3d(sphere.head<3>());
+      if (view && !view->mayMeet(sphere.head<3>(), sphere[3])) pose = nullptr;
     }
     if (!pose) {
       rtcDisableGeometry(instance);
       continue;
     }
+    slot.enabled = true;
+    slot.sphere = sphere.cast<float>();
     if (shape != slot.shown) {
       rtcSetGeometryInstancedScene(instance, shape);
       slot.shown = shape;
@@ -190,9 +231,9 @@ void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit
 }
 
 SurfaceClass CameraEnvScene::classOf(unsigned geometry, unsigned instance) const {
-  if (instance == world_id_) return world_.surfaceClass(geometry);
+  if (instance == kWorldHit) return world_.surfaceClass(geometry);
   if (instance == RTC_INVALID_GEOMETRY_ID) return SurfaceClass::kObstacle;
-  return of_id_[instance].robot >= 0 ? SurfaceClass::kRobot : SurfaceClass::kMover;
+  return SurfaceClass::kRobot;
 }
 
 const Eigen::Vector3f& Appearance::colour(SurfaceClass c) const {
@@ -219,154 +260,254 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
   render(model, pose, images.resize(model.width(), model.height()));
 }
 
+/// What every tile of one image shares: the camera, where it writes, and the env's bodies and
+/// people as it sees them (of these, those the current group of tiles may meet).
+struct CameraEnvScene::Frame {
+  Frame(const CameraModel& m, const Eigen::Isometry3d& pose, const CameraImageView& images)
+      : model(m),
+        out(images),
+        rotation(pose.linear().cast<float>()),
+        origin(pose.translation().cast<float>()),
+        near(static_cast<float>(m.intrinsics().near)),
+        far(static_cast<float>(m.intrinsics().far)) {}
+
+  const CameraModel& model;
+  const CameraImageView& out;
+  Eigen::Matrix3f rotation;
+  Eigen::Vector3f origin;
+  float near, far;
+  const std::vector<SeenSphere>* bodies = nullptr;  // those the current group may meet
+  const std::vector<SeenSphere>* movers = nullptr;
+};
+
 void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
                             const CameraImageView& out) const {
+  Frame frame(model, pose, out);
+  // The env's bodies and people as the camera sees them: a tile whose rays can meet none of them
+  // is not traced against them.
+  // Buffers kept by each thread: no allocation per image.
+  thread_local std::vector<Eigen::Vector4f> bodies;
+  thread_local std::vector<SeenSphere> seen_bodies, seen_movers, group_bodies, group_movers;
+  bodies = obstacle_spheres_;
+  for (const RobotSlot& r : robots_) {
+    if (r.enabled) bodies.push_back(r.sphere);
+  }
+  frame.bodies = &group_bodies;
+  frame.movers = &group_movers;
+  seenSpheres(bodies, nullptr, pose, frame.far, seen_bodies);
+  seenSpheres(mover_spheres_, &mover_of_sphere_, pose, frame.far, seen_movers);
+  // Those a group of tiles may meet, and of them those a tile may: two cheap tests, not many.
+  const auto meeting = [](const std::vector<SeenSphere>& all, const TileCone& cone,
+                          std::vector<SeenSphere>& out) {
+    out.clear();
+    std::copy_if(all.begin(), all.end(), std::back_inserter(out),
+                 [&cone](const SeenSphere& s) { return s.meets(cone); });
+  };
   const int width = model.width(), height = model.height();
-  const Eigen::Matrix3f rotation = pose.linear().cast<float>();
-  const Eigen::Vector3f origin = pose.translation().cast<float>();
-  const float near = static_cast<float>(model.intrinsics().near);
-  const float far = static_cast<float>(model.intrinsics().far);
-  const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
-  const FloorImage* floor = world_.floor();
-  const Appearance& a = appearance_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // neighbouring pixels: neighbouring rays
-
-  // The ground is the plane z = 0, intersected here rather than in the trees: a ray towards it
-  // ends there (Embree skips what lies beyond), and one that hits nothing before it hits it.
-  // Tiles of kTileWidth x kTileHeight pixels, one packet each.
-  for (int y0 = 0; y0 < height; y0 += kTileHeight) {
-    for (int x0 = 0; x0 < width; x0 += kTileWidth) {
-      alignas(64) int valid[kLanes];
-      alignas(64) Packet packet;
-      float ground[kLanes];  // distance to the ground along each ray (+inf: it does not go down)
-      for (int k = 0; k < kLanes; ++k) {
-        const int x = x0 + k % kTileWidth, y = y0 + k / kTileWidth;
-        valid[k] = x < width && y < height ? -1 : 0;
-        // A direction with z = 1 in the optical frame: the hit distance is the depth.
-        const Eigen::Vector3f d =
-            valid[k] ? Eigen::Vector3f(rotation * rays[static_cast<std::size_t>(y) * width + x])
-                     : Eigen::Vector3f::UnitZ();
-        packet.ray.org_x[k] = origin.x();
-        packet.ray.org_y[k] = origin.y();
-        packet.ray.org_z[k] = origin.z();
-        packet.ray.dir_x[k] = d.x();
-        packet.ray.dir_y[k] = d.y();
-        packet.ray.dir_z[k] = d.z();
-        ground[k] = d.z() < 0.0f && origin.z() > 0.0f ? -origin.z() / d.z()
-                                                      : std::numeric_limits<float>::infinity();
-        packet.ray.tnear[k] = 0.0f;
-        packet.ray.tfar[k] = std::min(far, ground[k]);
-        packet.ray.time[k] = 0.0f;
-        packet.ray.mask[k] = ~0u;
-        packet.ray.id[k] = static_cast<unsigned>(k);
-        packet.ray.flags[k] = 0;
-        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-      }
-      intersect(valid, scene_, &context, &packet);
-      // Per lane: the light it gets (-1: no shading, the sky or no rgb), its colour, and whether a
-      // shadow ray asks if the light reaches it.
-      float lit[kLanes];
-      Eigen::Vector3f albedos[kLanes];
-      alignas(64) int shaded[kLanes];
-      alignas(64) RTCRay16 shadow;
-      for (int k = 0; k < kLanes; ++k) {
-        lit[k] = -1.0f;
-        shaded[k] = 0;
-        shadow.org_x[k] = shadow.org_y[k] = shadow.org_z[k] = 0.0f;
-        if (!valid[k]) continue;
-        const std::size_t i =
-            static_cast<std::size_t>(y0 + k / kTileWidth) * width + (x0 + k % kTileWidth);
-        std::uint8_t* rgb = out.rgb ? out.rgb + 3 * i : nullptr;
-        const bool on_ground = packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && ground[k] <= far;
-        if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID && !on_ground) {
-          if (out.depth) out.depth[i] = std::numeric_limits<float>::infinity();
-          if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
-          for (int c = 0; rgb && c < 3; ++c) {
-            rgb[c] = toByte(std::min(1.0f, a.exposure * a.sky[c]));
-          }
-          continue;
-        }
-        const float t = on_ground ? ground[k] : packet.ray.tfar[k];
-        if (out.depth) out.depth[i] = t < near ? -std::numeric_limits<float>::infinity() : t;
-        const SurfaceClass surface = on_ground
-                                         ? SurfaceClass::kGround
-                                         : classOf(packet.hit.geomID[k], packet.hit.instID[0][k]);
-        if (out.label) out.label[i] = static_cast<std::uint8_t>(surface);
-        if (!rgb) continue;
-        // The floor image where it lies (tinted), a robot's visual's colour, else the class's.
-        const unsigned instance = packet.hit.instID[0][k];
-        const RobotSlot* robot = surface == SurfaceClass::kRobot
-                                     ? &robots_[static_cast<std::size_t>(of_id_[instance].robot)]
-                                     : nullptr;
-        const std::optional<Eigen::Vector3f> material = instance == world_id_ && a.material_colours
-                                                            ? world_.colourOf(packet.hit.geomID[k])
-                                                            : std::nullopt;
-        Eigen::Vector3f albedo =
-            robot      ? world_.robot()->colour(robot->body, robot->own, packet.hit.geomID[k])
-            : material ? *material
-                       : a.colour(surface);
-        if (on_ground && floor &&
-            floor->colourAt(origin.x() + t * packet.ray.dir_x[k],
-                            origin.y() + t * packet.ray.dir_y[k], albedo)) {
-          albedo = albedo.cwiseProduct(a.floor_tint);
-        }
-        // Lambert's diffuse light on the side facing the camera, plus the ambient share.
-        Eigen::Vector3f normal =
-            on_ground ? Eigen::Vector3f::UnitZ()
-                      : Eigen::Vector3f(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
-        // A mover's normal comes in its unit shape's frame, a robot body's in its link frame.
-        if (robot) {
-          normal = robot->normals * normal;
-        } else if (!on_ground && instance != RTC_INVALID_GEOMETRY_ID && instance != world_id_) {
-          normal = movers_[static_cast<std::size_t>(of_id_[instance].mover)].normals * normal;
-        }
-        const Eigen::Vector3f dir(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
-        if (normal.dot(dir) > 0.0f) normal = -normal;
-        normal.normalize();
-        lit[k] = std::max(0.0f, -normal.dot(a.light_direction));
-        albedos[k] = albedo;
-        // A shadow ray leaves the surface a little along its normal, towards the light.
-        const Eigen::Vector3f at = origin + t * dir + kShadowOffset * normal;
-        shadow.org_x[k] = at.x();
-        shadow.org_y[k] = at.y();
-        shadow.org_z[k] = at.z();
-        shaded[k] = shadows_ && lit[k] > 0.0f ? -1 : 0;
-      }
-      if (shadows_) castShadows(shaded, a.light_direction, &shadow, lit);
-      for (int k = 0; k < kLanes; ++k) {
-        if (!valid[k] || lit[k] < 0.0f || !out.rgb) continue;
-        std::uint8_t* rgb = out.rgb + 3 * (static_cast<std::size_t>(y0 + k / kTileWidth) * width +
-                                           (x0 + k % kTileWidth));
-        const float shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * lit[k]);
-        for (int c = 0; c < 3; ++c) {
-          rgb[c] = toByte(std::min(1.0f, albedos[k][c] * shade));
+  constexpr int kGroupWidth = kGroupSide * kTileWidth, kGroupHeight = kGroupSide * kTileHeight;
+  for (int gy = 0; gy < height; gy += kGroupHeight) {
+    for (int gx = 0; gx < width; gx += kGroupWidth) {
+      const TileCone& group = model.groupCones()[static_cast<std::size_t>(
+          gy / kGroupHeight * model.groupsAcross() + gx / kGroupWidth)];
+      meeting(seen_bodies, group, group_bodies);
+      meeting(seen_movers, group, group_movers);
+      for (int y0 = gy; y0 < std::min(height, gy + kGroupHeight); y0 += kTileHeight) {
+        for (int x0 = gx; x0 < std::min(width, gx + kGroupWidth); x0 += kTileWidth) {
+          renderTile(frame, x0, y0);
         }
       }
     }
   }
 }
 
+void CameraEnvScene::renderTile(const Frame& frame, int x0, int y0) const {
+  const CameraModel& model = frame.model;
+  const CameraImageView& out = frame.out;
+  const Eigen::Matrix3f& rotation = frame.rotation;
+  const Eigen::Vector3f& origin = frame.origin;
+  const float far = frame.far;
+  const int width = model.width();
+  const Appearance& a = appearance_;
+  const std::size_t tile =
+      static_cast<std::size_t>(y0 / kTileHeight * model.tilesAcross() + x0 / kTileWidth);
+  const TileRays& tile_rays = model.tileRays()[tile];
+  const int* valid = tile_rays.valid;
+  alignas(64) Packet packet;
+  PacketRays lanes;
+  UprightHits people;
+  alignas(64) float ground[kLanes];  // distance to the ground along each ray (+inf: upwards)
+  // Plain loops over the lanes, which the compiler vectorises. A direction with z = 1 in the
+  // optical frame: the hit distance is the depth. The ground is the plane z = 0, intersected here
+  // rather than in the trees: a ray towards it ends there (Embree skips what lies beyond), and
+  // one that hits nothing before it hits it.
+  for (int k = 0; k < kLanes; ++k) {
+    const float x = tile_rays.x[k], y = tile_rays.y[k], z = tile_rays.z[k];
+    lanes.dir_x[k] = rotation(0, 0) * x + rotation(0, 1) * y + rotation(0, 2) * z;
+    lanes.dir_y[k] = rotation(1, 0) * x + rotation(1, 1) * y + rotation(1, 2) * z;
+    lanes.dir_z[k] = rotation(2, 0) * x + rotation(2, 1) * y + rotation(2, 2) * z;
+    lanes.org_x[k] = origin.x();
+    lanes.org_y[k] = origin.y();
+    lanes.org_z[k] = origin.z();
+  }
+  for (int k = 0; k < kLanes; ++k) {
+    const float dz = lanes.dir_z[k];
+    ground[k] = dz < 0.0f && origin.z() > 0.0f ? -origin.z() / dz : kInfinity;
+    people.t[k] = std::min(far, ground[k]);
+    people.shape[k] = -1;
+  }
+  std::copy_n(lanes.org_x, kLanes, packet.ray.org_x);
+  std::copy_n(lanes.org_y, kLanes, packet.ray.org_y);
+  std::copy_n(lanes.org_z, kLanes, packet.ray.org_z);
+  std::copy_n(lanes.dir_x, kLanes, packet.ray.dir_x);
+  std::copy_n(lanes.dir_y, kLanes, packet.ray.dir_y);
+  std::copy_n(lanes.dir_z, kLanes, packet.ray.dir_z);
+  for (int k = 0; k < kLanes; ++k) {
+    packet.ray.tnear[k] = 0.0f;
+    packet.ray.time[k] = 0.0f;
+    packet.ray.mask[k] = ~0u;
+    packet.ray.id[k] = static_cast<unsigned>(k);
+    packet.ray.flags[k] = 0;
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  const TileCone& cone = model.tileCones()[tile];
+  // The people first (a mover's spheres are consecutive: one test of its shape per tile).
+  const std::vector<SeenSphere>& movers = *frame.movers;
+  for (std::size_t m = 0, last = movers_.size(); m < movers.size(); ++m) {
+    const auto owner = static_cast<std::size_t>(movers[m].owner);
+    if (owner == last || !movers[m].meets(cone)) continue;
+    last = owner;
+    intersectUpright(movers_[owner], static_cast<int>(owner), lanes, valid, people);
+  }
+  // Then the world, in its own tree, and the env's bodies, each against what is left of the
+  // rays: most of them end at a wall, a person or the ground first.
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // neighbouring pixels: neighbouring rays
+  std::copy_n(people.t, kLanes, packet.ray.tfar);
+  intersect(valid, world_.scene(), &context, &packet);
+  unsigned world_geometry[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    world_geometry[k] = packet.hit.geomID[k];
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  if (std::any_of(frame.bodies->begin(), frame.bodies->end(),
+                  [&cone](const SeenSphere& b) { return b.meets(cone); })) {
+    intersect(valid, scene_, &context, &packet);
+  }
+  // Per lane: the light it gets (-1: no shading, the sky or no rgb), its colour, and whether a
+  // shadow ray asks if the light reaches it.
+  float lit[kLanes];
+  Eigen::Vector3f albedos[kLanes];
+  alignas(64) int shaded[kLanes];
+  alignas(64) RTCRay16 shadow;
+  for (int k = 0; k < kLanes; ++k) {
+    lit[k] = -1.0f;
+    shaded[k] = 0;
+    shadow.org_x[k] = shadow.org_y[k] = shadow.org_z[k] = 0.0f;
+    if (!valid[k]) continue;
+    const std::size_t i =
+        static_cast<std::size_t>(y0 + k / kTileWidth) * width + (x0 + k % kTileWidth);
+    std::uint8_t* rgb = out.rgb ? out.rgb + 3 * i : nullptr;
+    // The nearest of: an env's body, the world, a person, the ground, else the sky.
+    unsigned geometry = packet.hit.geomID[k], instance = packet.hit.instID[0][k];
+    if (geometry == RTC_INVALID_GEOMETRY_ID && world_geometry[k] != RTC_INVALID_GEOMETRY_ID) {
+      geometry = world_geometry[k];
+      instance = kWorldHit;
+    }
+    const bool embree_hit = geometry != RTC_INVALID_GEOMETRY_ID;
+    const bool person = !embree_hit && people.shape[k] >= 0;
+    const bool on_ground = !embree_hit && !person && ground[k] <= far;
+    if (!embree_hit && !person && !on_ground) {
+      if (out.depth) out.depth[i] = kInfinity;
+      if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
+      for (int c = 0; rgb && c < 3; ++c) {
+        rgb[c] = toByte(std::min(1.0f, a.exposure * a.sky[c]));
+      }
+      continue;
+    }
+    const float t = embree_hit ? packet.ray.tfar[k] : person ? people.t[k] : ground[k];
+    if (out.depth) out.depth[i] = t < frame.near ? -kInfinity : t;
+    const SurfaceClass surface = embree_hit ? classOf(geometry, instance)
+                                 : person   ? SurfaceClass::kMover
+                                            : SurfaceClass::kGround;
+    if (out.label) out.label[i] = static_cast<std::uint8_t>(surface);
+    if (!rgb) continue;
+    // The floor image where it lies (tinted), a robot's visual's colour, else the class's.
+    const RobotSlot* robot = surface == SurfaceClass::kRobot
+                                 ? &robots_[static_cast<std::size_t>(robot_of_id_[instance])]
+                                 : nullptr;
+    const std::optional<Eigen::Vector3f> material =
+        instance == kWorldHit && a.material_colours ? world_.colourOf(geometry) : std::nullopt;
+    Eigen::Vector3f albedo = robot      ? world_.robot()->colour(robot->body, robot->own, geometry)
+                             : material ? *material
+                                        : a.colour(surface);
+    const FloorImage* floor = world_.floor();
+    if (on_ground && floor &&
+        floor->colourAt(origin.x() + t * lanes.dir_x[k], origin.y() + t * lanes.dir_y[k], albedo)) {
+      albedo = albedo.cwiseProduct(a.floor_tint);
+    }
+    // Lambert's diffuse light on the side facing the camera, plus the ambient share.
+    Eigen::Vector3f normal =
+        on_ground ? Eigen::Vector3f::UnitZ()
+        : person  ? Eigen::Vector3f(people.normal_x[k], people.normal_y[k], people.normal_z[k])
+                  : Eigen::Vector3f(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
+    if (robot) normal = robot->normals * normal;  // it comes in its link frame
+    const Eigen::Vector3f dir(lanes.dir_x[k], lanes.dir_y[k], lanes.dir_z[k]);
+    if (normal.dot(dir) > 0.0f) normal = -normal;
+    normal *= 1.0f / normal.norm();
+    lit[k] = std::max(0.0f, -normal.dot(a.light_direction));
+    albedos[k] = albedo;
+    // A shadow ray leaves the surface a little along its normal, towards the light.
+    const Eigen::Vector3f at = origin + t * dir + kShadowOffset * normal;
+    shadow.org_x[k] = at.x();
+    shadow.org_y[k] = at.y();
+    shadow.org_z[k] = at.z();
+    shaded[k] = shadows_ && lit[k] > 0.0f ? -1 : 0;
+  }
+  if (shadows_) castShadows(shaded, a.light_direction, &shadow, lit);
+  for (int k = 0; k < kLanes; ++k) {
+    if (!valid[k] || lit[k] < 0.0f || !out.rgb) continue;
+    std::uint8_t* rgb = out.rgb + 3 * (static_cast<std::size_t>(y0 + k / kTileWidth) * width +
+                                       (x0 + k % kTileWidth));
+    const float shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * lit[k]);
+    for (int c = 0; c < 3; ++c) {
+      rgb[c] = toByte(std::min(1.0f, albedos[k][c] * shade));
+    }
+  }
+}
+
 void CameraEnvScene::castShadows(const int* valid, const Eigen::Vector3f& light_direction,
                                  RTCRay16* rays, float* lit) const {
+  PacketRays lanes;
+  UprightHits people;
   for (int k = 0; k < kLanes; ++k) {
-    rays->dir_x[k] = -light_direction.x();
-    rays->dir_y[k] = -light_direction.y();
-    rays->dir_z[k] = -light_direction.z();
+    rays->dir_x[k] = lanes.dir_x[k] = -light_direction.x();
+    rays->dir_y[k] = lanes.dir_y[k] = -light_direction.y();
+    rays->dir_z[k] = lanes.dir_z[k] = -light_direction.z();
+    lanes.org_x[k] = rays->org_x[k];
+    lanes.org_y[k] = rays->org_y[k];
+    lanes.org_z[k] = rays->org_z[k];
     rays->tnear[k] = 0.0f;
-    rays->tfar[k] = std::numeric_limits<float>::infinity();
+    rays->tfar[k] = people.t[k] = std::numeric_limits<float>::infinity();
+    people.shape[k] = -1;
     rays->time[k] = 0.0f;
     rays->mask[k] = ~0u;
     rays->id[k] = static_cast<unsigned>(k);
     rays->flags[k] = 0;
   }
+  for (std::size_t m = 0; m < movers_.size(); ++m) {
+    intersectUpright(movers_[m], static_cast<int>(m), lanes, valid, people);
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcOccluded16(valid, scene_, &context, rays);
+  rtcOccluded16(valid, world_.scene(), &context, rays);
+  alignas(64) int open[kLanes];  // lanes the world did not block: the env's own bodies may
+  for (int k = 0; k < kLanes; ++k) open[k] = valid[k] && rays->tfar[k] >= 0.0f ? -1 : 0;
+  rtcOccluded16(open, scene_, &context, rays);
   for (int k = 0; k < kLanes; ++k) {
-    if (valid[k] && rays->tfar[k] < 0.0f) lit[k] = 0.0f;  // Embree's mark of a blocked ray
+    // Embree marks a blocked ray with tfar < 0.
+    if (valid[k] && (rays->tfar[k] < 0.0f || people.shape[k] >= 0)) lit[k] = 0.0f;
   }
 }
 

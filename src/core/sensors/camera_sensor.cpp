@@ -175,10 +175,10 @@ void CameraSensor::render(int env, const SensedEnv& sensed) {
   const ViewCone cone_of_view(model_, poses_[env]);
   const ViewCone* cone = spec_.shadows ? nullptr : &cone_of_view;
   if (world_.robot()) {
-    if (sensed.people) scene.setMovers(*sensed.people, /*commit=*/false, cone);
+    if (sensed.people) scene.setMovers(*sensed.people, cone);
     scene.setRobots(robotPoses(env, sensed), /*commit=*/true, cone);
   } else if (sensed.movers) {  // people and the other robots as cylinders
-    scene.setMovers(*sensed.movers, /*commit=*/true, cone);
+    scene.setMovers(*sensed.movers, cone);
   }
   const auto e = static_cast<std::size_t>(env);
   CameraImageView view;

@@ -1,5 +1,5 @@
 // CameraWorld: the static bodies of a world as one Embree scene shared by every env's scene
-// (camera_scene.h), with the movers' unit shapes and the robot's visuals.
+// (camera_scene.h), with the robot's visuals.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -11,7 +11,6 @@
 #include "jetbot_rl/world/world_model.h"
 #include "sensors/camera_robot.h"
 #include "sensors/embree_geometry.h"
-#include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
 
@@ -44,18 +43,9 @@ CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorIma
       appendObstacleSurface(block, blocks);
     }
   }
-  // The movers' unit shapes, each its own scene for the env scenes to instance.
-  for (const bool cylinder : {true, false}) {
-    RTCScene& unit = cylinder ? unit_cylinder_ : unit_box_;
-    unit = rtcNewScene(device_);
-    if (!unit) throwEmbree(device_, "rtcNewScene");
-    Obstacle shape;
-    shape.shape = cylinder ? Obstacle::Shape::kCylinder : Obstacle::Shape::kBox;
-    shape.radius = 1.0;
-    shape.half_extents = {0.5, 0.5};
-    attachTriangles(device_, unit, uprightSurface(shape, 1.0));
-    rtcCommitScene(unit);
-  }
+  empty_ = rtcNewScene(device_);
+  if (!empty_) throwEmbree(device_, "rtcNewScene");
+  rtcCommitScene(empty_);
   if (!walls.empty()) {
     classes_.push_back(SurfaceClass::kWall);
     attachTriangles(device_, scene_, walls);
@@ -90,8 +80,7 @@ void CameraWorld::setRobot(const RobotModel& robot, const std::string& hidden_li
 CameraWorld::~CameraWorld() {
   robot_.reset();  // its scenes belong to device_
   if (scene_) rtcReleaseScene(scene_);
-  if (unit_cylinder_) rtcReleaseScene(unit_cylinder_);
-  if (unit_box_) rtcReleaseScene(unit_box_);
+  if (empty_) rtcReleaseScene(empty_);
   if (device_) rtcReleaseDevice(device_);
 }
 
