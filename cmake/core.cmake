@@ -55,6 +55,8 @@ add_library(jetbot_rl_core
   src/core/sensors/camera_spec.cpp
   src/core/sensors/camera_world.cpp
   src/core/sensors/upright_shapes.cpp
+  src/core/sensors/seen_spheres.cpp
+  src/core/sensors/camera_images.cpp
   src/core/sensors/embree_geometry.cpp
   src/core/sensors/floor_image.cpp
   src/core/sensors/laser_scanner.cpp

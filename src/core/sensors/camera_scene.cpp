@@ -15,6 +15,7 @@
 #include "jetbot_rl/world/world_model.h"
 #include "sensors/camera_robot.h"
 #include "sensors/embree_geometry.h"
+#include "sensors/seen_spheres.h"
 
 namespace jetbot_rl {
 namespace {
@@ -39,85 +40,13 @@ inline std::uint8_t toByte(float intensity) {
   return static_cast<std::uint8_t>(255.0f * intensity + 0.5f);
 }
 
-/// The bounding sphere of upright `o` (standing on the ground): centre and radius [m].
-Eigen::Vector4d boundingSphere(const Obstacle& o) {
-  const double half = 0.5 * o.height;
-  const double across = o.shape == Obstacle::Shape::kCylinder ? o.radius : o.half_extents.norm();
-  return {o.center.x(), o.center.y(), half, std::sqrt(across * across + half * half)};
-}
-
-/// Spheres that together bound upright `o`, appended to `out`: a tall one (a person) in a stack
-/// of up to four, each about as high as it is wide, far tighter than one sphere about it all.
-void appendBoundingSpheres(const Obstacle& o, std::vector<Eigen::Vector4f>& out) {
-  const double across = o.shape == Obstacle::Shape::kCylinder ? o.radius : o.half_extents.norm();
-  const int pieces = std::clamp(static_cast<int>(std::ceil(o.height / (2.0 * across))), 1, 4);
-  const double half = 0.5 * o.height / pieces;
-  const float radius = static_cast<float>(std::sqrt(across * across + half * half));
-  for (int k = 0; k < pieces; ++k) {
-    out.emplace_back(o.center.x(), o.center.y(), (2 * k + 1) * half, radius);
-  }
-}
-
 /// Whether `view`'s rays may meet upright `o`.
 bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
-  const Eigen::Vector4d sphere = boundingSphere(o);
+  const Eigen::Vector4d sphere = uprightBoundingSphere(o);
   return view.mayMeet(sphere.head<3>(), sphere[3]);
 }
 
 }  // namespace
-
-/// A bounding sphere as the camera sees it: the direction to its centre and the sine and cosine
-/// of the angle it spans about it (outside the anonymous namespace: CameraEnvScene::Frame holds
-/// them).
-struct SeenSphere {
-  Eigen::Vector3f towards;  // unit, optical frame
-  float sin_span, cos_span;
-  int owner;  // what it bounds (its index), or -1
-  /// Whether any ray of `cone` may meet the sphere: the angle between the centre and the axis
-  /// is at most the cone's half-angle plus the sphere's.
-  bool meets(const TileCone& cone) const {
-    return cone.everything ||
-           towards.dot(cone.axis) >= cone.cos_half * cos_span - cone.sin_half * sin_span;
-  }
-};
-
-/// `spheres` (env frame; `owners`: what each bounds, or nullptr) as seen from `pose`, leaving
-/// out those behind the camera or beyond `far` [m]; a sphere holding the camera spans every
-/// direction.
-void seenSpheres(const std::vector<Eigen::Vector4f>& spheres, const std::vector<int>* owners,
-                 const Eigen::Isometry3d& pose, float far, std::vector<SeenSphere>& out) {
-  out.clear();
-  const Eigen::Matrix3f to_optical = pose.linear().transpose().cast<float>();
-  const Eigen::Vector3f origin = pose.translation().cast<float>();
-  for (std::size_t k = 0; k < spheres.size(); ++k) {
-    const Eigen::Vector4f& s = spheres[k];
-    // A little larger than it is, so that rounding never leaves out what a ray meets.
-    const float radius = s[3] * (1.0f + 1e-5f) + 1e-5f;
-    const Eigen::Vector3f c = to_optical * (s.head<3>() - origin);
-    const float distance = c.norm();
-    if (c.z() < -radius || distance - radius > far) continue;
-    SeenSphere seen;
-    seen.owner = owners ? (*owners)[k] : -1;
-    if (distance <= radius) {
-      seen.towards = Eigen::Vector3f::UnitZ();
-      seen.sin_span = 1.0f;
-      seen.cos_span = -1.0f;  // a span of pi: any direction
-    } else {
-      seen.towards = c / distance;
-      seen.sin_span = radius / distance;
-      seen.cos_span = std::sqrt(1.0f - seen.sin_span * seen.sin_span);
-    }
-    out.push_back(seen);
-  }
-}
-
-CameraImageView CameraImages::resize(int width, int height) {
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  rgb.resize(3 * pixels);
-  depth.resize(pixels);
-  label.resize(pixels);
-  return {rgb.data(), depth.data(), label.data()};
-}
 
 CameraEnvScene::CameraEnvScene(const CameraWorld& world)
     : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID) {
@@ -234,25 +163,6 @@ SurfaceClass CameraEnvScene::classOf(unsigned geometry, unsigned instance) const
   if (instance == kWorldHit) return world_.surfaceClass(geometry);
   if (instance == RTC_INVALID_GEOMETRY_ID) return SurfaceClass::kObstacle;
   return SurfaceClass::kRobot;
-}
-
-const Eigen::Vector3f& Appearance::colour(SurfaceClass c) const {
-  switch (c) {
-    case SurfaceClass::kGround:
-      return ground;
-    case SurfaceClass::kWall:
-      return wall;
-    case SurfaceClass::kMap:
-      return map;
-    case SurfaceClass::kObstacle:
-      return obstacle;
-    case SurfaceClass::kMover:
-    case SurfaceClass::kRobot:  // robots have their URDF colours (render())
-      return mover;
-    case SurfaceClass::kNone:
-      break;
-  }
-  return sky;
 }
 
 void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
@@ -509,15 +419,6 @@ void CameraEnvScene::castShadows(const int* valid, const Eigen::Vector3f& light_
     // Embree marks a blocked ray with tfar < 0.
     if (valid[k] && (rays->tfar[k] < 0.0f || people.shape[k] >= 0)) lit[k] = 0.0f;
   }
-}
-
-Eigen::Isometry3d opticalFrame(const Eigen::Isometry3d& body) {
-  // Optical z is body x, optical x is body -y, optical y is body -z.
-  Eigen::Matrix3d optical_in_body;
-  optical_in_body << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  Eigen::Isometry3d out = body;
-  out.linear() = body.linear() * optical_in_body;
-  return out;
 }
 
 }  // namespace jetbot_rl
