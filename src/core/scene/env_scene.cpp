@@ -179,7 +179,7 @@ SensedEnv EnvScene::sensed(int row) const {
     }
     moving = &all;
   }
-  SensedEnv sensed{*(*envs_)[row], layouts_[row], moving};
+  SensedEnv sensed{*(*envs_)[row], layouts_[row], moving, nullptr, {}};
   if (people_) sensed.people = &people_->bodies(row);
   if (team_) sensed.robots = {envs_, &present_, row / k_ * k_, k_};
   return sensed;
