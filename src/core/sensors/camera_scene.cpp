@@ -188,6 +188,10 @@ struct CameraEnvScene::Frame {
   float near, far;
   const std::vector<SeenSphere>* bodies = nullptr;  // those the current group may meet
   const std::vector<SeenSphere>* movers = nullptr;
+  // The sky's colour, and the bare ground's where every point of it looks the same (no floor
+  // image, no shadows): computed once, as the shading would compute them.
+  std::uint8_t sky[3] = {0, 0, 0}, ground[3] = {0, 0, 0};
+  bool plain_ground = false;
 };
 
 void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& pose,
@@ -204,6 +208,14 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
   }
   frame.bodies = &group_bodies;
   frame.movers = &group_movers;
+  const Appearance& a = appearance_;
+  frame.plain_ground = !world_.floor() && !shadows_;
+  const float ground_lit = std::max(0.0f, -Eigen::Vector3f::UnitZ().dot(a.light_direction));
+  const float ground_shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * ground_lit);
+  for (int c = 0; c < 3; ++c) {
+    frame.sky[c] = toByte(std::min(1.0f, a.exposure * a.sky[c]));
+    frame.ground[c] = toByte(std::min(1.0f, a.ground[c] * ground_shade));
+  }
   seenSpheres(bodies, nullptr, pose, frame.far, seen_bodies);
   seenSpheres(mover_spheres_, &mover_of_sphere_, pose, frame.far, seen_movers);
   // Those a group of tiles may meet, and of them those a tile may: two cheap tests, not many.
@@ -331,9 +343,13 @@ void CameraEnvScene::renderTile(const Frame& frame, int x0, int y0) const {
     if (!embree_hit && !person && !on_ground) {
       if (out.depth) out.depth[i] = kInfinity;
       if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kNone);
-      for (int c = 0; rgb && c < 3; ++c) {
-        rgb[c] = toByte(std::min(1.0f, a.exposure * a.sky[c]));
-      }
+      if (rgb) std::copy_n(frame.sky, 3, rgb);
+      continue;
+    }
+    if (on_ground && frame.plain_ground) {
+      if (out.depth) out.depth[i] = ground[k] < frame.near ? -kInfinity : ground[k];
+      if (out.label) out.label[i] = static_cast<std::uint8_t>(SurfaceClass::kGround);
+      if (rgb) std::copy_n(frame.ground, 3, rgb);
       continue;
     }
     const float t = embree_hit ? packet.ray.tfar[k] : person ? people.t[k] : ground[k];
