@@ -34,6 +34,7 @@ catkin_add_gtest(test_core
   test/core/test_camera_gazebo.cpp
   test/core/test_camera_robots.cpp
   test/core/test_camera_sensor.cpp
+  test/core/test_camera_tiles.cpp
   test/core/test_laser_scanner.cpp
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp

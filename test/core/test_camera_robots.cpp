@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "camera_test_util.h"
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/camera_scene.h"
@@ -213,10 +214,7 @@ TEST(CameraRobots, BodiesNoRayMeetsAreLeftOutAndTheImagesStayTheSame) {
   const ViewCone view(m, pose);
   scene.setRobots(robots, true, &view);
   scene.render(m, pose, culled);
-  EXPECT_EQ(culled.rgb, all.rgb);
-  EXPECT_EQ(culled.label, all.label);
-  EXPECT_EQ(0,
-            std::memcmp(culled.depth.data(), all.depth.data(), all.depth.size() * sizeof(float)));
+  expectSameImages(culled, all);
   EXPECT_GT(std::count(all.label.begin(), all.label.end(),
                        static_cast<std::uint8_t>(SurfaceClass::kRobot)),
             20);  // the robots ahead are in the image

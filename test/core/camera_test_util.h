@@ -1,0 +1,41 @@
+#pragma once
+// What the camera's tests share: intrinsics, upright boxes, and images compared bit for bit.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "jetbot_rl/sensors/camera_scene.h"
+#include "jetbot_rl/world/world_model.h"
+
+namespace jetbot_rl {
+
+/// Intrinsics of `width` x `height` px, horizontal fov `fov` [rad], clip [0.05, 20] m.
+inline CameraIntrinsics cameraIntrinsics(int width, int height, double fov) {
+  CameraIntrinsics c;
+  c.width = width;
+  c.height = height;
+  c.horizontal_fov = fov;
+  c.near = 0.05;
+  c.far = 20.0;
+  return c;
+}
+
+/// A box standing on the ground at (x, y) [m], half extents hx, hy [m], `height` [m] tall.
+inline Obstacle standingBox(double x, double y, double hx, double hy, double height) {
+  Obstacle o;
+  o.center = {x, y};
+  o.half_extents = {hx, hy};
+  o.height = height;
+  return o;
+}
+
+/// `a` and `b` the same: rgb and labels equal, depth equal bit for bit (NaN and infinities too).
+inline void expectSameImages(const CameraImages& a, const CameraImages& b) {
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_EQ(a.label, b.label);
+  ASSERT_EQ(a.depth.size(), b.depth.size());
+  EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)));
+}
+
+}  // namespace jetbot_rl
