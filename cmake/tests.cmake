@@ -35,6 +35,7 @@ catkin_add_gtest(test_core
   test/core/test_camera_robots.cpp
   test/core/test_camera_sensor.cpp
   test/core/test_camera_tiles.cpp
+  test/core/test_multicamera.cpp
   test/core/test_laser_scanner.cpp
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp
@@ -112,6 +113,7 @@ add_rostest(test/world/world_scan.test)
 add_rostest(test/world/world_view.test)
 add_rostest(test/world/gazebo_world.test)
 add_rostest(test/world/camera_view.test)
+add_rostest(test/world/stereo_view.test)
 
 # ---- the programs the rostests below start ----
 set(_nodes jetbot_env_node jetbot_ppo_trainer jetbot_policy_node jetbot_deploy_node jetbot_rl_manager

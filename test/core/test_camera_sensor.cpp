@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "jetbot_rl/env/batched_env.h"
@@ -38,6 +39,14 @@ EnvConfig cameraArenaConfig(int num_envs, int threads) {
   return c;
 }
 
+/// The one camera `config` gives on `robot`, or none.
+std::optional<CameraSpec> oneCamera(const CameraConfig& config, const RobotModel& robot) {
+  const std::vector<CameraSpec> cameras = resolveCameras(config, robot, 1.0 / 60);
+  EXPECT_LE(cameras.size(), 1u);
+  if (cameras.empty()) return std::nullopt;
+  return cameras.front();
+}
+
 void expectCameraRefused(const EnvConfig& c, const std::string& field) {
   try {
     BatchedEnv env(cameraJetbot(), c);
@@ -48,7 +57,7 @@ void expectCameraRefused(const EnvConfig& c, const std::string& field) {
 }
 
 TEST(CameraSpec, TheBlocksValuesReachTheCamera) {
-  const std::optional<CameraSpec> spec = resolveCamera(CameraConfig(), *cameraJetbot(), 1.0 / 60);
+  const std::optional<CameraSpec> spec = oneCamera(CameraConfig(), *cameraJetbot());
   ASSERT_TRUE(spec);
   EXPECT_EQ(spec->link, "camera_link");
   EXPECT_EQ(spec->intrinsics.width, 224);
@@ -80,7 +89,7 @@ TEST(CameraSpec, ParametersWinAndSayWhereValuesCameFrom) {
   c.images = {"depth", "label"};
   c.noise_std = 0.0;
   c.update_every = 3;
-  const std::optional<CameraSpec> spec = resolveCamera(c, *cameraJetbot(), 1.0 / 60);
+  const std::optional<CameraSpec> spec = oneCamera(c, *cameraJetbot());
   ASSERT_TRUE(spec);
   const CameraIntrinsics& i = spec->intrinsics;
   EXPECT_EQ(i.width, 80);
@@ -104,14 +113,14 @@ TEST(CameraSpec, ParametersWinAndSayWhereValuesCameFrom) {
   EXPECT_EQ(spec->update_from, "camera/update_every");
   // Disabled: no camera, whatever the block says.
   c.enabled = false;
-  EXPECT_FALSE(resolveCamera(c, *cameraJetbot(), 1.0 / 60));
+  EXPECT_FALSE(oneCamera(c, *cameraJetbot()));
 }
 
 TEST(CameraSpec, ALinkWithoutABlockGetsACameraOfTheParameters) {
-  EXPECT_FALSE(resolveCamera(CameraConfig(), *test::jetbot(), 1.0 / 60));  // no block, no link
+  EXPECT_FALSE(oneCamera(CameraConfig(), *test::jetbot()));  // no block, no link
   CameraConfig c;
   c.link = "base_link";
-  const std::optional<CameraSpec> spec = resolveCamera(c, *test::jetbot(), 1.0 / 60);
+  const std::optional<CameraSpec> spec = oneCamera(c, *test::jetbot());
   ASSERT_TRUE(spec);
   EXPECT_EQ(spec->intrinsics.width, 64);
   EXPECT_EQ(spec->intrinsics.height, 64);

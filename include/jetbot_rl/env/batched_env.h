@@ -118,8 +118,11 @@ class BatchedEnv {
   double difficulty(int env) const;
   /// The scanner in use, or nullptr.
   const ScannerSpec* scanner() const;
-  /// The camera in use, or nullptr (its images: state().images and view()).
-  const CameraSpec* camera() const;
+  /// The robot's camera `index`, or nullptr (none of that index): camera 0 is the one whose
+  /// images the batch carries (state().images); every camera's: view().
+  const CameraSpec* camera(int index = 0) const;
+  /// The robot's cameras (docs/camera.md).
+  int numCameras() const { return static_cast<int>(cameras_.size()); }
 
  private:
   friend class EnvView;
@@ -177,8 +180,8 @@ class BatchedEnv {
   static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2, kHitRobot = 3;
   // The sensors (the scanner and the camera, when the robot has them).
   std::unique_ptr<ScanSensor> scan_;
-  std::unique_ptr<CameraSensor> camera_;
-  std::vector<EnvSensor*> sensors_;  // every sensor, in stepping order
+  std::vector<std::unique_ptr<CameraSensor>> cameras_;  // cameras_[0] fills result_.images
+  std::vector<EnvSensor*> sensors_;                     // every sensor, in stepping order
 };
 
 }  // namespace jetbot_rl

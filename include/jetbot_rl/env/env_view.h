@@ -79,13 +79,14 @@ class EnvView {
   const float* scan() const;
   /// True when the env took a new scan in the last step() or reset().
   bool scanned() const;
-  /// The latest camera images (a pointer is nullptr for an image the camera does not make, and
-  /// all are without a camera).
-  EnvImages images() const;
-  /// True when the camera made new images in the last step() or reset().
-  bool imaged() const;
-  /// The camera's optical frame (z forward, x right, y down) in the env frame when it made them.
-  Eigen::Isometry3d cameraPose() const;
+  /// Camera `camera`'s latest images (BatchedEnv::camera(); a pointer is nullptr for an image the
+  /// camera does not make, and all are without that camera).
+  EnvImages images(int camera = 0) const;
+  /// True when camera `camera` made new images in the last step() or reset().
+  bool imaged(int camera = 0) const;
+  /// Camera `camera`'s optical frame (z forward, x right, y down) in the env frame when it made
+  /// them (the identity without that camera).
+  Eigen::Isometry3d cameraPose(int camera = 0) const;
 
  private:
   friend class BatchedEnv;

@@ -15,7 +15,8 @@ namespace jetbot_rl {
 /// The `camera/...` parameters; 0, -1 and [] stand for the robot description's value.
 struct CameraConfig {
   bool enabled = true;          ///< false: no camera, even when the robot description declares one.
-  std::string link;             ///< Link of the camera; empty: the first Gazebo camera block's.
+  std::string link;             ///< Link of the cameras; empty: every Gazebo camera block's.
+  std::string batch_camera;     ///< The camera whose images learners get; empty: the first.
   int width = 0;                ///< [px]; 0: the block's (without one: 64).
   int height = 0;               ///< [px]; 0: the block's (without one: 64).
   double horizontal_fov = 0.0;  ///< [rad]; 0: the block's (without one: 1.047).
@@ -41,10 +42,14 @@ IfConfig<C, CameraConfig> visitFields(C& c, V&& v) {
   const Range<double> any{-1e4, 1e4, false, false, ""};
   v("camera/enabled", c.enabled, AnyValue{},
     "false: no camera, even when the robot description declares one.");
-  v("camera/link", c.link, AnyValue{"", "empty: the first Gazebo camera block's link"},
-    "URDF link the camera sits on (looking along its x axis, z up: the block's <pose> on top); "
-    "a link without a Gazebo camera block gets a camera made of these parameters; no link and no "
-    "block: no camera.");
+  v("camera/link", c.link, AnyValue{"", "empty: every Gazebo camera block's link"},
+    "URDF link whose cameras are used (each looking along its x axis, z up: its block's <pose> "
+    "on top); a link without a Gazebo camera block gets one camera made of these parameters; no "
+    "link and no block: no camera. The parameters below set every camera's value.");
+  v("camera/batch_camera", c.batch_camera, AnyValue{"", "empty: the first camera"},
+    "The camera whose images go into every step for learners (camera/batch_images), by name: "
+    "its Gazebo sensor's name, SENSOR/CAMERA for a camera of a multicamera, camera for one of "
+    "the parameters alone; the others are published on ROS only.");
   v("camera/width", c.width, inRange(0, 4096, "px", "0: the block's, else 64"), "Image width.");
   v("camera/height", c.height, inRange(0, 4096, "px", "0: the block's, else 64"), "Image height.");
   v("camera/horizontal_fov", c.horizontal_fov,

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,9 @@ namespace jetbot_rl {
 
 /// A camera in use: CameraConfig resolved against the robot description's Gazebo camera block.
 struct CameraSpec {
+  /// The block's sensor name (a multicamera's camera: SENSOR/CAMERA); "camera" when declared by
+  /// parameters alone.
+  std::string name;
   std::string link;  ///< URDF link the camera sits on.
   int body = 0;      ///< The robot body the link belongs to.
   /// The camera's body frame (x forward, y left, z up) in the body's link frame: the link's
@@ -50,12 +52,15 @@ struct CameraSpec {
       update_from;
 };
 
-/// The camera `config` gives on `robot`, whose control step is `control_dt` [s]: nothing when it
-/// is disabled or names no link and the robot declares no camera. Throws ConfigError naming the
-/// field (camera/link not in the URDF, a size, fov, clip or distortion no camera has) and its
-/// value, and the block the value came from when that is what is wrong.
-std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotModel& robot,
-                                        double control_dt);
+/// The cameras `config` gives on `robot`, whose control step is `control_dt` [s]: one per camera
+/// of the robot description's Gazebo blocks (those on camera/link when it is set; a multicamera
+/// gives one per <camera>), or one of the parameters alone on camera/link when it has no block;
+/// none when disabled. The camera camera/batch_camera names comes first, else the description's
+/// order. Throws ConfigError naming the field (camera/link not in the URDF, a size, fov, clip or
+/// distortion no camera has, a batch_camera no camera has) and its value, and the block the value
+/// came from when that is what is wrong; two cameras that would publish on one topic, naming both.
+std::vector<CameraSpec> resolveCameras(const CameraConfig& config, const RobotModel& robot,
+                                       double control_dt);
 
 /// One line for the start-up echo: link, size, fov, clip, images, noise, update, and sources.
 std::string describeCamera(const CameraSpec& spec);

@@ -50,9 +50,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     config_.world.cut_height =
         resolveCutHeight(config_.world, scanner ? scannerHeight(*robot_, *scanner) : 0.0);
   }
-  const std::optional<CameraSpec> camera =
-      resolveCamera(config_.camera, *robot_, config_.controlDt());
-  config_.world.read_visuals = camera && config_.camera.world_visuals;  // only what is drawn
+  const std::vector<CameraSpec> cameras =
+      resolveCameras(config_.camera, *robot_, config_.controlDt());
+  config_.world.read_visuals = !cameras.empty() && config_.camera.world_visuals;  // only if drawn
   scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_);
   const int n = config_.numRows();
   if (scanner) {
@@ -64,11 +64,13 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (!config_.world.floor.empty()) {
     floor = std::make_shared<const FloorImage>(FloorImage::fromYamlFile(config_.world.floor));
   }
-  if (camera) {
-    camera_ = std::make_unique<CameraSensor>(
-        *camera, *robot_, scene_->world(), std::move(floor), n, config_.seed, result_.images,
-        config_.camera.batch_images, config_.camera.robot_visuals);
-    sensors_.push_back(camera_.get());
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    const bool batch = k == 0;  // resolveCameras() puts the batch's camera first
+    cameras_.push_back(std::make_unique<CameraSensor>(
+        cameras[k], static_cast<int>(k), *robot_, scene_->world(), floor, n, config_.seed,
+        batch ? &result_.images : nullptr, batch && config_.camera.batch_images,
+        config_.camera.robot_visuals));
+    sensors_.push_back(cameras_.back().get());
   }
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;
@@ -134,7 +136,9 @@ const std::vector<float>& BatchedEnv::actionHigh() const { return actions_layout
 
 const ScannerSpec* BatchedEnv::scanner() const { return scan_ ? &scan_->spec() : nullptr; }
 
-const CameraSpec* BatchedEnv::camera() const { return camera_ ? &camera_->spec() : nullptr; }
+const CameraSpec* BatchedEnv::camera(int index) const {
+  return index >= 0 && index < numCameras() ? &cameras_[index]->spec() : nullptr;
+}
 
 const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   const int n = config_.numRows();
@@ -159,7 +163,7 @@ const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   for (int e = 0; e < n; ++e) {
     if (!ended_[e]) continue;
     result_.reset_env_ids.push_back(static_cast<std::uint32_t>(e));
-    if (keepsFinalImages()) camera_->appendFinal(e, result_.final_images);
+    if (keepsFinalImages()) cameras_[0]->appendFinal(e, result_.final_images);
     result_.outcomes.push_back(outcome_[e]);
     const float* f = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     result_.final_observations.insert(result_.final_observations.end(), f, f + obs_dim_);
@@ -231,7 +235,7 @@ void BatchedEnv::finishStep(int e) {
     scene_->episodeEnded(e, outcome_[e] == static_cast<std::uint8_t>(Outcome::kSuccess));
     float* final_obs = &final_scratch_[static_cast<std::size_t>(e) * obs_dim_];
     task_->observe(e, state, final_obs);
-    if (keepsFinalImages()) camera_->keepFinal(e);
+    if (keepsFinalImages()) cameras_[0]->keepFinal(e);
     if (diverged) {
       std::fill(final_obs, final_obs + obs_dim_, 0.0f);  // NaN would poison learners
     } else if (randomizer_->noisesObservations()) {
@@ -351,7 +355,9 @@ const StepResult& BatchedEnv::reset(const std::vector<std::uint32_t>& env_ids,
   return result_;
 }
 
-bool BatchedEnv::keepsFinalImages() const { return camera_ && config_.camera.batch_images; }
+bool BatchedEnv::keepsFinalImages() const {
+  return !cameras_.empty() && config_.camera.batch_images;
+}
 
 BatchSpec BatchedEnv::spec() const {
   BatchSpec spec;
@@ -380,8 +386,8 @@ BatchSpec BatchedEnv::spec() const {
     // No differential drive: its kinematics stay 0.
   }
   spec.observer.footprint_radius = robot_->footprintRadius();
-  if (camera_ && config_.camera.batch_images) {
-    const CameraSpec& camera = camera_->spec();
+  if (keepsFinalImages()) {
+    const CameraSpec& camera = cameras_[0]->spec();
     if (camera.rgb) spec.image_kinds.push_back("rgb");
     if (camera.depth) spec.image_kinds.push_back("depth");
     if (camera.label) spec.image_kinds.push_back("label");

@@ -58,7 +58,7 @@ void BatchedEnv::startRound(int group) {
     result_.truncated[e] = 1;
     const float* obs = &result_.observations[static_cast<std::size_t>(e) * obs_dim_];
     std::copy(obs, obs + obs_dim_, &final_scratch_[static_cast<std::size_t>(e) * obs_dim_]);
-    if (keepsFinalImages()) camera_->keepFinal(e);
+    if (keepsFinalImages()) cameras_[0]->keepFinal(e);
   }
   scene_->beginRound(group);
   for (int e = first; e < first + k; ++e) resetEnv(e);

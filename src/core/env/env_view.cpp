@@ -90,9 +90,10 @@ const float* EnvView::scan() const { return batch_->scan_ ? batch_->scan_->range
 
 bool EnvView::scanned() const { return batch_->scan_ && batch_->scan_->isNew(env_); }
 
-EnvImages EnvView::images() const {
-  const BatchImages& images = batch_->result_.images;
+EnvImages EnvView::images(int camera) const {
   EnvImages view;
+  if (camera < 0 || camera >= batch_->numCameras()) return view;
+  const BatchImages& images = batch_->cameras_[camera]->images();
   view.width = images.width;
   view.height = images.height;
   const auto pixels = static_cast<std::size_t>(images.width) * images.height;
@@ -103,10 +104,13 @@ EnvImages EnvView::images() const {
   return view;
 }
 
-bool EnvView::imaged() const { return batch_->camera_ && batch_->camera_->isNew(env_); }
+bool EnvView::imaged(int camera) const {
+  return camera >= 0 && camera < batch_->numCameras() && batch_->cameras_[camera]->isNew(env_);
+}
 
-Eigen::Isometry3d EnvView::cameraPose() const {
-  return batch_->camera_ ? batch_->camera_->opticalPose(env_) : Eigen::Isometry3d::Identity();
+Eigen::Isometry3d EnvView::cameraPose(int camera) const {
+  return camera >= 0 && camera < batch_->numCameras() ? batch_->cameras_[camera]->opticalPose(env_)
+                                                      : Eigen::Isometry3d::Identity();
 }
 
 }  // namespace jetbot_rl

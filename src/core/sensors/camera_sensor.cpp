@@ -13,9 +13,11 @@
 namespace jetbot_rl {
 namespace {
 
-// Camera noise of env e: the stream of env id e + kCameraStream (another than its other streams);
-// its appearance draws: e + kAppearanceStream.
+// Camera noise of env e: the stream of env id e + kCameraStream (another than its other streams),
+// of the robot's camera k > 0: e + kCameraStream + k x kCameraStride; its appearance draws (the
+// same for all its cameras: one look per episode): e + kAppearanceStream.
 constexpr std::uint64_t kCameraStream = streams::kCamera;
+constexpr std::uint64_t kCameraStride = 1ULL << 32;  // more than any env id
 constexpr std::uint64_t kAppearanceStream = streams::kAppearance;
 
 /// Each channel uniform in [lo, hi].
@@ -27,14 +29,15 @@ Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
 
 }  // namespace
 
-CameraSensor::CameraSensor(const CameraSpec& spec, const RobotModel& robot, const WorldModel* world,
-                           std::shared_ptr<const FloorImage> floor, int num_envs,
-                           std::uint64_t seed, BatchImages& out, bool keep_finals,
+CameraSensor::CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot,
+                           const WorldModel* world, std::shared_ptr<const FloorImage> floor,
+                           int num_envs, std::uint64_t seed, BatchImages* out, bool keep_finals,
                            bool robot_visuals)
     : spec_(spec),
+      noise_stream_(kCameraStream + static_cast<std::uint64_t>(index) * kCameraStride),
       model_(spec.intrinsics),
       world_(world, std::move(floor)),
-      out_(out),
+      out_(out ? *out : own_),
       pixels_(static_cast<std::size_t>(spec.intrinsics.width) * spec.intrinsics.height),
       poses_(num_envs, Eigen::Isometry3d::Identity()),
       age_(num_envs, 0),
@@ -64,13 +67,13 @@ CameraSensor::CameraSensor(const CameraSpec& spec, const RobotModel& robot, cons
   for (int e = 0; e < num_envs; ++e) {
     scenes_.push_back(std::make_unique<CameraEnvScene>(world_));
     scenes_.back()->setShadows(spec.shadows);
-    noise_.emplace_back(seed, e + kCameraStream);
+    noise_.emplace_back(seed, e + noise_stream_);
     appearance_rng_.emplace_back(seed, e + kAppearanceStream);
   }
 }
 
 void CameraSensor::reseed(int env, std::uint64_t seed) {
-  noise_[env] = Rng(seed, env + kCameraStream);
+  noise_[env] = Rng(seed, env + noise_stream_);
   appearance_rng_[env] = Rng(seed, env + kAppearanceStream);
 }
 

@@ -23,12 +23,14 @@ class CameraSensor : public EnvSensor {
  public:
   /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none), each
   /// env's bodies and its robots (`robot`'s URDF visuals; ModelError for a visual mesh that
-  /// cannot be read); images go to `out` (sized here), which must outlive the sensor.
-  /// `keep_finals`: keepFinal() is used (memory for a second image of every env);
-  /// `robot_visuals`: the robots are drawn by `robot`'s visuals (else the others as cylinders).
-  CameraSensor(const CameraSpec& spec, const RobotModel& robot, const WorldModel* world,
+  /// cannot be read); images go to `out` (sized here), which must outlive the sensor, or (nullptr)
+  /// into the sensor's own. `index`: the robot's camera index (its noise stream; 0 draws what a
+  /// robot with one camera draws). `keep_finals`: keepFinal() is used (memory for a second image
+  /// of every env); `robot_visuals`: the robots are drawn by `robot`'s visuals (else the others as
+  /// cylinders).
+  CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot, const WorldModel* world,
                std::shared_ptr<const FloorImage> floor, int num_envs, std::uint64_t seed,
-               BatchImages& out, bool keep_finals, bool robot_visuals);
+               BatchImages* out, bool keep_finals, bool robot_visuals);
 
   void reseed(int env, std::uint64_t seed) override;
   void forgetNewReadings() override;
@@ -37,6 +39,8 @@ class CameraSensor : public EnvSensor {
 
   const CameraSpec& spec() const { return spec_; }
   const CameraModel& model() const { return model_; }
+  /// Every env's latest images.
+  const BatchImages& images() const { return out_; }
   /// Keeps env `env`'s current images as its ended episode's last (its reset renders anew).
   void keepFinal(int env);
   /// Appends env `env`'s kept images to `out` (whose width and height it sets).
@@ -58,9 +62,11 @@ class CameraSensor : public EnvSensor {
   void drawAppearance(int env);
 
   CameraSpec spec_;
+  std::uint64_t noise_stream_;  // env e's noise: stream e + noise_stream_
   CameraModel model_;
   CameraWorld world_;
   std::vector<std::unique_ptr<CameraEnvScene>> scenes_;  // per env
+  BatchImages own_;                                      // the images when none are given
   BatchImages& out_;
   BatchImages finals_;  // per env: its ended episode's last images (keepFinal())
   std::size_t pixels_;

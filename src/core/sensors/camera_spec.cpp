@@ -48,22 +48,34 @@ void checkFieldRules(const CameraConfig& c) {
   }
 }
 
-std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotModel& robot,
-                                        double control_dt) {
-  if (!config.enabled) return std::nullopt;
-  const std::vector<GazeboCamera>& blocks = robot.gazebo().cameras;
+namespace {
+
+/// Where gazebo_ros_multicamera publishes camera `g` of a multicamera: "left" or "right" when its
+/// name holds one of them, else (where Gazebo publishes nothing) its name.
+std::string multicameraSuffix(const GazeboCamera& g) {
+  for (const char* side : {"left", "right"}) {
+    if (g.camera_name.find(side) != std::string::npos) return side;
+  }
+  return g.camera_name.empty() ? g.sensor_name : g.camera_name;
+}
+
+/// The camera of block `g` (nullptr: one of the parameters alone on camera/link) on `robot`.
+CameraSpec resolveOne(const CameraConfig& config, const RobotModel& robot, const GazeboCamera* g,
+                      double control_dt) {
   CameraSpec spec;
-  spec.link = config.link.empty() ? (blocks.empty() ? "" : blocks.front().link) : config.link;
+  spec.link = g ? g->link : config.link;
   spec.link_from = config.link.empty() ? "Gazebo" : "camera/link";
-  if (spec.link.empty()) return std::nullopt;
   Eigen::Isometry3d offset;
   if (!robot.findLink(spec.link, spec.body, offset)) {
-    throwInvalid("camera/link", "'" + spec.link + "'", "is not a link of the robot description");
+    if (!config.link.empty()) {
+      throwInvalid("camera/link", "'" + spec.link + "'", "is not a link of the robot description");
+    }
+    throw ModelError("the Gazebo " + g->type + " sensor '" + g->sensor_name + "' is on link '" +
+                     g->link + "', which is not a link of the robot description");
   }
-  // The first block on the camera's link gives the defaults.
-  const auto found = std::find_if(blocks.begin(), blocks.end(),
-                                  [&](const GazeboCamera& b) { return b.link == spec.link; });
-  const GazeboCamera* g = found == blocks.end() ? nullptr : &*found;
+  spec.name = !g                         ? "camera"
+              : g->type == "multicamera" ? g->sensor_name + "/" + g->camera_name
+                                         : g->sensor_name;
   const std::string gazebo = g ? " (from the Gazebo " + g->type + " sensor '" + g->sensor_name +
                                      "' of link '" + g->link +
                                      "'; set the parameter to override it)"
@@ -147,8 +159,12 @@ std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotM
   spec.update_from = pick(config.update_every > 0, "camera/update_every");
   if (config.update_every == 0 && rate <= 0.0) spec.update_from = "default";
 
-  // gazebo_ros_camera's and gazebo_ros_openni_kinect's names and defaults.
-  const std::string space = g && !g->camera_topic.empty() ? g->camera_topic : "camera";
+  // gazebo_ros_camera's and gazebo_ros_openni_kinect's names and defaults; gazebo_ros_multicamera
+  // puts each camera under <cameraName>/left or /right (by its name), here any other under its
+  // own name.
+  std::string space = g && !g->camera_topic.empty() ? g->camera_topic : "camera";
+  const std::string rig = g && g->type == "multicamera" ? multicameraSuffix(*g) : "";
+  if (!rig.empty()) space = joinTopic(space, rig);
   const auto topic = [&](const std::string& given, const char* fallback) {
     return joinTopic(space, given.empty() ? fallback : given);
   };
@@ -157,17 +173,70 @@ std::optional<CameraSpec> resolveCamera(const CameraConfig& config, const RobotM
   spec.depth_image_topic = topic(g ? g->depth_image_topic : "", "depth/image_raw");
   spec.depth_info_topic = topic(g ? g->depth_info_topic : "", "depth/camera_info");
   spec.label_topic = joinTopic(space, "label/image_raw");
-  spec.frame = g && !g->frame_name.empty() ? g->frame_name : spec.link + "_optical_frame";
+  // A multicamera's cameras stand apart: each gets its own optical frame (Gazebo's plugin gives
+  // all one frame and the right camera's baseline in P; here tf holds it).
+  const bool named = g && !g->frame_name.empty();
+  spec.frame = named ? g->frame_name : spec.link;
+  if (!rig.empty()) spec.frame += "_" + rig;
+  if (!named) spec.frame += "_optical_frame";
   if (spec.frame.front() == '/') spec.frame = spec.frame.substr(1);
   return spec;
+}
+
+}  // namespace
+
+std::vector<CameraSpec> resolveCameras(const CameraConfig& config, const RobotModel& robot,
+                                       double control_dt) {
+  if (!config.enabled) return {};
+  std::vector<const GazeboCamera*> blocks;
+  for (const GazeboCamera& g : robot.gazebo().cameras) {
+    if (config.link.empty() || g.link == config.link) blocks.push_back(&g);
+  }
+  if (blocks.empty() && !config.link.empty()) blocks.push_back(nullptr);  // parameters alone
+  std::vector<CameraSpec> cameras;
+  for (const GazeboCamera* g : blocks) cameras.push_back(resolveOne(config, robot, g, control_dt));
+  // Two cameras on one topic would interleave their images: refused, naming both.
+  const auto published = [](const CameraSpec& c) {
+    std::vector<std::string> topics;
+    if (c.rgb) topics.push_back(c.image_topic);
+    if (c.depth) topics.push_back(c.depth_image_topic);
+    if (c.label) topics.push_back(c.label_topic);
+    return topics;
+  };
+  for (std::size_t a = 0; a < cameras.size(); ++a) {
+    for (std::size_t b = 0; b < a; ++b) {
+      for (const std::string& topic : published(cameras[a])) {
+        const std::vector<std::string> other = published(cameras[b]);
+        if (std::find(other.begin(), other.end(), topic) != other.end()) {
+          throw ConfigError("the cameras '" + cameras[b].name + "' and '" + cameras[a].name +
+                            "' would both publish " + topic +
+                            ": give their plugins different <cameraName>s");
+        }
+      }
+    }
+  }
+  // The camera whose images the batch carries comes first.
+  if (!config.batch_camera.empty()) {
+    const auto found = std::find_if(cameras.begin(), cameras.end(), [&](const CameraSpec& c) {
+      return c.name == config.batch_camera;
+    });
+    if (found == cameras.end()) {
+      std::string names;
+      for (const CameraSpec& c : cameras) names += (names.empty() ? "'" : ", '") + c.name + "'";
+      throwInvalid("camera/batch_camera", "'" + config.batch_camera + "'",
+                   "names no camera (the cameras: " + (names.empty() ? "none" : names) + ")");
+    }
+    std::rotate(cameras.begin(), found, found + 1);
+  }
+  return cameras;
 }
 
 std::string describeCamera(const CameraSpec& s) {
   std::ostringstream out;
   const CameraIntrinsics& c = s.intrinsics;
-  out << "camera on link '" << s.link << "' (" << s.link_from << "): " << c.width << " x "
-      << c.height << " px (" << s.size_from << "), horizontal fov " << c.horizontal_fov << " rad ("
-      << s.fov_from << "), clip [" << c.near << ", " << c.far << "] m (" << s.clip_from
+  out << "camera '" << s.name << "' on link '" << s.link << "' (" << s.link_from << "): " << c.width
+      << " x " << c.height << " px (" << s.size_from << "), horizontal fov " << c.horizontal_fov
+      << " rad (" << s.fov_from << "), clip [" << c.near << ", " << c.far << "] m (" << s.clip_from
       << "), distortion [" << c.k1 << ", " << c.k2 << ", " << c.k3 << ", " << c.p1 << ", " << c.p2
       << "] (" << s.distortion_from << "), images";
   for (const auto& [on, name] :

@@ -90,10 +90,10 @@ CameraOutput::Stream CameraOutput::makeStream(const std::string& image_topic,
   return stream;
 }
 
-CameraOutput::CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs,
+CameraOutput::CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int camera, int envs,
                            const RobotNames& names)
-    : nh_(nh) {
-  const CameraSpec* spec = env.camera();
+    : nh_(nh), camera_(camera) {
+  const CameraSpec* spec = env.camera(camera);
   if (!spec) return;
   const int n = std::clamp(envs, 0, env.numEnvs());
   for (int e = 0; e < n; ++e) frames_.push_back(names.frame(e, spec->frame));
@@ -118,8 +118,8 @@ void CameraOutput::capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, 
   for (std::size_t i = 0; i < due_.size(); ++i) {
     const int e = static_cast<int>(i);
     const EnvView view = env.view(e);
-    if (!view.imaged()) continue;
-    const EnvImages images = view.images();
+    if (!view.imaged(camera_)) continue;
+    const EnvImages images = view.images(camera_);
     take(rgb_, e, [&](sensor_msgs::Image& m) {
       fillColourImage(images.rgb, images.width, images.height, colour_encoding_, m);
     });

@@ -60,7 +60,9 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   outputs_.push_back(
       std::make_unique<RobotStateOutput>(nh_, *env_, robot_view_envs, params_.odom_rate, names));
   outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names));
-  outputs_.push_back(std::make_unique<CameraOutput>(nh_, *env_, robot_view_envs, names));
+  for (int k = 0; k < env_->numCameras(); ++k) {
+    outputs_.push_back(std::make_unique<CameraOutput>(nh_, *env_, k, robot_view_envs, names));
+  }
   if (env_->world() && env_->world()->map()) {
     map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
   }
@@ -237,7 +239,9 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   }
   for (const DofLimits& dof : env->dofLimits()) ROS_INFO("%s", describeDofLimits(dof).c_str());
   if (const auto& scanner = env->scanner()) ROS_INFO("%s", describeScanner(*scanner).c_str());
-  if (const CameraSpec* camera = env->camera()) ROS_INFO("%s", describeCamera(*camera).c_str());
+  for (int k = 0; k < env->numCameras(); ++k) {
+    ROS_INFO("%s", describeCamera(*env->camera(k)).c_str());
+  }
   if (const WorldModel* world = env->world()) {
     ROS_INFO("%s", describeWorld(*world).c_str());
     if (world->gazebo() && !world->gazebo()->skipped.empty()) {

@@ -40,9 +40,10 @@ TfTree::TfTree(const BatchedEnv& env, int envs, const RobotNames& names, bool li
       toTransform(Eigen::Isometry3d::Identity(), odom.transform);
       statics_.push_back(odom);
     }
-    // The camera's optical frame, when the robot description has no link of that name.
-    const CameraSpec* camera = env.camera();
-    if (camera && std::find(links.begin(), links.end(), camera->frame) == links.end()) {
+    // The cameras' optical frames, where the robot description has no link of that name.
+    for (int c = 0; c < env.numCameras(); ++c) {
+      const CameraSpec* camera = env.camera(c);
+      if (std::find(links.begin(), links.end(), camera->frame) != links.end()) continue;
       geometry_msgs::TransformStamped optical;
       optical.header.frame_id = names.frame(e, camera->link);
       optical.child_frame_id = names.frame(e, camera->frame);

@@ -37,8 +37,10 @@ void fillColourImage(const std::uint8_t* rgb, int width, int height, const std::
  */
 class CameraOutput : public StateOutput {
  public:
-  /// Topics relative to `nh` (the node's namespace); `envs` clamped to the batch.
-  CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs, const RobotNames& names);
+  /// Camera `camera`'s (BatchedEnv::camera()); topics relative to `nh` (the node's namespace);
+  /// `envs` clamped to the batch.
+  CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int camera, int envs,
+               const RobotNames& names);
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
 
@@ -59,6 +61,7 @@ class CameraOutput : public StateOutput {
   void take(Stream& stream, int e, Fill&& fill);
 
   ros::NodeHandle nh_;
+  int camera_;
   std::unique_ptr<image_transport::ImageTransport> transport_;
   std::vector<std::string> frames_;  // per env
   std::string colour_encoding_;
