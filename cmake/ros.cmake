@@ -14,6 +14,7 @@ add_library(jetbot_rl_ros_common
   src/ros/common/param_reader.cpp
   src/ros/common/peer_links.cpp
   src/ros/common/publication_flush.cpp
+  src/ros/common/publication_pacer.cpp
   src/ros/common/robot_description.cpp
   src/ros/common/stop_signal.cpp
 )

@@ -107,6 +107,11 @@ add_rostest_gtest(test_tf test/ros/tf.test test/ros/test_tf.cpp)
 target_link_libraries(test_tf ${catkin_LIBRARIES})
 target_include_directories(test_tf PRIVATE ${catkin_INCLUDE_DIRS})
 add_dependencies(test_tf ${${PROJECT_NAME}_EXPORTED_TARGETS})
+add_rostest_gtest(test_back_to_back test/reliability/back_to_back.test
+  test/reliability/test_back_to_back.cpp)
+target_link_libraries(test_back_to_back ${catkin_LIBRARIES})
+target_include_directories(test_back_to_back PRIVATE ${catkin_INCLUDE_DIRS})
+add_dependencies(test_back_to_back ${${PROJECT_NAME}_EXPORTED_TARGETS})
 
 # ---- the world and the laser scanner ----
 add_rostest(test/world/world_scan.test)
@@ -165,7 +170,7 @@ add_rostest(test/python/python_team.test)
 # The test programs' own code at -O1: it compiles in 60 % of -O3's time (the libraries it tests
 # keep -O3), and what it runs is the libraries.
 foreach(_test test_core test_ppo test_ros_adapter test_deploy test_goal_frames test_tf
-    test_concatenation)
+    test_concatenation test_back_to_back)
   if(TARGET ${_test})
     target_compile_options(${_test} PRIVATE -O1)
   endif()

@@ -36,7 +36,9 @@ build() {
   mkdir -p "$ws/devel/lib/python3/dist-packages"
   cd "$ws"
   # ROS's Python tools need Debian's interpreter, not a pyenv python3 on the PATH.
+  local start=$SECONDS
   catkin_make -j"$jobs" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release "$@"
+  echo "== built in $((SECONDS - start)) s"
   set +u
   # shellcheck disable=SC1091
   source "$ws/devel/setup.bash"
@@ -48,7 +50,9 @@ run_tests() {
   rm -rf "$ws/build/test_results"
   # Two lanes (run_tests.sh): the tests that time what they measure in the foreground, one at a
   # time, the rest beside them at nice 10; then the rate comparisons alone.
+  local start=$SECONDS
   bash "$repo/scripts/run_tests.sh" "$ws"
+  echo "== tests ran in $((SECONDS - start)) s"
   local status=0
   catkin_test_results --verbose "$ws/build/test_results" || status=$?
   /usr/bin/python3 "$repo/scripts/summarize_test_results.py" "$ws/build/test_results" || status=1

@@ -36,7 +36,7 @@ class TestEnvKilled(unittest.TestCase):
                 'step_timeout': STEP_TIMEOUT}))
             stats.wait_iteration(3)
             self.assertEqual(node_pid(ENV), env.pid)
-            killed = time.monotonic()
+            killed, killed_wall = time.monotonic(), time.time()
             env.send_signal(signal.SIGKILL)
             output, _ = trainer.communicate(timeout=TIMEOUT)
             stopped_s = time.monotonic() - killed
@@ -45,10 +45,15 @@ class TestEnvKilled(unittest.TestCase):
         figure('env node killed mid-training: trainer exit status %d after %.2f s '
                '(step_timeout %.1f s)' % (trainer.returncode, stopped_s, STEP_TIMEOUT))
         self.assertNotEqual(trainer.returncode, 0, output)
-        self.assertLess(stopped_s, STEP_TIMEOUT + 1.0, output)
         errors = [line for line in output.splitlines()
                   if ('FATAL' in line or 'ERROR' in line) and ENV in line]
         self.assertTrue(errors, 'no FATAL/ERROR line naming %s in:\n%s' % (ENV, output))
+        # It gives up step_timeout after the last EnvStep (the line's wall stamp); saving and
+        # exiting take what the loaded machine gives them (3.1 s in all once under CI's load).
+        gave_up_s = float(re.search(r'\[(\d+\.\d+)\]', errors[0]).group(1)) - killed_wall
+        figure('trainer gave up %.2f s after the kill' % gave_up_s)
+        self.assertLess(gave_up_s, STEP_TIMEOUT + 1.0, output)
+        self.assertLess(stopped_s, STEP_TIMEOUT + 10.0, output)
         figure('trainer error: ' + re.sub(r'\x1b\[[0-9;]*m', '', errors[0]).split(']: ', 1)[-1])
         self.assertIn('status: failed', output)
         self.assertTrue(os.path.isfile(os.path.join(run_dir, 'checkpoints/latest.pt')))

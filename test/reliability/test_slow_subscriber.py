@@ -2,8 +2,8 @@
 """Stalled subscribers of ~env_step (raw TCPROS connections that never read) neither slow
 realtime stepping (the step rate stays within 5 % of the rate without them) nor grow the node's
 memory (its resident set stays flat once their buffers are full: roscpp keeps at most the
-advertised queue of 16 messages per connection). 1000 envs: 40 kB per EnvStep. Prints both rates
-and the resident set."""
+advertised queue per connection, which the node sizes to 1 MiB of EnvSteps and reports on
+/diagnostics). 1000 envs: 40 kB per EnvStep. Prints both rates and the resident set."""
 import io
 import unittest
 
@@ -17,9 +17,8 @@ from jetbot_rl_test.fault_util import DiagnosticsRecorder, figure, rate_between
 from jetbot_rl_test.raw_tcpros import StalledSubscriber
 
 STALLED = 4
-QUEUE = 16  # ~env_step's advertised queue
 WINDOW = 10  # diagnostics reports (every 0.5 s: slow_subscriber.test) per measured window
-FILL = 3  # reports after the kernel send queues are full, before measuring
+FILL = 3  # reports after the kernel send queues and roscpp's queues are full, before measuring
 MAX_RATE_CHANGE = 0.05
 MAX_FLAT_KB = 2048  # resident set change over the measured window
 
@@ -36,6 +35,9 @@ class TestSlowSubscriber(unittest.TestCase):
             rospy.get_param(NODE + '/decimation') * rospy.get_param(NODE + '/real_time_factor')
 
         free_rate = diagnostics.rate(WINDOW)
+        queue = int(diagnostics.reports[-1]['env_step queue'])  # EnvSteps per connection
+        self.assertLessEqual(queue * msg_kb, max(1024.0, 16 * msg_kb) + msg_kb)  # 1 MiB, >= 16
+        self.assertGreaterEqual(queue, 16)
         rss_free = rss_kb(pid)
         stalled = [StalledSubscriber(NODE + '/env_step', EnvStep, NODE,
                                      caller_id='/stalled_%d' % k, rcvbuf=4096)
@@ -57,7 +59,10 @@ class TestSlowSubscriber(unittest.TestCase):
                 if queues == previous:
                     break
             self.assertEqual(queues, previous, 'the send queues never stopped growing')
-            diagnostics.rate(FILL, lambda r: fill.append(rss_kb(pid)))
+            # roscpp's queues take `queue` steps more (every report: steps_per_report)
+            steps_per_report = free_rate * rospy.get_param(NODE + "/diagnostic_period")
+            fill_reports = FILL + int(queue / steps_per_report + 1.0)
+            diagnostics.rate(fill_reports, lambda r: fill.append(rss_kb(pid)))
             rss = [rss_kb(pid)]
             stalled_rate = diagnostics.rate(WINDOW, lambda r: rss.append(rss_kb(pid)))
             unread = [s.unread_bytes() for s in stalled]
@@ -76,14 +81,14 @@ class TestSlowSubscriber(unittest.TestCase):
                'over the next %d reports (change %+d kB); %d queued EnvSteps per connection '
                'are at most %.0f kB'
                % (rss_free, STALLED, min(fill), max(fill), queues[0] // 1024, min(rss),
-                  max(rss), WINDOW, rss[-1] - rss[0], QUEUE, QUEUE * msg_kb))
+                  max(rss), WINDOW, rss[-1] - rss[0], queue, queue * msg_kb))
         self.assertLess(abs(change), MAX_RATE_CHANGE)
         self.assertLess(abs(filling_rate / free_rate - 1.0), MAX_RATE_CHANGE)
         self.assertGreater(free_rate, nominal * (1.0 - MAX_RATE_CHANGE))
         self.assertTrue(all(u > 0 for u in unread), 'a stalled subscriber got nothing')
         self.assertLess(max(rss) - min(rss), MAX_FLAT_KB)
-        # roscpp queues the same serialised messages for every connection; at most 16 each
-        self.assertLess(max(rss) - rss_free, STALLED * (QUEUE + 1) * msg_kb + MAX_FLAT_KB)
+        # roscpp queues the same serialised messages for every connection: at most `queue` each
+        self.assertLess(max(rss) - rss_free, STALLED * (queue + 1) * msg_kb + MAX_FLAT_KB)
 
 
 if __name__ == '__main__':

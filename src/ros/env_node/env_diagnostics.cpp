@@ -40,14 +40,18 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   const bool new_rejections =
       c.rejections > previous_.rejections || c.cmd_vel_rejections > previous_.cmd_vel_rejections;
   const bool new_divergences = c.diverged > previous_.diverged;
-  s.level = (new_rejections || new_divergences) ? diagnostic_msgs::DiagnosticStatus::WARN
-                                                : diagnostic_msgs::DiagnosticStatus::OK;
+  const bool new_timeouts = c.pacing_timeouts > previous_.pacing_timeouts;
+  s.level = (new_rejections || new_divergences || new_timeouts)
+                ? diagnostic_msgs::DiagnosticStatus::WARN
+                : diagnostic_msgs::DiagnosticStatus::OK;
   if (new_rejections && new_divergences) {
     s.message = "rejected messages and diverged envs since the last report";
   } else if (new_rejections) {
     s.message = "rejected messages since the last report";
   } else if (new_divergences) {
     s.message = "diverged envs reset since the last report";
+  } else if (new_timeouts) {
+    s.message = "published states that roscpp's network thread was too late for";
   } else {
     s.message = "OK";
   }
@@ -67,6 +71,9 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("obstacles left out", std::to_string(c.obstacles_left_out)));
   s.values.push_back(keyValue("generated layouts unmade", std::to_string(c.layouts_unmade)));
   s.values.push_back(keyValue("movers left out", std::to_string(c.movers_left_out)));
+  s.values.push_back(keyValue("states paced", std::to_string(c.paced_states)));
+  s.values.push_back(keyValue("pacing time-outs", std::to_string(c.pacing_timeouts)));
+  s.values.push_back(keyValue("env_step queue", std::to_string(c.env_step_queue)));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

@@ -31,6 +31,9 @@ namespace {
 // How long the last markers may take to be written [s]: SIGINT and SIGTERM end the node within
 // this, waitForStop()'s 0.1 s and a little.
 constexpr double kFlushTimeout = 0.5;
+// The longest a state waits for roscpp's network thread [s, wall]: it passes every 0.1 s at the
+// latest, and at once when woken.
+constexpr double kPacingTimeout = 1.0;
 
 }  // namespace
 
@@ -42,7 +45,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
       nh_(nh),
       pnh_(pnh),
       diagnostics_(nh_, pnh_.getNamespace().substr(1) + ": environment", enumName(params.mode),
-                   env_->numEnvs()) {
+                   env_->numEnvs()),
+      pacer_(kEnvNodeQueueSize / 2, kPacingTimeout) {
   const int robot_view_envs = robotViewEnvs(params_);
   if (robot_view_envs > 0) {
     if (!drive) throw ConfigError("robot_view_envs > 0 needs the robot's differential drive");
@@ -53,7 +57,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   spec_pub_.publish(spec);
   const RobotNames names(params_.env_prefix, params_.robot_prefix,
                          params_.setup.env.team.robots_per_env);
-  outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_));
+  env_step_queue_ = envStepQueueSize(ros::serialization::serializationLength(*server_.state()));
+  outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_, env_step_queue_));
   if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
   outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
                                                       names, params_.publish_link_tf));
@@ -122,7 +127,7 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
                                            &EnvNode::onDiagnosticsTimer, this);
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    diagnostics_.publish(server_.counters(), env_->state().step);
+    diagnostics_.publish(counters(), env_->state().step);
   }
   ROS_INFO(
       "jetbot_env ready: %d envs, obs_dim %d, action_dim %d, control step %.6f s, %d threads, "
@@ -168,6 +173,14 @@ void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
   std::lock_guard<std::mutex> publish_lock(publish_mutex_);
   for (auto& output : outputs_) output->capture(*env_, msg, reset);
   state_lock.unlock();
+  // Back-to-back steps must not outrun roscpp's network thread (PublicationPacer).
+  if (!pacer_.wait()) {
+    ROS_WARN_THROTTLE(10.0,
+                      "%s: roscpp's network thread made no pass for %.1f s: states published "
+                      "meanwhile may push older ones out of subscriber queues (%llu times so far)",
+                      pnh_.getNamespace().c_str(), kPacingTimeout,
+                      static_cast<unsigned long long>(pacer_.timeouts()));
+  }
   for (auto& output : outputs_) output->send();
 }
 
@@ -207,10 +220,18 @@ void EnvNode::onRealtimeTimer(const ros::WallTimerEvent&) {
 
 void EnvNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   std::unique_lock<std::mutex> lock(state_mutex_);
-  const EnvCounters counters = server_.counters();
+  const EnvCounters now = counters();
   const std::uint64_t step = env_->state().step;
   lock.unlock();
-  diagnostics_.publish(counters, step);
+  diagnostics_.publish(now, step);
+}
+
+EnvCounters EnvNode::counters() const {
+  EnvCounters c = server_.counters();
+  c.paced_states = pacer_.waits();
+  c.pacing_timeouts = pacer_.timeouts();
+  c.env_step_queue = env_step_queue_;
+  return c;
 }
 
 std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {

@@ -1,17 +1,8 @@
 #include "jetbot_rl/ros/env_node/state_output.h"
 
-#include "jetbot_rl/ros/env_node/queue_size.h"
-
 namespace jetbot_rl {
-namespace {
-
-// Small bounded queue: a lockstep learner has one message in flight, and a slow subscriber only
-// loses old messages.
-
-}  // namespace
-
-EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh)
-    : pub_(pnh.advertise<EnvStep>("env_step", kEnvNodeQueueSize)) {}
+EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size)
+    : pub_(pnh.advertise<EnvStep>("env_step", queue_size)) {}
 
 void EnvStepOutput::send() {
   if (msg_) pub_.publish(msg_);

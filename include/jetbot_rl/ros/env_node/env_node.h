@@ -15,6 +15,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/inline_callback_queue.h"
+#include "jetbot_rl/ros/common/publication_pacer.h"
 #include "jetbot_rl/ros/env_node/env_diagnostics.h"
 #include "jetbot_rl/ros/env_node/env_server.h"
 #include "jetbot_rl/ros/env_node/map_publisher.h"
@@ -59,6 +60,8 @@ class EnvNode {
   void onDiagnosticsTimer(const ros::WallTimerEvent& event);
   /// Captures the new state in every output, releases `state_lock`, then publishes.
   void publish(std::unique_lock<std::mutex>& state_lock, bool reset);
+  /// The server's counters with the publication pacer's; under the state lock.
+  EnvCounters counters() const;
 
   NodeParams params_;
   std::unique_ptr<BatchedEnv> env_;
@@ -79,6 +82,8 @@ class EnvNode {
   std::unique_ptr<MapPublisher> map_publisher_;                 // /map, when the world has a map
   std::unique_ptr<WorldGeometryPublisher> geometry_publisher_;  // a Gazebo world's shapes
   EnvDiagnostics diagnostics_;
+  PublicationPacer pacer_;            // before outputs_' send(), under publish_mutex_
+  std::uint32_t env_step_queue_ = 0;  // ~env_step's queue per connection [messages]
 };
 
 /// Loads and echoes the parameters under `pnh` and the robot (robot_description, resolved in

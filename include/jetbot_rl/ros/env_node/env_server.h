@@ -35,6 +35,11 @@ struct EnvCounters {
   std::uint64_t obstacles_left_out = 0;  ///< Obstacles that did not fit (BatchedEnv).
   std::uint64_t layouts_unmade = 0;      ///< Generated layouts not made (BatchedEnv).
   std::uint64_t movers_left_out = 0;     ///< Movers that did not fit (BatchedEnv).
+
+  // The node's publication pacing (PublicationPacer), filled by the node.
+  std::uint64_t paced_states = 0;     ///< States that waited for roscpp's network thread.
+  std::uint64_t pacing_timeouts = 0;  ///< Waits that timed out (older messages may be lost).
+  std::uint32_t env_step_queue = 0;   ///< ~env_step's queue per connection [messages].
 };
 
 /**

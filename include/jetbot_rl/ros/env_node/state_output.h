@@ -4,6 +4,8 @@
 #include <ros/publisher.h>
 #include <ros/time.h>
 
+#include <cstdint>
+
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/env/batched_env.h"
 
@@ -31,7 +33,8 @@ class StateOutput {
 /// ~env_step: every state, as the EnvStep message itself (shared, never copied).
 class EnvStepOutput : public StateOutput {
  public:
-  explicit EnvStepOutput(ros::NodeHandle& pnh);
+  /// `queue_size`: per subscriber connection [messages] (envStepQueueSize()).
+  EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size);
   void capture(const BatchedEnv&, const EnvStep::ConstPtr& msg, bool) override { msg_ = msg; }
   void send() override;
 
