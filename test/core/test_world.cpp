@@ -69,6 +69,29 @@ TEST(World, ObstaclesThatDoNotFitAreLeftOutAndCounted) {
   EXPECT_LT(placed, 10);
 }
 
+TEST(World, AnObstacleDrawThatCannotEndIsCutShortAndCounted) {
+  // The heaviest draw the ranges allow (issue 49: 18 s a reset before): 2,000 obstacles, 100,000
+  // tries each, in a 3 x 3 m arena that holds a few dozen.
+  EnvConfig c = worldConfig(1, 1);
+  c.world.arena_size = {3.0, 3.0};
+  c.world.num_boxes = 1000;
+  c.world.num_cylinders = 1000;
+  c.world.placement_tries = 100000;
+  BatchedEnv env(test::jetbot(), c);
+  const EnvLayout& layout = env.view(0).layout();
+  EXPECT_TRUE(layout.cut_short);
+  int placed = 0;
+  for (const Obstacle& o : layout.obstacles) placed += o.placed;
+  EXPECT_GT(placed, 10);
+  EXPECT_EQ(layout.given_up, 2000 - placed);
+  EXPECT_EQ(env.obstaclesGivenUp(), static_cast<std::uint64_t>(2000 - placed));
+  // A draw that ends on its own is not cut short.
+  c.world.num_boxes = 4;
+  c.world.num_cylinders = 4;
+  BatchedEnv light(test::jetbot(), c);
+  EXPECT_FALSE(light.view(0).layout().cut_short);
+}
+
 TEST(World, SameSeedSameWorldsTrajectoriesAndScansOnAnyThreadCount) {
   BatchedEnv one(test::jetbot(), worldConfig(12, 1));
   BatchedEnv three(test::jetbot(), worldConfig(12, 3));

@@ -123,7 +123,8 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
     "false: the env origin.");
   v("world/placement_tries", c.placement_tries, inRange(1, 100000),
     "Draws for a start or an obstacle before it is given up (an obstacle given up is left out "
-    "of that episode and counted).");
+    "of that episode and counted); a reset's random obstacles take at most 2e7 placement tests "
+    "in all (about 40 ms), and those not placed by then are left out and counted too.");
   v("world/families", c.families, NameList{"", true},
     "Generated layouts, drawn per env at every reset inside the arena: clutter (posts and "
     "crates), rooms (a floor plan with doors) or maze; several: each reset draws one by "

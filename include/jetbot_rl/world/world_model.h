@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -32,12 +33,19 @@ struct Obstacle {
   double distance(const Eigen::Vector2d& p) const;
 };
 
+/// The most placement tests (a drawn obstacle against the start, a point the task keeps free or
+/// an obstacle placed before) one reset's random obstacles may take: about 40 ms here.
+constexpr std::int64_t kObstacleDrawChecks = 20'000'000;
+
 /// One env's layout, drawn at a reset: where the robot starts and its obstacles.
 struct EnvLayout {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< Root link origin at the start [m].
   /// num_boxes boxes, then the cylinders; or a generated layout's obstacles and walls.
   std::vector<Obstacle> obstacles;
-  int given_up = 0;         ///< Obstacles left out at this reset.
+  int given_up = 0;  ///< Obstacles left out at this reset.
+  /// The draw spent kObstacleDrawChecks before placing every obstacle: those not placed by then
+  /// are left out (counted in given_up).
+  bool cut_short = false;
   int family = -1;          ///< Generated: the index of its family in world/families; else -1.
   double difficulty = 0.0;  ///< Generated: the difficulty it was made at, in [0, 1].
   /// Generated: no layout with a start and a reachable goal was made in kLayoutAttempts; the

@@ -333,12 +333,24 @@ void WorldModel::drawObstacles(Rng& rng, const std::vector<Eigen::Vector2d>& kee
   const int boxes = config_.num_boxes, total = boxes + config_.num_cylinders;
   layout.obstacles.resize(total);
   layout.given_up = 0;
+  layout.cut_short = false;
+  // Every draw is tested against the start, the task's points and the obstacles placed before:
+  // a reset does at most kObstacleDrawChecks such tests (issue 49: 2,000 obstacles that do not fit
+  // with 100,000 tries each took 18 s a reset).
+  std::int64_t checks = 0;
   for (int i = 0; i < total; ++i) {
     Obstacle& o = layout.obstacles[i];
     o.shape = i < boxes ? Obstacle::Shape::kBox : Obstacle::Shape::kCylinder;
     o.height = config_.obstacle_height;
     o.placed = false;
+    const std::int64_t tests_per_draw =
+        static_cast<std::int64_t>(keep_free.size()) + (config_.allow_overlap ? 0 : i);
     for (int k = 0; k < config_.placement_tries && !o.placed; ++k) {
+      if (checks + tests_per_draw > kObstacleDrawChecks) {
+        layout.cut_short = true;
+        break;
+      }
+      checks += tests_per_draw;
       if (o.shape == Obstacle::Shape::kBox) {
         o.half_extents =
             0.5 * Eigen::Vector2d(uniform(rng, config_.box_size[0], config_.box_size[1]),
