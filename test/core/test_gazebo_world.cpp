@@ -13,6 +13,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
+#include "jetbot_rl/robot/package_path.h"
 #include "jetbot_rl/sensors/laser_scanner.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "world_test_util.h"
@@ -317,6 +318,27 @@ TEST_F(GazeboWorldTest, IncludesRelativeToTheWorldFileAreFound) {
   const WorldSolid& leg = solid(three, "t1::body::leg_1");
   ASSERT_TRUE(leg.upright);
   EXPECT_NEAR((leg.upright->center - Eigen::Vector2d(-1.0 + 0.55, 0.35)).norm(), 0.0, 1e-12);
+}
+
+TEST_F(GazeboWorldTest, AModelUriWithThreeSlashesIsFoundAsGazeboFindsIt) {
+  // turtlebot3_house.world (ROBOTIS) names a mesh model:///table_marble/meshes/...: Gazebo 11
+  // loads it, the slashes before the model's name counting for nothing.
+  const auto counter = [](const std::string& uri) {
+    return "<model name=\"counter\"><static>true</static><link name=\"body\"><collision "
+           "name=\"collision\"><geometry><mesh><uri>" +
+           uri +
+           "</uri><scale>0.001 0.001 0.001</scale></mesh></geometry></collision></link>"
+           "</model>\n";
+  };
+  const GazeboWorld two = loadGazeboWorld(
+      sdfWorld("two.world", counter("model://jetbot_rl_counter/meshes/counter.stl")));
+  const GazeboWorld three = loadGazeboWorld(
+      sdfWorld("three.world", counter("model:///jetbot_rl_counter/meshes/counter.stl")));
+  ASSERT_EQ(three.solids.size(), 1u);
+  EXPECT_EQ(three.solids[0].triangles, two.solids[0].triangles);
+  EXPECT_EQ(findGazeboModel("model:///jetbot_rl_counter/meshes/counter.stl"),
+            findGazeboModel("model://jetbot_rl_counter/meshes/counter.stl"));
+  EXPECT_EQ(findGazeboModel("model:///"), "");
 }
 
 TEST_F(GazeboWorldTest, TheGridWrittenAsAMapReadsBackAsTheSameCells) {

@@ -56,7 +56,10 @@ std::string findPackageUri(const std::string& uri) {
 std::string findGazeboModel(const std::string& uri) {
   static const std::string kScheme = "model://";
   if (uri.rfind(kScheme, 0) != 0) return "";
-  const std::string rest = uri.substr(kScheme.size());
+  // model:///NAME/... (published worlds write it: turtlebot3_house.world) as Gazebo 11 reads it:
+  // the slashes before the name count for nothing.
+  const std::size_t name_at = uri.find_first_not_of('/', kScheme.size());
+  const std::string rest = name_at == std::string::npos ? "" : uri.substr(name_at);
   const std::string name = rest.substr(0, rest.find('/'));
   const std::string tail = rest.substr(name.size());
   if (name.empty()) return "";
