@@ -7,6 +7,7 @@
 #include <string>
 
 #include "jetbot_rl/config/command_line.h"
+#include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/world_model.h"
 
 int main(int argc, char** argv) {
@@ -38,6 +39,9 @@ int main(int argc, char** argv) {
     config.start_clearance = 0.0;
     validateConfig(config);  // the program's options are the boundary: WorldModel takes it as valid
     const WorldModel world(config, 0.0);
+    for (const std::string& w : world.gazebo()->warnings) {
+      std::fprintf(stderr, "jetbot_rl_world_map: warning: %s\n", w.c_str());
+    }
     writeMapYaml(*world.map(), argv[2]);
     std::printf("%s: %d x %d cells of %g m, origin (%g, %g), cut at %g m\n", argv[2],
                 world.map()->width, world.map()->height, world.map()->resolution,

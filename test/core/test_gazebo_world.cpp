@@ -341,6 +341,46 @@ TEST_F(GazeboWorldTest, AModelUriWithThreeSlashesIsFoundAsGazeboFindsIt) {
   EXPECT_EQ(findGazeboModel("model:///"), "");
 }
 
+TEST_F(GazeboWorldTest, ALinkWhoseInertiaSdformatRefusesIsReadWithoutIt) {
+  // As aws-robomaker-small-house-world's shoe rack has it: <ixx> twice, no <izz> (so 1, more than
+  // the other two together): sdformat refuses the link, and with it the world; Gazebo 11 loads.
+  const std::string inertia =
+      "<inertial><mass>6</mass><inertia><ixx>0.02</ixx><ixy>0</ixy><ixz>0</ixz><iyy>0.04</iyy>"
+      "<iyz>0</iyz><ixx>0.02</ixx></inertia></inertial>";
+  const auto rack = [&](const std::string& name, const std::string& pose) {
+    return "<model name=\"" + name + "\"><pose>" + pose + "</pose><link name=\"link\">" + inertia +
+           box("collision", "0 0 0.4 0 0 0", "0.8 0.3 0.8") + "</link></model>\n";
+  };
+  // The same as a model folder on GAZEBO_MODEL_PATH, included.
+  const std::filesystem::path models = std::filesystem::path(::testing::TempDir()) / "rack_models";
+  std::filesystem::create_directories(models / "shoe_rack");
+  test::writeTempFile("rack_models/shoe_rack/model.config",
+                      "<?xml version=\"1.0\"?><model><name>shoe_rack</name>"
+                      "<sdf version=\"1.6\">model.sdf</sdf></model>\n");
+  const std::string model_sdf = test::writeTempFile(
+      "rack_models/shoe_rack/model.sdf", "<?xml version=\"1.0\"?>\n<sdf version=\"1.6\">\n" +
+                                             rack("shoe_rack", "0 0 0 0 0 0") + "</sdf>\n");
+  ::setenv("GAZEBO_MODEL_PATH",
+           (models.string() + ":" + std::string(JETBOT_RL_SOURCE_DIR) + "/models").c_str(), 1);
+  const std::string path =
+      sdfWorld("racks.world",
+               rack("hall_rack", "2 0 0 0 0 0") +
+                   "<include><uri>model://shoe_rack</uri><pose>-2 0 0 0 0 0</pose></include>\n");
+  const GazeboWorld world = loadGazeboWorld(path);
+  ASSERT_EQ(world.solids.size(), 2u);
+  EXPECT_NEAR(solid(world, "hall_rack::link::collision").bounds.center().x(), 2.0, 1e-9);
+  EXPECT_NEAR(solid(world, "shoe_rack::link::collision").bounds.center().x(), -2.0, 1e-9);
+  // One warning per link, naming its file, line and model.
+  ASSERT_EQ(world.warnings.size(), 2u);
+  std::string all;
+  for (const std::string& w : world.warnings) all += w + "\n";
+  EXPECT_NE(all.find(path + ":"), std::string::npos) << all;
+  EXPECT_NE(all.find(model_sdf + ":"), std::string::npos) << all;
+  EXPECT_NE(all.find("model 'hall_rack', link 'link'"), std::string::npos) << all;
+  EXPECT_NE(all.find("model 'shoe_rack', link 'link'"), std::string::npos) << all;
+  EXPECT_NE(all.find("an inertia sdformat refuses"), std::string::npos) << all;
+}
+
 TEST_F(GazeboWorldTest, TheGridWrittenAsAMapReadsBackAsTheSameCells) {
   WorldConfig config;
   config.gazebo_world = shippedWorld();

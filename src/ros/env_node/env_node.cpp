@@ -269,6 +269,10 @@ std::unique_ptr<EnvNode> makeEnvNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
       ROS_INFO("world/gazebo_world %s: not read: %s", world->gazebo()->path.c_str(),
                world->gazebo()->skipped.c_str());
     }
+    if (world->gazebo()) {
+      for (const std::string& w : world->gazebo()->warnings)
+        ROS_WARN("world/gazebo_world %s", w.c_str());
+    }
   }
   // The robot view's cmd_vel kinematics: required for robot envs, else only echoed and in ~spec.
   std::optional<DiffDrive> drive;

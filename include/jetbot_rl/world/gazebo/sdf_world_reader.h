@@ -44,6 +44,9 @@ struct GazeboWorld {
   int models = 0;                    ///< Models read, nested ones included.
   /// What was not read, for one INFO line (lights, plugins, planes, ...); "" when nothing.
   std::string skipped;
+  /// Links whose inertia sdformat refuses and Gazebo 11 loads (collision shapes need none),
+  /// read without it: one line each naming the file, line, model and link, for a WARN each.
+  std::vector<std::string> warnings;
 };
 
 /**
@@ -54,7 +57,9 @@ struct GazeboWorld {
  * `<polyline>` extrusions; planes (the ground) and heightmaps are skipped and named in `skipped`.
  * With `visuals`, every `<visual>` too (GazeboWorld::visuals: the same shapes, with their
  * materials' colours). Throws ConfigError naming the file and line as sdformat reports them, the
- * mesh that cannot be read or the model URI that cannot be found.
+ * mesh that cannot be read or the model URI that cannot be found. A link whose inertia sdformat
+ * refuses (a zero or repeated moment: Gazebo 11 loads it) is read without it, and named in
+ * GazeboWorld::warnings.
  */
 GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolver = nullptr,
                             bool visuals = false);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jetbot_rl/config/file_checks.h"
+#include "world/gazebo/inertia_free_models.h"
 
 namespace jetbot_rl {
 namespace {
@@ -126,13 +127,15 @@ std::string includeProblem(const std::string& path, const IncludeFinder& find) {
   return IncludeWalk(find).walk(path);
 }
 
-std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats) {
+std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats,
+                               std::vector<std::string>* refused_inertias) {
   repeats.clear();
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
   tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
   tinyxml2::XMLElement* world = sdf ? sdf->FirstChildElement("world") : nullptr;
   if (!world) return "";
+  if (refused_inertias) stripInertials(*world, path, *refused_inertias);
   const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
   std::map<std::string, std::string> first;  // shape key -> the first model's name
   for (tinyxml2::XMLElement* e = world->FirstChildElement(); e;) {
@@ -163,7 +166,7 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
     }
     e = next;
   }
-  if (repeats.empty()) return "";
+  if (repeats.empty() && !refused_inertias) return "";
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
   return printer.CStr();

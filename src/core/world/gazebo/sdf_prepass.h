@@ -23,7 +23,10 @@ struct RepeatedModel {
  * Models with a placement frame are kept. "" with no repeats or when tinyxml2 cannot read the
  * file (sdformat then reads it and reports why).
  */
-std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats);
+/// With `refused_inertias`: every <inertial> removed too, those sdformat refuses named in it
+/// (stripInertials()), and the text returned whenever tinyxml2 reads the file.
+std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats,
+                               std::vector<std::string>* refused_inertias = nullptr);
 
 /// "" when the file at `path` is XML with an <sdf> root whose version is 1.0 up to `newest`
 /// (sdformat's), else what is wrong: "PATH:LINE: ..." for XML that does not parse, "PATH: ..."

@@ -16,6 +16,7 @@
 #include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/package_path.h"
+#include "world/gazebo/inertia_free_models.h"
 #include "world/gazebo/sdf_prepass.h"
 #include "world/gazebo/sdf_shapes.h"
 #include "world/gazebo/sdf_visuals.h"
@@ -37,6 +38,20 @@ std::string errorText(const sdf::Errors& errors, const std::string& path) {
     s << ": " << e.Message();
   }
   return s.str();
+}
+
+/// True for an error sdformat reports of a link's inertia, or of the world or model around it.
+bool inertiaOnly(const sdf::Errors& errors) {
+  bool inertia = false;
+  for (const sdf::Error& e : errors) {
+    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) {
+      inertia = true;
+    } else if (e.Message() != "Failed to load a world." &&
+               e.Message() != "Failed to load a model.") {
+      return false;
+    }
+  }
+  return inertia;
 }
 
 bool deprecationOnly(const sdf::Error& e) {
@@ -230,6 +245,21 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
     repeats.clear();
     root = std::make_unique<sdf::Root>();
     errors = load(*root, "");
+  }
+  // A link's inertia that sdformat refuses and Gazebo 11 loads (published worlds have zero and
+  // repeated moments): read again with every <inertial> left out, the models through copies.
+  InertiaFreeModels copies;
+  // (sdformat names neither the model nor the file and line: the copies do.)
+  if (inertiaOnly(errors)) {
+    const auto find_copy = [&copies, find](const std::string& uri) {
+      const std::string found = find(uri);
+      return found.empty() ? found : copies.copyOf(found);
+    };
+    config.SetFindCallback(find_copy);
+    sdf::setFindCallback(find_copy);
+    root = std::make_unique<sdf::Root>();
+    errors = load(*root, foldRepeatedModels(path, repeats, &world.warnings));
+    world.warnings.insert(world.warnings.end(), copies.refused().begin(), copies.refused().end());
   }
   if (!errors.empty()) throw ConfigError(errorText(errors, path));
   if (root->WorldCount() == 0) {
