@@ -128,6 +128,27 @@ class TestTaskDefaults(unittest.TestCase):
             self.assertEqual(params['/robot_description'], text(NAV_URDF), launch_file)
             self.assertSameEnv(under(params, '/jetbot_env'), launch_file + ' task:=navigation')
 
+    def test_the_start_wherever_a_gazebo_world_is_offered(self):
+        """x_pos, y_pos and yaw (docs/world.md's TurtleBot3 world start) reach every env node of
+        every launch file that offers gazebo_world:=, as world/spawn and initial_yaw."""
+        start = ['x_pos:=-2.0', 'y_pos:=-0.5', 'yaw:=1.5']
+        for launch_file, args, nodes in (
+                ('jetbot_env.launch', [], ['/jetbot_env']),
+                ('train.launch', [], ['/jetbot_env']),
+                ('train.launch', ['in_process:=true'], ['/jetbot_ppo_trainer/env_config']),
+                ('train.launch', ['num_env_nodes:=2'], ['/jetbot_env_0', '/jetbot_env_1']),
+                ('env_host.launch', ['num_env_nodes:=2'], ['/jetbot_env_0', '/jetbot_env_1']),
+                ('play.launch', ['checkpoint:=x'], ['/jetbot_env'])):
+            params = dump(launch_file, *(args + start))
+            for node in nodes:
+                env = under(params, node)
+                what = '%s %s: %s' % (launch_file, ' '.join(args + start), node)
+                self.assertEqual(env.get('world/spawn'), [-2.0, -0.5], what)
+                self.assertEqual(env.get('initial_yaw'), [1.5, 1.5], what)
+            # without them, the parameters' start
+            env = under(dump(launch_file, *args), nodes[0])
+            self.assertNotEqual(env.get('world/spawn'), [-2.0, -0.5], launch_file)
+
     def assertNoTaskFile(self, env, what, but=()):
         """`env` holds none of navigation_env.yaml's settings (but those of `but`): its keys that
         config/jetbot_env.yaml sets have that file's values, the others are unset."""
