@@ -203,11 +203,12 @@ std::vector<CameraSpec> resolveCameras(const CameraConfig& config, const RobotMo
     if (c.label) topics.push_back(c.label_topic);
     return topics;
   };
+  std::vector<std::vector<std::string>> topics;
+  for (const CameraSpec& c : cameras) topics.push_back(published(c));
   for (std::size_t a = 0; a < cameras.size(); ++a) {
     for (std::size_t b = 0; b < a; ++b) {
-      for (const std::string& topic : published(cameras[a])) {
-        const std::vector<std::string> other = published(cameras[b]);
-        if (std::find(other.begin(), other.end(), topic) != other.end()) {
+      for (const std::string& topic : topics[a]) {
+        if (std::find(topics[b].begin(), topics[b].end(), topic) != topics[b].end()) {
           throw ConfigError("the cameras '" + cameras[b].name + "' and '" + cameras[a].name +
                             "' would both publish " + topic +
                             ": give their plugins different <cameraName>s");

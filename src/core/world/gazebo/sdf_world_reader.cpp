@@ -248,18 +248,20 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   }
   // A link's inertia that sdformat refuses and Gazebo 11 loads (published worlds have zero and
   // repeated moments): read again with every <inertial> left out, the models through copies.
-  InertiaFreeModels copies;
-  // (sdformat names neither the model nor the file and line: the copies do.)
+  // (sdformat names neither the model nor the file and line: the copies do.) They live until the
+  // reader has read the meshes they name, and are made only for such a world.
+  std::optional<InertiaFreeModels> copies;
   if (inertiaOnly(errors)) {
+    copies.emplace();
     const auto find_copy = [&copies, find](const std::string& uri) {
       const std::string found = find(uri);
-      return found.empty() ? found : copies.copyOf(found);
+      return found.empty() ? found : copies->copyOf(found);
     };
     config.SetFindCallback(find_copy);
     sdf::setFindCallback(find_copy);
     root = std::make_unique<sdf::Root>();
     errors = load(*root, foldRepeatedModels(path, repeats, &world.warnings));
-    world.warnings.insert(world.warnings.end(), copies.refused().begin(), copies.refused().end());
+    world.warnings.insert(world.warnings.end(), copies->refused().begin(), copies->refused().end());
   }
   if (!errors.empty()) throw ConfigError(errorText(errors, path));
   if (root->WorldCount() == 0) {
