@@ -5,8 +5,10 @@
 
 #include <cstring>
 
+#include "jetbot_rl/env/env_config.h"
 #include "jetbot_rl/sensors/camera_scene.h"
 #include "jetbot_rl/world/world_model.h"
+#include "test_util.h"
 
 namespace jetbot_rl {
 
@@ -36,6 +38,18 @@ inline void expectSameImages(const CameraImages& a, const CameraImages& b) {
   EXPECT_EQ(a.label, b.label);
   ASSERT_EQ(a.depth.size(), b.depth.size());
   EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)));
+}
+
+/// A batch of camera robots in a 3 x 3 m arena with two boxes each, 32 x 24 images of every kind.
+inline EnvConfig cameraArenaConfig(int num_envs, int threads) {
+  EnvConfig c = test::smallConfig(num_envs, threads);
+  c.world.arena_size = {3.0, 3.0};
+  c.world.num_boxes = 2;
+  c.world.random_start = true;
+  c.camera.width = 32;
+  c.camera.height = 24;
+  c.camera.images = {"rgb", "depth", "label"};
+  return c;
 }
 
 }  // namespace jetbot_rl

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "camera_test_util.h"
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
@@ -25,18 +26,6 @@ RobotModelConstPtr cameraJetbot() {
   static const RobotModelConstPtr model =
       RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf");
   return model;
-}
-
-/// A batch of camera Jetbots in a 3 x 3 m arena with two boxes each, 32 x 24 images.
-EnvConfig cameraArenaConfig(int num_envs, int threads) {
-  EnvConfig c = test::smallConfig(num_envs, threads);
-  c.world.arena_size = {3.0, 3.0};
-  c.world.num_boxes = 2;
-  c.world.random_start = true;
-  c.camera.width = 32;
-  c.camera.height = 24;
-  c.camera.images = {"rgb", "depth", "label"};
-  return c;
 }
 
 /// The one camera `config` gives on `robot`, or none.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "camera_test_util.h"
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/camera_spec.h"
@@ -127,15 +128,9 @@ TEST(Multicamera, TwoCamerasOnOneTopicAreRefusedNamingBoth) {
   }
 }
 
-/// A batch of stereo Jetbots in a 3 x 3 m arena with boxes, 32 x 24 images without noise.
+/// A batch of stereo Jetbots in the camera tests' arena, images every step without noise.
 EnvConfig stereoArena(const std::string& batch_camera) {
-  EnvConfig c = test::smallConfig(2);
-  c.world.arena_size = {3.0, 3.0};
-  c.world.num_boxes = 3;
-  c.world.random_start = true;
-  c.camera.width = 32;
-  c.camera.height = 24;
-  c.camera.images = {"rgb", "depth", "label"};
+  EnvConfig c = cameraArenaConfig(2, 1);
   c.camera.noise_std = 0.0;
   c.camera.update_every = 1;
   c.camera.batch_camera = batch_camera;
