@@ -17,6 +17,7 @@ target_link_libraries(jetbot_rl_nav_benchmark jetbot_rl_eval)
 target_compile_definitions(jetbot_rl_nav_benchmark PRIVATE
   JETBOT_RL_DEFAULT_LIDAR_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot_lidar.urdf"
   JETBOT_RL_DEFAULT_MAP="${PROJECT_SOURCE_DIR}/maps/office.yaml"
+  JETBOT_RL_DEFAULT_GAZEBO_WORLD="${PROJECT_SOURCE_DIR}/worlds/furnished_room.world"
   JETBOT_RL_NAVIGATION_ENV="${PROJECT_SOURCE_DIR}/config/navigation_env.yaml")
 
 install(TARGETS jetbot_rl_eval

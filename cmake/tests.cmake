@@ -40,7 +40,9 @@ catkin_add_gtest(test_core
   test/core/test_scan_cast.cpp
   test/core/test_scan_reading.cpp
   test/core/test_world.cpp
+  test/core/test_spawn_reach.cpp
   test/core/test_gazebo_world.cpp
+  test/core/test_saved_state.cpp
   test/core/test_hostile_world_files.cpp
   test/core/test_movers.cpp
   test/core/test_team.cpp

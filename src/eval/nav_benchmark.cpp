@@ -93,6 +93,7 @@ double benchmarkEpisodeS(double top_speed) {
 }
 
 std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, const std::string& map,
+                                                      const std::string& gazebo_world,
                                                       double episode_s) {
   EnvSetup common = base;
   common.task.task = TaskKind::kNavigation;
@@ -130,6 +131,18 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
   office.setup.task.navigation.goal_distance = {1.0, 15.0};
   office.setup.task.navigation.goal_reachable = true;
   worlds.push_back(std::move(office));
+  if (gazebo_world.empty()) return worlds;
+  // A world no one trained in, as published Gazebo worlds are: starts and goals where the robot
+  // can drive from the spawn (WorldModel::spawnReach()), not outside it or inside furniture.
+  BenchmarkWorld gazebo{"gazebo 1-6 m", common};
+  WorldConfig& room = gazebo.setup.env.world;
+  room.gazebo_world = gazebo_world;
+  room.arena_size.clear();
+  room.families.clear();
+  room.spawn = {0.0, 0.0};
+  gazebo.setup.task.navigation.goal_distance = {1.0, 6.0};
+  gazebo.setup.task.navigation.goal_reachable = true;
+  worlds.push_back(std::move(gazebo));
   return worlds;
 }
 

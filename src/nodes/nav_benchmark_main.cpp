@@ -1,9 +1,10 @@
 // jetbot_rl_nav_benchmark --checkpoint PATH (a file, or a run directory: its latest.pt, else its
-// best.pt) [--episodes N] [--seed S] [--map YAML] [--config YAML
+// best.pt) [--episodes N] [--seed S] [--map YAML] [--gazebo-world WORLD] [--config YAML
 // ...] [--num-envs N] [--steps S] [--threads T] [--urdf PATH]: the navigation benchmark
 // (config/navigation_env.yaml, then the --config files: those the policy was trained with)
 // (docs/navigation.md#the-benchmark): a navigation policy in each generated family at three
-// difficulties and in a map with goals anywhere reachable, on a seed not used in training; one
+// difficulties, in a map and in a Gazebo world (default worlds/furnished_room.world, "" for none)
+// with goals anywhere reachable, on a seed not used in training; one
 // row per world: success, collision and time-out rates, time to goal, path over the shortest.
 #include <algorithm>
 #include <cstdio>
@@ -24,12 +25,21 @@ int main(int argc, char** argv) {
   env_options.urdf = JETBOT_RL_DEFAULT_LIDAR_URDF;
   options.episodes = 200;
   std::string map = JETBOT_RL_DEFAULT_MAP;
+  std::string gazebo_world = JETBOT_RL_DEFAULT_GAZEBO_WORLD;
   const auto take = [&](const std::string& option, const std::string& value, std::string&) {
-    if (option != "--map") return false;
-    map = value;
+    if (option == "--map") {
+      map = value;
+    } else if (option == "--gazebo-world") {
+      gazebo_world = value;
+    } else {
+      return false;
+    }
     return true;
   };
-  if (!options.parse(argc, argv, "jetbot_rl_nav_benchmark", "[--map YAML]", take)) return 2;
+  if (!options.parse(argc, argv, "jetbot_rl_nav_benchmark", "[--map YAML] [--gazebo-world WORLD]",
+                     take)) {
+    return 2;
+  }
   std::string checkpoint = options.checkpoint;
   const long long seed = options.seed;
   const int episodes = std::max(options.episodes, 1);
@@ -57,7 +67,8 @@ int main(int argc, char** argv) {
     base.env.seed = static_cast<std::uint64_t>(seed);
     const RobotModelConstPtr robot =
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
-    for (const BenchmarkWorld& world : navigationBenchmarkWorlds(base, map, episode_s)) {
+    for (const BenchmarkWorld& world :
+         navigationBenchmarkWorlds(base, map, gazebo_world, episode_s)) {
       const std::unique_ptr<BatchedEnv> env = makeEnv(robot, world.setup);
       for (const std::string& warning : policy.fitTo(env->spec())) {
         // The benchmark's own episode length (kBenchmarkEpisodeS) is no surprise to warn of.

@@ -35,8 +35,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    config.random_start = true;  // the spawn point need not be free to write the map
-    config.start_clearance = 0.0;
+    config.draws = false;    // no start: the spawn point need not be free to write the map
     validateConfig(config);  // the program's options are the boundary: WorldModel takes it as valid
     const WorldModel world(config, 0.0);
     for (const std::string& w : world.gazebo()->warnings) {

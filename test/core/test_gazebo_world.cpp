@@ -175,7 +175,8 @@ TEST_F(GazeboWorldTest, AScanOfTheWorldEqualsTheScanOfItsShapesGivenAsObstacles)
   WorldConfig config;
   config.gazebo_world = path;
   config.cut_height = 0.1;
-  config.random_start = true;  // the origin is inside the inner box
+  config.random_start = true;  // the origin is inside the inner box: starts over the region
+  config.region = {-3.0, -3.0, 3.0, 3.0};
   const WorldModel world(config, 0.1);
   // The same shapes by hand, as obstacles.
   const auto place = [](double yaw, const Eigen::Vector2d& at, const Eigen::Vector2d& p) {

@@ -268,8 +268,9 @@ TEST(NavigationPath, APathNeedsAWorldAndTheSameSeedPlansTheSameOnAnyThreadCount)
 }
 
 TEST(NavigationPath, GoalReachableDrawsGoalsOnlyWhereTheRobotCanDrive) {
-  // A 4 x 2 m map cut in two by a wall at x = 2 m: with nav/goal_reachable every goal is on its
-  // start's side; without, some are behind the wall.
+  // A 4 x 2 m map cut in two by a wall at x = 2 m, starts drawn over both halves (the map as
+  // world/region): with nav/goal_reachable every goal is on its start's side; without, some are
+  // behind the wall.
   std::vector<std::string> rows(20, std::string(40, '.'));
   for (std::string& row : rows) row[20] = '#';
   const std::string yaml = test::writeMapYaml("halves.yaml", test::writePgm("halves.pgm", rows));
@@ -277,6 +278,7 @@ TEST(NavigationPath, GoalReachableDrawsGoalsOnlyWhereTheRobotCanDrive) {
   c.episode_length_s = 0.05;
   c.world.map = yaml;
   c.world.random_start = true;
+  c.world.region = {0.0, 0.0, 4.0, 2.0};
   c.world.start_clearance = 0.2;
   c.scan.link = "base_link";
   c.scan.samples = 24;

@@ -100,6 +100,7 @@ TEST(OccupancyMap, TheOriginPlacesTheLowerLeftCornerWithItsYaw) {
                          "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
   config.random_start = true;
   config.start_clearance = 0.0;
+  config.region = {1.0, 1.0, 2.0, 2.0};  // the map's extent: the origin lies outside it
   const WorldModel world(config, 0.0);
   ASSERT_EQ(world.mapRectangles().size(), 1u);
   // Cell (0, 0)'s centre (0.25, 0.25) in the map frame, turned by 90 degrees about (2, 1).

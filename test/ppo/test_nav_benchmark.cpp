@@ -3,6 +3,7 @@
 // path, and an env without the navigation task or a world is refused.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "jetbot_rl/env/env_setup.h"
@@ -57,12 +58,16 @@ Policy untrainedPolicy(const BatchedEnv& env) {
 
 TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   const EnvSetup base = navigationEnv();
-  const auto worlds =
-      navigationBenchmarkWorlds(base, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
-  ASSERT_EQ(worlds.size(), 10u);
+  // The shipped room's tables and counter, found as Gazebo finds models.
+  ::setenv("GAZEBO_MODEL_PATH", (std::string(JETBOT_RL_SOURCE_DIR) + "/models").c_str(), 1);
+  const std::string room = std::string(JETBOT_RL_SOURCE_DIR) + "/worlds/furnished_room.world";
+  const auto worlds = navigationBenchmarkWorlds(
+      base, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml", room);
+  ASSERT_EQ(worlds.size(), 11u);
   EXPECT_EQ(worlds[0].name, "clutter 0");
   EXPECT_EQ(worlds[8].name, "maze 1");
   EXPECT_EQ(worlds[9].name, "map 1-15 m");
+  EXPECT_EQ(worlds[10].name, "gazebo 1-6 m");
   for (const BenchmarkWorld& w : worlds) {
     EXPECT_NO_THROW(makeEnv(lidarJetbot(), benchmarkSetup(w, 2))) << w.name;
     // The world's own episode length, over the env's (20 s), and the rest of the env kept.
@@ -82,18 +87,24 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.264), 27.0 / (0.75 * 0.264));
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(2.0), 60.0);
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.0), 60.0);
-  EXPECT_DOUBLE_EQ(navigationBenchmarkWorlds(base, "m.yaml", 136.0)[4].setup.env.episode_length_s,
-                   136.0);
+  EXPECT_DOUBLE_EQ(
+      navigationBenchmarkWorlds(base, "m.yaml", "", 136.0)[4].setup.env.episode_length_s, 136.0);
   const EnvSetup map = worlds[9].setup;
   EXPECT_TRUE(map.env.world.families.empty());
   EXPECT_TRUE(map.env.world.arena_size.empty());
   EXPECT_EQ(map.env.world.map, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
   EXPECT_TRUE(map.task.navigation.goal_reachable);
   EXPECT_EQ(map.task.navigation.goal_distance, (std::vector<double>{1.0, 15.0}));
+  const EnvSetup gazebo = worlds[10].setup;
+  EXPECT_EQ(gazebo.env.world.gazebo_world, room);
+  EXPECT_TRUE(gazebo.env.world.map.empty());
+  EXPECT_TRUE(gazebo.env.world.region.empty());  // where the robot can drive from its spawn
+  EXPECT_TRUE(gazebo.task.navigation.goal_reachable);
+  EXPECT_EQ(navigationBenchmarkWorlds(base, "m.yaml", "").size(), 10u);
 }
 
 TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPath) {
-  const auto worlds = navigationBenchmarkWorlds(navigationEnv(), "unused.yaml");
+  const auto worlds = navigationBenchmarkWorlds(navigationEnv(), "unused.yaml", "");
   const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
   Policy policy = untrainedPolicy(*env);
   const BenchmarkResult r = runNavigationBenchmark(policy, *env, 12, 5000);

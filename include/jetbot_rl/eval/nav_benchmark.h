@@ -41,9 +41,12 @@ double benchmarkEpisodeS(double top_speed);
 /// The benchmark's worlds over the env `base` (the navigation task set): each generated family
 /// at difficulty 0, 0.5 and 1 in a 6 x 6 m arena, goals 1-3 m away; then the map `map` with
 /// goals 1-15 m away anywhere the robot can reach (nav/goal_reachable), other rooms included;
-/// every episode `episode_s` long [s]. The rest of `base` (the robot's control, the scanner, the
-/// observation, the other world fields) is kept.
+/// then, unless `gazebo_world` is empty, that Gazebo world with starts and goals 1-6 m apart
+/// anywhere the robot can reach from its spawn, the origin; every episode `episode_s` long [s].
+/// The rest of `base` (the robot's control, the scanner, the observation, the other world
+/// fields) is kept.
 std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, const std::string& map,
+                                                      const std::string& gazebo_world,
                                                       double episode_s = kBenchmarkEpisodeS);
 
 /**

@@ -62,6 +62,16 @@ struct OccupancyMap {
     return Eigen::Isometry2d(Eigen::Translation2d(origin_x, origin_y) *
                              Eigen::Rotation2Dd(origin_yaw));
   }
+  /// The box about the map's four corners in its parent frame [m].
+  Eigen::AlignedBox2d extent() const {
+    const double w = width * resolution, h = height * resolution;
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
+                                          Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
+      box.extend(pose() * corner);
+    }
+    return box;
+  }
   /// The cell (column x, row y) holding `p` (in the map's parent frame, as `origin`); false when
   /// `p` lies outside the map.
   bool cellOf(const Eigen::Vector2d& p, int& x, int& y) const {

@@ -27,7 +27,7 @@ struct WorldConfig {
   int num_cylinders = 0;                   ///< Random cylinders per env.
   std::vector<double> cylinder_radius{0.1, 0.25};  ///< [min, max] [m].
   /// [x_min, y_min, x_max, y_max] where obstacles and random starts are drawn, in the env frame
-  /// [m]; []: inside the arena walls, else the map's extent.
+  /// [m]; []: inside the arena walls, else the map's extent where the robot can drive from spawn.
   std::vector<double> region;
   double start_clearance = 0.4;  ///< Free radius around the start (and a task's free points) [m].
   double obstacle_gap = 0.0;     ///< Least distance between two obstacles [m].
@@ -46,6 +46,9 @@ struct WorldConfig {
   double curriculum_mix = 0.0;         ///< Share of resets drawn at a difficulty below the env's.
   /// Not a parameter: a Gazebo world's <visual> elements are read too (a camera draws them).
   bool read_visuals = false;
+  /// Not a parameter: false for a program that only reads the world (jetbot_rl_world_map): no
+  /// start is checked or drawn, and no reach from the spawn kept.
+  bool draws = true;
 
   /// True when the env has any world: a map, walls or obstacles.
   bool enabled() const {
@@ -96,7 +99,9 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
     "Cell size of the Gazebo world's grid (/map, the planner, clearances).");
   v("world/spawn", c.spawn, EachValue<double>{Range<double>{-1e4, 1e4, false, false, "m"}},
     "[x, y]: the fixed start in the env frame when random_start is false (its heading: "
-    "initial_yaw), as a Gazebo launch file's x_pos and y_pos.");
+    "initial_yaw), as a Gazebo launch file's x_pos and y_pos. With a map or a Gazebo world and "
+    "no region, starts and goals are drawn only where the robot can drive from here (not "
+    "outside the building, not inside a closed outline): the robot's footprint must fit here.");
   v("world/arena_size", c.arena_size, EachValue<double>{length},
     "[x, y]: walls of a rectangle this size centred on each env origin; []: none.");
   v("world/wall_thickness", c.wall_thickness, length, "Thickness of the arena walls.");
@@ -111,7 +116,8 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
   v("world/cylinder_radius", c.cylinder_radius, intervalOf(length), "Range of their radii.");
   v("world/region", c.region, EachValue<double>{Range<double>{-1e4, 1e4, false, false, "m"}},
     "[x_min, y_min, x_max, y_max] where obstacles and random starts are drawn, in the env frame; "
-    "[]: inside the arena walls, else the map's extent.");
+    "[]: inside the arena walls, else the map's extent where the robot can drive from spawn "
+    "(given: anywhere free in it).");
   v("world/start_clearance", c.start_clearance, atLeast(0.0, "m"),
     "No obstacle, wall or occupied cell within this distance of the start, nor of a point a task "
     "keeps free (a goal).");

@@ -112,9 +112,16 @@ class WorldModel {
   /// True when `p` keeps `clearance` from the walls and the map and from every placed obstacle.
   bool isClear(const Eigen::Vector2d& p, double clearance,
                const std::vector<Obstacle>& obstacles) const;
-  /// A point drawn uniformly in the region that keeps `clearance` from the static world, from
-  /// `rng`; std::nullopt after world/placement_tries draws.
+  /// A point drawn uniformly in the region that keeps `clearance` from the static world and is
+  /// inReach(), from `rng`; std::nullopt after world/placement_tries draws.
   std::optional<Eigen::Vector2d> drawFreePoint(Rng& rng, double clearance) const;
+  /// True when the robot can drive to `p` from world/spawn, or when no reach is kept (see
+  /// spawnReach()).
+  bool inReach(const Eigen::Vector2d& p) const;
+  /// With a map or a Gazebo world and no world/region: the free space the robot's footprint can
+  /// reach from world/spawn, where starts and goals are drawn (not outside a building, not inside
+  /// a closed outline); else null (the region is drawn in).
+  const FootprintGrid* spawnReach() const { return spawn_reach_.get(); }
 
   /// Draws the start (random_start: in free space with start_clearance, at least the robot's
   /// footprint; else the origin).
@@ -143,6 +150,9 @@ class WorldModel {
   void readGazeboWorld();
   /// "inside or near <the Gazebo solids within `reach` of p>", for a refused spawn.
   std::string gazeboSolidNear(const Eigen::Vector2d& p, double reach) const;
+  /// Marks spawn_reach_ (a map or a Gazebo world, no world/region); ConfigError naming
+  /// world/spawn when the robot's footprint does not fit there.
+  void reachFromSpawn();
 
   WorldConfig config_;
   std::optional<OccupancyMap> map_;
@@ -157,6 +167,7 @@ class WorldModel {
   double start_clearance_ = 0.0;  // start_clearance, at least the robot's footprint [m]
   double robot_radius_ = 0.0;
   Eigen::Vector2d fallback_start_ = Eigen::Vector2d::Zero();  // a free start, found at start-up
+  std::shared_ptr<const FootprintGrid> spawn_reach_;          // see spawnReach()
 };
 
 using WorldModelConstPtr = std::shared_ptr<const WorldModel>;

@@ -40,6 +40,9 @@ MapPlanner::MapPlanner(const OccupancyMap& map, const MapPlannerConfig& config) 
   WorldConfig world;
   world.random_start = true;  // the map's origin need not be free: only somewhere
   world.start_clearance = 0.0;
+  // Anywhere on the map, not only where the robot can drive from the origin (spawnReach()).
+  const Eigen::AlignedBox2d extent = map.extent();
+  world.region = {extent.min().x(), extent.min().y(), extent.max().x(), extent.max().y()};
   try {
     world_ = std::make_shared<const WorldModel>(world, config.robot_radius, map);
   } catch (const ConfigError& e) {

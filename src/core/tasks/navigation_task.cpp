@@ -230,7 +230,8 @@ bool NavigationTask::drawGoalAround(int env, Rng& rng, const Eigen::Vector2d& st
     const double angle = 2.0 * kPi * rng.uniform();
     const Eigen::Vector2d goal = start + d * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     const double clearance = world ? world->clearance(goal, obstacles) : 1e9;
-    const bool inside = !world || world->region().isEmpty() || world->region().contains(goal);
+    const bool inside = !world || ((world->region().isEmpty() || world->region().contains(goal)) &&
+                                   world->inReach(goal));
     const bool usable = inside && (!reach || reach->reachable(goal));
     if (usable && clearance > best_clearance) {
       best_clearance = clearance;

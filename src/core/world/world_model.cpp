@@ -9,6 +9,7 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/numeric.h"
+#include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/world_generation.h"
@@ -161,11 +162,7 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
     const Eigen::Vector2d half(0.5 * config_.arena_size[0], 0.5 * config_.arena_size[1]);
     region_ = Eigen::AlignedBox2d(-half, half);
   } else if (map_) {
-    const double w = map_->width * map_->resolution, hh = map_->height * map_->resolution;
-    for (const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
-                                          Eigen::Vector2d(0, hh), Eigen::Vector2d(w, hh)}) {
-      region_.extend(map_pose_ * corner);
-    }
+    region_ = map_->extent();
   }
   const bool draws = config_.random_start || config_.num_boxes > 0 || config_.num_cylinders > 0 ||
                      !config_.families.empty();
@@ -176,6 +173,7 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
   }
   // A start must fit: the origin, or somewhere in the region.
   start_clearance_ = std::max(config_.start_clearance, robot_radius);
+  if (!config_.draws) return;
   const double clearance = start_clearance_;
   if (!config_.families.empty()) checkGeneratedLayouts(*this);
   if (!config_.random_start) {
@@ -193,21 +191,51 @@ WorldModel::WorldModel(const WorldConfig& config, double robot_radius, const Occ
                        " m of clearance (world/start_clearance or the robot's footprint) in " +
                        (map_ ? "world/map" : "the arena"));
     }
+    reachFromSpawn();  // goals drawn around it: where the robot can drive
     return;
   }
+  reachFromSpawn();
   const double step = map_ ? std::max(map_->resolution, 0.01) : 0.05;
   bool found = false;
   for (double x = region_.min().x(); x <= region_.max().x() && !found; x += step) {
     for (double y = region_.min().y(); y <= region_.max().y() && !found; y += step) {
-      found = staticClearance({x, y}) >= clearance;
+      found = staticClearance({x, y}) >= clearance && inReach({x, y});
       if (found) fallback_start_ = Eigen::Vector2d(x, y);
     }
   }
   if (!found) {
     throwInvalid("world/start_clearance", config_.start_clearance,
-                 "no free point of the region keeps it (and the robot's footprint " +
-                     std::to_string(robot_radius) + " m) from the walls and the map");
+                 std::string("no free point of the region keeps it (and the robot's footprint ") +
+                     std::to_string(robot_radius) + " m) from the walls and the map" +
+                     (spawn_reach_ ? " where the robot can drive from world/spawn" : ""));
   }
+}
+
+void WorldModel::reachFromSpawn() {
+  // A map or a Gazebo world's grid reaches past the building (a Gazebo grid 1 m beyond its
+  // outermost shape) and holds closed outlines (a refrigerator's four walls): drawn over the whole
+  // extent, starts and goals fell outside the walls or inside furniture (issue 48). A region the
+  // user gives is drawn in as given.
+  if (!map_ || !config_.region.empty()) return;
+  const double resolution = std::max(kFootprintGridResolution, map_->resolution);
+  auto reach =
+      std::make_shared<FootprintGrid>(*this, resolution, robot_radius_, std::vector<Obstacle>());
+  const Eigen::Vector2d spawn(config_.spawn[0], config_.spawn[1]);
+  if (!reach->reachFrom(spawn)) {
+    throwInvalid("world/spawn", listText(config_.spawn),
+                 "starts and goals are drawn where the robot can drive from world/spawn, and its "
+                 "footprint (" +
+                     std::to_string(robot_radius_) + " m) does not fit there: " +
+                     (gazebo_ ? gazeboSolidNear(spawn, robot_radius_)
+                              : "an occupied, unknown or outside cell of world/map") +
+                     "; give a free world/spawn (x_pos, y_pos), or world/region to draw anywhere "
+                     "free in it");
+  }
+  spawn_reach_ = std::move(reach);
+}
+
+bool WorldModel::inReach(const Eigen::Vector2d& p) const {
+  return !spawn_reach_ || spawn_reach_->reachable(p);
 }
 
 void WorldModel::mergeObstacleCells() {
@@ -299,7 +327,7 @@ std::optional<Eigen::Vector2d> WorldModel::drawFreePoint(Rng& rng, double cleara
   for (int k = 0; k < config_.placement_tries; ++k) {
     const Eigen::Vector2d p(uniform(rng, region_.min().x(), region_.max().x()),
                             uniform(rng, region_.min().y(), region_.max().y()));
-    if (staticClearance(p) >= clearance) return p;
+    if (staticClearance(p) >= clearance && inReach(p)) return p;
   }
   return std::nullopt;
 }

@@ -128,7 +128,7 @@ std::string includeProblem(const std::string& path, const IncludeFinder& find) {
 }
 
 std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats,
-                               std::vector<std::string>* refused_inertias) {
+                               std::vector<std::string>* refused_inertias, SavedState* state) {
   repeats.clear();
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
@@ -136,6 +136,8 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
   tinyxml2::XMLElement* world = sdf ? sdf->FirstChildElement("world") : nullptr;
   if (!world) return "";
   if (refused_inertias) stripInertials(*world, path, *refused_inertias);
+  bool state_changed = false;
+  if (state) *state = takeSavedState(*world, path, state_changed);
   const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
   std::map<std::string, std::string> first;  // shape key -> the first model's name
   for (tinyxml2::XMLElement* e = world->FirstChildElement(); e;) {
@@ -149,7 +151,8 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
       }
     }
     const std::string name = nameOf(*e);
-    if ((tag != "model" && tag != "include") || name.empty() || hasPlacementFrame(*e)) {
+    if ((tag != "model" && tag != "include") || name.empty() || hasPlacementFrame(*e) ||
+        (state && state->models.count(name))) {  // a saved pose of its own: read as it is
       e = next;
       continue;
     }
@@ -166,7 +169,7 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
     }
     e = next;
   }
-  if (repeats.empty() && !refused_inertias) return "";
+  if (repeats.empty() && !refused_inertias && !state_changed) return "";
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
   return printer.CStr();

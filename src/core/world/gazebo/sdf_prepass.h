@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "world/gazebo/saved_state.h"
+
 namespace jetbot_rl {
 
 /// A world-level model that repeats an earlier one but for its name and pose.
@@ -24,9 +26,12 @@ struct RepeatedModel {
  * file (sdformat then reads it and reports why).
  */
 /// With `refused_inertias`: every <inertial> removed too, those sdformat refuses named in it
-/// (stripInertials()), and the text returned whenever tinyxml2 reads the file.
+/// (stripInertials()), and the text returned whenever tinyxml2 reads the file. With `state`: the
+/// world's first <state> taken into it and applied to the text (takeSavedState(); a model the
+/// state poses is never folded), the text returned when that changed the world's models.
 std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats,
-                               std::vector<std::string>* refused_inertias = nullptr);
+                               std::vector<std::string>* refused_inertias = nullptr,
+                               SavedState* state = nullptr);
 
 /// "" when the file at `path` is XML with an <sdf> root whose version is 1.0 up to `newest`
 /// (sdformat's), else what is wrong: "PATH:LINE: ..." for XML that does not parse, "PATH: ..."

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <sdf/sdf.hh>
+#include <set>
 #include <sstream>
 
 #include "jetbot_rl/config/file_checks.h"
@@ -62,14 +63,31 @@ bool deprecationOnly(const sdf::Error& e) {
 
 class Reader {
  public:
-  Reader(GazeboWorld& world, const MeshResolver& resolver, bool visuals)
-      : world_(world), resolver_(resolver), visuals_(visuals) {}
+  Reader(GazeboWorld& world, const MeshResolver& resolver, bool visuals, const SavedState& state)
+      : world_(world), resolver_(resolver), visuals_(visuals), state_(state) {}
 
-  void model(const sdf::Model& m, const Eigen::Isometry3d& pose, const std::string& scope) {
+  /// Model `m` at `pose` in the world (its parent's), unless the saved state poses it.
+  void model(const sdf::Model& m, const Eigen::Isometry3d& parent_pose, const std::string& scope) {
     ++world_.models;
     const std::string name = scope.empty() ? m.Name() : scope + "::" + m.Name();
+    read_.insert(name);
+    const auto saved = state_.models.find(name);
+    const Eigen::Isometry3d& pose = saved == state_.models.end() ? parent_pose : saved->second;
     for (uint64_t i = 0; i < m.LinkCount(); ++i) {
       const sdf::Link& link = *m.LinkByIndex(i);
+      // A link the state poses: its shapes' poses in the model taken back to the link's, then
+      // put at the link's saved pose.
+      Eigen::Isometry3d frame = pose;
+      read_.insert(name + "::" + link.Name());
+      if (const auto it = state_.links.find(name + "::" + link.Name()); it != state_.links.end()) {
+        ignition::math::Pose3d in_model;
+        const sdf::Errors errors = link.SemanticPose().Resolve(in_model, "__model__");
+        if (!errors.empty()) {
+          throw ConfigError(world_.path + ": the pose of link '" + name + "::" + link.Name() +
+                            "' cannot be resolved: " + errorText(errors, world_.path));
+        }
+        frame = it->second * toEigen(in_model).inverse();
+      }
       for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
         const sdf::Collision& collision = *link.CollisionByIndex(c);
         ignition::math::Pose3d p;
@@ -79,7 +97,7 @@ class Reader {
           throw ConfigError(world_.path + ": the pose of collision '" + scoped +
                             "' cannot be resolved: " + errorText(errors, world_.path));
         }
-        shape(collision, pose * toEigen(p), scoped);
+        shape(collision, frame * toEigen(p), scoped);
       }
       for (uint64_t v = 0; visuals_ && v < link.VisualCount(); ++v) {
         const sdf::Visual& visual = *link.VisualByIndex(v);
@@ -89,7 +107,7 @@ class Reader {
           skip("visual '" + scoped + "' (its pose cannot be resolved)");
           continue;
         }
-        readVisual(visual, pose * toEigen(p), scoped, world_.path, resolver_, world_.visuals,
+        readVisual(visual, frame * toEigen(p), scoped, world_.path, resolver_, world_.visuals,
                    skipped_);
       }
     }
@@ -106,6 +124,23 @@ class Reader {
   }
 
   void skip(const std::string& what) { skipped_.push_back(what); }
+  /// Gazebo's "Unable to find model[...]" and "link[...]": what the state names and the world
+  /// does not have, one warning each.
+  void warnUnmatchedState() const {
+    for (const auto* poses : {&state_.models, &state_.links}) {
+      for (const auto& [name, pose] : *poses) {
+        if (read_.count(name)) continue;
+        world_.warnings.push_back(world_.path + ": its <state> poses " +
+                                  (poses == &state_.models ? "model '" : "link '") + name +
+                                  "', which the world does not have (Gazebo ignores it too)");
+      }
+    }
+    for (const std::string& s : state_.scaled) {
+      world_.warnings.push_back(s +
+                                ": a <state> <scale> other than 1 1 1 is not applied "
+                                "(the model's shapes are read at their own size)");
+    }
+  }
   std::string skipped() const {
     std::string s;
     for (const std::string& w : skipped_) s += (s.empty() ? "" : ", ") + w;
@@ -196,6 +231,8 @@ class Reader {
   GazeboWorld& world_;
   const MeshResolver& resolver_;
   bool visuals_;
+  const SavedState& state_;
+  std::set<std::string> read_;  // the scoped names of the models and links read
   std::vector<std::string> skipped_;
 };
 
@@ -239,8 +276,9 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   // Repeated models parsed once; on any error the file itself is read again, for sdformat's
   // report with the file's own lines.
   std::vector<RepeatedModel> repeats;
+  SavedState state;
   auto root = std::make_unique<sdf::Root>();
-  sdf::Errors errors = load(*root, foldRepeatedModels(path, repeats));
+  sdf::Errors errors = load(*root, foldRepeatedModels(path, repeats, nullptr, &state));
   if (!errors.empty() && !repeats.empty()) {
     repeats.clear();
     root = std::make_unique<sdf::Root>();
@@ -260,7 +298,7 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
     config.SetFindCallback(find_copy);
     sdf::setFindCallback(find_copy);
     root = std::make_unique<sdf::Root>();
-    errors = load(*root, foldRepeatedModels(path, repeats, &world.warnings));
+    errors = load(*root, foldRepeatedModels(path, repeats, &world.warnings, &state));
     world.warnings.insert(world.warnings.end(), copies->refused().begin(), copies->refused().end());
   }
   if (!errors.empty()) throw ConfigError(errorText(errors, path));
@@ -269,7 +307,7 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   }
   const sdf::World& w = *root->WorldByIndex(0);
   world.name = w.Name();
-  Reader reader(world, resolver, visuals);
+  Reader reader(world, resolver, visuals, state);
   const auto worldPose = [&](const sdf::SemanticPose& pose, const std::string& what) {
     ignition::math::Pose3d p;
     const sdf::Errors e = pose.Resolve(p, "world");
@@ -323,12 +361,13 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
       throw ConfigError(s.str());
     }
   }
+  reader.warnUnmatchedState();
   if (root->WorldCount() > 1) reader.skip(std::to_string(root->WorldCount() - 1) + " more worlds");
   if (w.LightCount() > 0) reader.skip(std::to_string(w.LightCount()) + " lights");
   if (w.ActorCount() > 0) reader.skip(std::to_string(w.ActorCount()) + " actors");
   if (const sdf::ElementPtr e = w.Element()) {
-    for (const char* tag : {"plugin", "physics", "gui", "scene", "spherical_coordinates", "state",
-                            "population", "road"}) {
+    for (const char* tag :
+         {"plugin", "physics", "gui", "scene", "spherical_coordinates", "population", "road"}) {
       int n = 0;
       for (sdf::ElementPtr c = e->HasElement(tag) ? e->GetElement(tag) : nullptr; c;
            c = c->GetNextElement(tag)) {
