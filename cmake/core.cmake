@@ -31,6 +31,7 @@ add_library(jetbot_rl_core
   src/core/env/multi_vec_env.cpp
   src/core/env/randomization.cpp
   src/core/env/thread_pool.cpp
+  src/core/planning/dwa_planner.cpp
   src/core/planning/footprint_grid.cpp
   src/core/planning/goal_watch.cpp
   src/core/planning/grid_planner.cpp

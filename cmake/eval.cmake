@@ -2,8 +2,10 @@
 # that play a policy on a batch, and the navigation benchmark on it.
 #   jetbot_rl_eval  runEpisodes, ObservationMeans, the benchmark's worlds and its path bookkeeping
 add_library(jetbot_rl_eval
+  src/eval/dwa_actor.cpp
   src/eval/episode_loop.cpp
   src/eval/nav_benchmark.cpp
+  src/eval/navigation_metrics.cpp
   src/eval/observation_means.cpp
 )
 target_link_libraries(jetbot_rl_eval PUBLIC jetbot_rl_policy)

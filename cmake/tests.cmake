@@ -51,6 +51,7 @@ catkin_add_gtest(test_core
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
   test/core/test_grid_planner.cpp
+  test/core/test_dwa_planner.cpp
   test/core/test_map_planner.cpp
   test/core/test_goal_watch.cpp
 )
@@ -69,6 +70,8 @@ catkin_add_gtest(test_ppo
   test/ppo/test_in_process.cpp
   test/ppo/test_memory.cpp
   test/ppo/test_nav_benchmark.cpp
+  test/ppo/test_navigation_metrics.cpp
+  test/ppo/test_dwa_actor.cpp
   test/ppo/test_training_logger.cpp
 )
 target_link_libraries(test_ppo jetbot_rl_ppo jetbot_rl_eval)

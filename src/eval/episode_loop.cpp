@@ -5,8 +5,19 @@
 #include "jetbot_rl/tasks/task.h"
 
 namespace jetbot_rl {
+void PolicyActor::act(const BatchedEnv& env, std::vector<float>& actions) {
+  policy_.act(env.state().observations, env.numEnvs(), actions);
+}
+
+void PolicyActor::episodesBegan(const std::vector<std::uint32_t>& ids) { policy_.resetMemory(ids); }
 
 EpisodeTotals runEpisodes(ppo::Policy& policy, BatchedEnv& env, int episodes, int max_steps,
+                          EpisodeObserver* observer) {
+  PolicyActor actor(policy);
+  return runEpisodes(actor, env, episodes, max_steps, observer);
+}
+
+EpisodeTotals runEpisodes(EpisodeActor& actor, BatchedEnv& env, int episodes, int max_steps,
                           EpisodeObserver* observer) {
   EpisodeObserver none;
   EpisodeObserver& watch = observer ? *observer : none;
@@ -18,11 +29,11 @@ EpisodeTotals runEpisodes(ppo::Policy& policy, BatchedEnv& env, int episodes, in
   int full = 0;
   for (; totals.steps < max_steps && (quota == 0 || full < envs); ++totals.steps) {
     watch.beforeStep(env);
-    policy.act(env.state().observations, envs, actions);
+    actor.act(env, actions);
     // The lengths of the episodes this step may end (the reset hides them).
     const std::vector<std::uint32_t> lengths = env.state().episode_steps;
     const StepResult& r = env.step(actions);
-    policy.resetMemory(r.reset_env_ids);  // a memory starts over with each episode
+    actor.episodesBegan(r.reset_env_ids);  // a memory starts over with each episode
     for (float x : r.rewards) totals.reward_sum += x;
     for (std::size_t i = 0; i < r.reset_env_ids.size(); ++i) {
       const std::uint32_t e = r.reset_env_ids[i];

@@ -6,86 +6,10 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/eval/episode_loop.h"
-#include "jetbot_rl/planning/footprint_grid.h"
-#include "jetbot_rl/planning/grid_planner.h"
+#include "jetbot_rl/eval/navigation_metrics.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 
 namespace jetbot_rl {
-namespace {
-
-/// The shortest path's length from env `e`'s start to its goal [m]; NaN when there is none.
-double shortestPath(const BatchedEnv& env, const NavigationTask& task, int e) {
-  const EnvLayout& layout = env.view(e).layout();
-  const WorldModel& world = *env.world();
-  const FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(), layout.obstacles);
-  std::vector<Eigen::Vector2d> path;
-  if (!planPath(grid, layout.start, task.goal(e), 0.0, path)) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  double length = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
-  return length;
-}
-
-/// The benchmark's bookkeeping of each success's time and path.
-class PathWatch : public EpisodeObserver {
- public:
-  PathWatch(const BatchedEnv& env, const NavigationTask& task)
-      : task_(task),
-        radius_(task.config().goal_radius),
-        control_dt_(env.controlDt()),
-        driven_(env.numEnvs(), 0.0),
-        shortest_(env.numEnvs()),
-        before_(env.numEnvs()),
-        goal_(env.numEnvs()) {
-    for (int e = 0; e < env.numEnvs(); ++e) shortest_[e] = shortestPath(env, task_, e);
-  }
-
-  void beforeStep(const BatchedEnv& env) override {
-    for (int e = 0; e < env.numEnvs(); ++e) {
-      before_[e] = env.view(e).rootState().position.head<2>();
-      goal_[e] = task_.goal(e);
-    }
-  }
-
-  void episodeEnded(int e, std::uint8_t outcome, std::uint32_t steps) override {
-    if (outcome != static_cast<std::uint8_t>(Outcome::kSuccess)) return;
-    ++successes_;
-    time_sum_ += steps * control_dt_;
-    // The last step (whose end the reset hid) as far as the goal's circle, against the shortest
-    // path's length to that circle.
-    const double last = std::max(0.0, (goal_[e] - before_[e]).norm() - radius_);
-    if (shortest_[e] > radius_) {
-      ratio_sum_ += (driven_[e] + last) / (shortest_[e] - radius_);
-      ++ratios_;
-    }
-  }
-
-  void afterStep(const BatchedEnv& env, const StepResult& r) override {
-    std::vector<std::uint8_t> reset(env.numEnvs(), 0);
-    for (std::uint32_t e : r.reset_env_ids) {
-      reset[e] = 1;
-      driven_[e] = 0.0;
-      shortest_[e] = shortestPath(env, task_, static_cast<int>(e));
-    }
-    for (int e = 0; e < env.numEnvs(); ++e) {
-      if (!reset[e]) driven_[e] += (env.view(e).rootState().position.head<2>() - before_[e]).norm();
-    }
-  }
-
-  double meanTime() const { return successes_ > 0 ? time_sum_ / successes_ : 0.0; }
-  double meanRatio() const { return ratios_ > 0 ? ratio_sum_ / ratios_ : 0.0; }
-
- private:
-  const NavigationTask& task_;
-  const double radius_, control_dt_;
-  std::vector<double> driven_, shortest_;
-  std::vector<Eigen::Vector2d> before_, goal_;
-  int successes_ = 0, ratios_ = 0;
-  double time_sum_ = 0.0, ratio_sum_ = 0.0;
-};
-
-}  // namespace
 
 double benchmarkEpisodeS(double top_speed) {
   if (!(top_speed > 0.0) || !std::isfinite(top_speed)) return kBenchmarkEpisodeS;
@@ -147,15 +71,21 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
 }
 
 BenchmarkResult runNavigationBenchmark(ppo::Policy& policy, BatchedEnv& env, int episodes,
-                                       int max_steps) {
+                                       int max_steps, double top_speed) {
+  policy.resetMemory();
+  PolicyActor actor(policy);
+  return runNavigationBenchmark(actor, env, episodes, max_steps, top_speed);
+}
+
+BenchmarkResult runNavigationBenchmark(EpisodeActor& actor, BatchedEnv& env, int episodes,
+                                       int max_steps, double top_speed) {
   const auto* task = dynamic_cast<const NavigationTask*>(&env.task());
   if (!task || !env.world()) {
     throw ConfigError("the navigation benchmark needs the navigation task in a world (task = " +
                       env.task().name() + ")");
   }
-  PathWatch paths(env, *task);
-  policy.resetMemory();
-  const EpisodeTotals totals = runEpisodes(policy, env, std::max(episodes, 1), max_steps, &paths);
+  NavigationMetrics metrics(env, *task, top_speed);
+  const EpisodeTotals totals = runEpisodes(actor, env, std::max(episodes, 1), max_steps, &metrics);
   BenchmarkResult result;
   result.episodes = static_cast<int>(totals.episodes);
   result.steps_ran_out = totals.steps_ran_out;
@@ -163,8 +93,7 @@ BenchmarkResult runNavigationBenchmark(ppo::Policy& policy, BatchedEnv& env, int
   result.timeout = totals.outcomes[0] / n;
   result.success = totals.outcomes[1] / n;
   result.collision = totals.outcomes[2] / n;
-  result.time_to_goal = paths.meanTime();
-  result.path_ratio = paths.meanRatio();
+  result.metrics = metrics.result();
   return result;
 }
 

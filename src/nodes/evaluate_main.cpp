@@ -4,19 +4,24 @@
 // YAML files (EnvSetup: the env node's parameter names: task, reward_variant, randomisation
 // ranges, ...), and prints the mean reward per step over every env step; with --obs-from-step the
 // mean and mean absolute value of each observation the policy acted on at episode step K or later.
+// A navigation policy in a world: the field's metrics too (time to goal, path over the shortest,
+// SPL, BARN's score, time over the optimal, smoothness; docs/navigation.md#the-benchmark).
 // For evaluating a policy on perturbed physics (docs/sim_to_real.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/config/command_line.h"
 #include "jetbot_rl/eval/episode_loop.h"
+#include "jetbot_rl/eval/navigation_metrics.h"
 #include "jetbot_rl/eval/observation_means.h"
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/tasks/navigation_task.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
@@ -59,7 +64,16 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     ObservationMeans means(obs_from_step);
-    const EpisodeTotals totals = runEpisodes(policy, env, episodes, steps, &means);
+    EpisodeObservers observers;
+    observers.add(&means);
+    // A navigation policy's episodes in a world: the field's metrics too.
+    const auto* navigation = dynamic_cast<const NavigationTask*>(&env.task());
+    std::optional<NavigationMetrics> metrics;
+    if (navigation && env.world() && episodes > 0) {
+      metrics.emplace(env, *navigation, topSpeed(policy.meta().spec));
+      observers.add(&*metrics);
+    }
+    const EpisodeTotals totals = runEpisodes(policy, env, episodes, steps, &observers);
     const int s = totals.steps;
     std::printf("task=%s envs=%d steps=%d\n", env.task().name().c_str(), envs, s);
     std::printf("mean_reward_per_step=%.4f\n", totals.reward_sum / (static_cast<double>(s) * envs));
@@ -73,6 +87,14 @@ int main(int argc, char** argv) {
       std::printf("mover_collision_rate=%.4f\n", totals.mover_collisions / n);  // of collisions
       std::printf("robot_collision_rate=%.4f\n", totals.robot_collisions / n);  // of collisions
       std::printf("mean_episode_steps=%.1f\n", totals.episode_steps / n);
+      if (metrics) {
+        const NavigationMetricsResult m = metrics->result();
+        std::printf("time_to_goal=%.2f\npath_over_shortest=%.3f\nspl=%.4f\n", m.time_to_goal,
+                    m.path_ratio, m.spl);
+        std::printf("barn_score=%.4f\ntime_over_optimal=%.3f\n", m.barn_score, m.time_ratio);
+        std::printf("yaw_acceleration=%.3f\nforward_acceleration=%.3f\n", m.angular_smoothness,
+                    m.linear_smoothness);
+      }
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "jetbot_rl_evaluate: %s\n", e.what());

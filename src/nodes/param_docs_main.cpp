@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "jetbot_rl/env/env_setup.h"
+#include "jetbot_rl/planning/dwa_planner.h"
 #include "jetbot_rl/ppo/ros/policy_params.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
@@ -100,6 +101,7 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"movers", [] { return rowsOf(MoverConfig{}); }},
       {"team", [] { return rowsOf(TeamConfig{}); }},
       {"scan", [] { return rowsOf(ScannerConfig{}); }},
+      {"dwa", [] { return rowsOf(DwaConfig{}); }},
       {"env_node", [] { return rowsWithout(rowsOf(NodeParams{}), EnvSetup{}); }},
       {"trainer", [] { return rowsOf(ppo::TrainerParams{}); }},
       {"ppo", [] { return rowsOf(ppo::PpoConfig{}); }},

@@ -107,17 +107,20 @@ TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPa
   const auto worlds = navigationBenchmarkWorlds(navigationEnv(), "unused.yaml", "");
   const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
   Policy policy = untrainedPolicy(*env);
-  const BenchmarkResult r = runNavigationBenchmark(policy, *env, 12, 5000);
+  const BenchmarkResult r = runNavigationBenchmark(policy, *env, 12, 5000, 0.6);
   EXPECT_FALSE(r.steps_ran_out);
   EXPECT_EQ(r.episodes, 12);  // two per env
   EXPECT_NEAR(r.success + r.collision + r.timeout, 1.0, 1e-12);
   if (r.success > 0.0) {
-    EXPECT_GT(r.time_to_goal, 0.0);
-    EXPECT_GT(r.path_ratio, 0.9);
+    EXPECT_GT(r.metrics.time_to_goal, 0.0);
+    EXPECT_GT(r.metrics.path_ratio, 0.9);
+    EXPECT_GT(r.metrics.spl, 0.0);
+    EXPECT_LE(r.metrics.spl, r.success);  // each success's share is at most 1
+    EXPECT_LE(r.metrics.barn_score, 0.25 * r.success);
   }
   // With a quota the steps cannot meet, the result says so.
   const std::unique_ptr<BatchedEnv> again = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
-  EXPECT_TRUE(runNavigationBenchmark(policy, *again, 600, 50).steps_ran_out);
+  EXPECT_TRUE(runNavigationBenchmark(policy, *again, 600, 50, 0.6).steps_ran_out);
 }
 
 TEST(NavBenchmark, AnEnvWithoutTheNavigationTaskOrAWorldIsRefused) {
@@ -126,7 +129,7 @@ TEST(NavBenchmark, AnEnvWithoutTheNavigationTaskOrAWorldIsRefused) {
   const std::unique_ptr<BatchedEnv> env = makeEnv(lidarJetbot(), velocity);
   Policy policy = untrainedPolicy(*env);
   try {
-    runNavigationBenchmark(policy, *env, 2, 10);
+    runNavigationBenchmark(policy, *env, 2, 10, 0.6);
     FAIL() << "accepted";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("needs the navigation task in a world (task = velocity)"),

@@ -5,6 +5,8 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/env/env_setup.h"
+#include "jetbot_rl/eval/episode_loop.h"
+#include "jetbot_rl/eval/navigation_metrics.h"
 #include "jetbot_rl/ppo/policy.h"
 
 namespace jetbot_rl {
@@ -21,10 +23,8 @@ struct BenchmarkResult {
   int episodes = 0;
   bool steps_ran_out = false;  ///< Not every env finished its quota of episodes.
   double success = 0.0, collision = 0.0, timeout = 0.0;  ///< Shares of the episodes.
-  double time_to_goal = 0.0;                             ///< Mean over the successes [s].
-  /// Mean over the successes of the distance driven to the goal's circle (nav/goal_radius) over
-  /// the shortest path's length to it (planPath for the footprint, without the clearance cost).
-  double path_ratio = 0.0;
+  /// Time to goal, path over the shortest, SPL, BARN's score, smoothness (NavigationMetrics).
+  NavigationMetricsResult metrics;
 };
 
 /// The longest shortest path of the benchmark's worlds, about: a goal 3 m away in the hardest
@@ -52,11 +52,13 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
 /**
  * Plays `policy`'s mean action on `env` (the navigation task, its world) until each env has
  * ended ceil(episodes / envs) episodes or `max_steps` control steps ran (runEpisodes()); counts
- * each episode's outcome and, for a success, its time and the distance its root drove (control
- * step by control step; the last step, whose end the reset hides, as far as the goal's circle)
- * over its shortest path. ConfigError unless the env has the navigation task and a world.
+ * each episode's outcome and its metrics (NavigationMetrics, the optimal time at `top_speed`
+ * [m/s], topSpeed(); 0: none). ConfigError unless the env has the navigation task and a world.
  */
 BenchmarkResult runNavigationBenchmark(ppo::Policy& policy, BatchedEnv& env, int episodes,
-                                       int max_steps);
+                                       int max_steps, double top_speed);
+/// The same with `actor` acting (DwaActor: the classical baseline).
+BenchmarkResult runNavigationBenchmark(EpisodeActor& actor, BatchedEnv& env, int episodes,
+                                       int max_steps, double top_speed);
 
 }  // namespace jetbot_rl

@@ -1,0 +1,66 @@
+#include "jetbot_rl/eval/dwa_actor.h"
+
+#include <cmath>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/tasks/navigation_task.h"
+
+namespace jetbot_rl {
+namespace {
+
+const NavigationTask& navigationOf(const BatchedEnv& env) {
+  const auto* task = dynamic_cast<const NavigationTask*>(&env.task());
+  if (!task) {
+    throw ConfigError("the DWA baseline drives the navigation task (task = " + env.task().name() +
+                      ")");
+  }
+  if (!env.scanner()) throw ConfigError("the DWA baseline needs a laser scanner (scan/link)");
+  if (!actsByTwist(env.spec())) {
+    throw ConfigError("the DWA baseline commands a twist: give action_space twist");
+  }
+  return *task;
+}
+
+}  // namespace
+
+DwaActor::DwaActor(const BatchedEnv& env, const DwaConfig& config)
+    : task_(navigationOf(env)), planner_(config, env.world() ? env.world()->robotRadius() : 0.0) {}
+
+void DwaActor::act(const BatchedEnv& env, std::vector<float>& actions) {
+  const ScannerSpec& scanner = *env.scanner();
+  const double increment = scanner.angleIncrement();
+  actions.assign(static_cast<std::size_t>(env.numEnvs()) * 2, 0.0f);
+  DwaInput in;
+  for (int e = 0; e < env.numEnvs(); ++e) {
+    const EnvView view = env.view(e);
+    const RootState s = view.rootState();
+    const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
+    in.position = s.position.head<2>();
+    in.yaw = std::atan2(forward.y(), forward.x());
+    in.speed = s.comLinearVelocityBody().x();
+    in.yaw_rate = s.angular_velocity.z();
+    in.path = task_.path(e);
+    // The scan's returns in the env frame (its beams' frame on the root body, else on its body).
+    in.obstacles.clear();
+    if (const float* scan = view.scan()) {
+      const Eigen::Isometry3d body = scanner.body == 0
+                                         ? Eigen::Translation3d(s.position) * s.orientation
+                                         : view.linkPoses().at(scanner.body).pose;
+      const Eigen::Isometry3d sensor = body * scanner.pose_in_body;
+      for (int k = 0; k < scanner.samples; ++k) {
+        if (scan[k] == kNoReturn) continue;
+        const double range = finiteRange(scan[k], scanner);
+        const double angle = scanner.min_angle + k * increment;
+        const Eigen::Vector3d p =
+            sensor * Eigen::Vector3d(range * std::cos(angle), range * std::sin(angle), 0.0);
+        in.obstacles.push_back(p.head<2>());
+      }
+    }
+    const DwaCommand command = planner_.plan(in);
+    actions[2 * e] = static_cast<float>(command.speed);
+    actions[2 * e + 1] = static_cast<float>(command.yaw_rate);
+  }
+}
+
+}  // namespace jetbot_rl
