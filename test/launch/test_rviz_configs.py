@@ -5,7 +5,7 @@ launch file listens (a deploy node's goal_topic, from `roslaunch --dump-params`)
 world_view.launch, view.launch and play.launch offer none; and every MarkerArray display of an
 env node's ~markers leaves out the half-transparent body boxes (namespace body), which painted
 the robot models' own colours over; view.launch with the camera Jetbot shows env_0's camera where
-its Gazebo block publishes it."""
+its Gazebo block publishes it, stereo_view.launch the stereo Jetbot's two."""
 import glob
 import os
 import re
@@ -50,7 +50,8 @@ class TestRvizConfigs(unittest.TestCase):
 
     def test_the_robot_views_are_found(self):
         self.assertEqual(sorted(self.launches), ['navigate_sim.launch', 'play.launch',
-                                                 'view.launch', 'world_view.launch'])
+                                                 'stereo_view.launch', 'view.launch',
+                                                 'world_view.launch'])
 
     def test_goal_tools_publish_where_a_node_listens(self):
         offered = {}
@@ -100,6 +101,20 @@ class TestRvizConfigs(unittest.TestCase):
         displays = yaml.safe_load(open(config))['Visualization Manager']['Displays']
         images = [d['Image Topic'] for d in displays if d['Class'] == 'rviz/Image']
         self.assertEqual(images, [topic])
+
+    def test_stereo_view_launch_shows_both_cameras_images(self):
+        urdf = os.path.join(PKG, 'urdf', 'jetbot_stereo.urdf')
+        params = dump('stereo_view.launch', 'rviz:=true')
+        self.assertIn('imx219_83_stereo', params['/robot_description'])
+        # A multicamera block's plugin publishes cameraName/left|right/imageTopicName.
+        plugin = ET.parse(urdf).getroot().find('.//sensor/plugin')
+        topics = ['/env_0/%s/%s/%s' % (plugin.findtext('cameraName'), side,
+                                       plugin.findtext('imageTopicName'))
+                  for side in ('left', 'right')]
+        config = self.launches['stereo_view.launch'][0]
+        displays = yaml.safe_load(open(config))['Visualization Manager']['Displays']
+        images = [d['Image Topic'] for d in displays if d['Class'] == 'rviz/Image']
+        self.assertEqual(images, topics)
 
 
 if __name__ == '__main__':
