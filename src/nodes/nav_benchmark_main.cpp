@@ -1,5 +1,6 @@
 // jetbot_rl_nav_benchmark --checkpoint PATH (a file, or a run directory: its latest.pt, else its
-// best.pt) [--episodes N] [--seed S] [--map YAML] [--gazebo-world WORLD] [--config YAML
+// best.pt) [--episodes N] [--seed S] [--map YAML] [--gazebo-world WORLD] [--planners policy,dwa]
+// [--worlds NAME,...] [--config YAML
 // ...] [--num-envs N] [--steps S] [--threads T] [--urdf PATH]: the navigation benchmark
 // (config/navigation_env.yaml, then the --config files: those the policy was trained with)
 // (docs/navigation.md#the-benchmark): a navigation policy in each generated family at three
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -32,11 +34,16 @@ int main(int argc, char** argv) {
   std::string map = JETBOT_RL_DEFAULT_MAP;
   std::string gazebo_world = JETBOT_RL_DEFAULT_GAZEBO_WORLD;
   bool policy_rows = true, dwa_rows = true;
+  std::set<std::string> only;  // --worlds: these rows only
   const auto take = [&](const std::string& option, const std::string& value, std::string& why) {
     if (option == "--map") {
       map = value;
     } else if (option == "--gazebo-world") {
       gazebo_world = value;
+    } else if (option == "--worlds") {
+      only.clear();
+      std::stringstream names(value);
+      for (std::string name; std::getline(names, name, ',');) only.insert(name);
     } else if (option == "--planners") {
       policy_rows = value == "policy" || value == "policy,dwa" || value == "dwa,policy";
       dwa_rows = value == "dwa" || value == "policy,dwa" || value == "dwa,policy";
@@ -48,8 +55,10 @@ int main(int argc, char** argv) {
     }
     return true;
   };
-  if (!options.parse(argc, argv, "jetbot_rl_nav_benchmark",
-                     "[--map YAML] [--gazebo-world WORLD] [--planners policy,dwa]", take)) {
+  if (!options.parse(
+          argc, argv, "jetbot_rl_nav_benchmark",
+          "[--map YAML] [--gazebo-world WORLD] [--planners policy,dwa] [--worlds NAME,...]",
+          take)) {
     return 2;
   }
   std::string checkpoint = options.checkpoint;
@@ -105,6 +114,7 @@ int main(int argc, char** argv) {
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
     for (const BenchmarkWorld& world :
          navigationBenchmarkWorlds(base, map, gazebo_world, episode_s)) {
+      if (!only.empty() && !only.count(world.name)) continue;
       if (policy_rows) {
         const std::unique_ptr<BatchedEnv> env = makeEnv(robot, world.setup);
         for (const std::string& warning : policy.fitTo(env->spec())) {

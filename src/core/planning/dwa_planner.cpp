@@ -122,8 +122,21 @@ DwaCommand DwaPlanner::plan(const DwaInput& in) const {
   const Eigen::Vector2d local_goal = pointAlong(in.path, in.position, c.local_goal_distance);
   // What a trajectory can come near, as distances per local cell.
   const double known = std::max(c.inflation_radius, robot_radius_);
-  const LocalDistances distances(in.position, c.max_vel_x * c.sim_time + known, known,
-                                 in.obstacles);
+  const double reach = c.max_vel_x * c.sim_time + known;
+  const LocalDistances distances(in.position, reach, known, in.obstacles);
+  std::vector<Eigen::Vector2d> near;  // for the exact test at the footprint's edge
+  for (const Eigen::Vector2d& o : in.obstacles) {
+    if ((o - in.position).norm() <= reach + known) near.push_back(o);
+  }
+  // A cell's distance is low by up to a cell's diagonal: where that decides whether the footprint
+  // touches (a gap a few centimetres wider than the robot), the returns decide exactly.
+  const auto distanceAt = [&](const Eigen::Vector2d& p) {
+    const double d = distances.at(p);
+    if (d > robot_radius_ || d + std::sqrt(2.0) * LocalDistances::kCell <= robot_radius_) return d;
+    double exact = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& o : near) exact = std::min(exact, (o - p).norm());
+    return exact;
+  };
   // The dynamic window: what the acceleration limits reach from the current velocity.
   const double v_lo = std::max(c.min_vel_x, in.speed - c.acc_lim_x * c.sim_period);
   const double v_hi = std::max(v_lo, std::min(c.max_vel_x, in.speed + c.acc_lim_x * c.sim_period));
@@ -155,7 +168,7 @@ DwaCommand DwaPlanner::plan(const DwaInput& in) const {
       for (int k = 1; k <= steps && occupied < kLethal; ++k) {
         p += v * dt * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
         yaw += w * dt;
-        occupied = std::max(occupied, obstacleCost(distances.at(p)));
+        occupied = std::max(occupied, obstacleCost(distanceAt(p)));
       }
       if (occupied >= kLethal) continue;
       const Eigen::Vector2d front =
