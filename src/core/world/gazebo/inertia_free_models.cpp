@@ -4,6 +4,8 @@
 #include <ignition/math/MassMatrix3.hh>
 #include <system_error>
 
+#include "world/gazebo/sdf_names.h"
+
 namespace jetbot_rl {
 namespace {
 
@@ -12,12 +14,6 @@ double inertiaNumber(const tinyxml2::XMLElement* parent, const char* tag, double
   const tinyxml2::XMLElement* e = parent ? parent->FirstChildElement(tag) : nullptr;
   double value = fallback;
   return e && e->QueryDoubleText(&value) == tinyxml2::XML_SUCCESS ? value : fallback;
-}
-
-/// `e`'s name attribute, or "".
-std::string nameAttribute(const tinyxml2::XMLElement* e) {
-  const char* name = e ? e->Attribute("name") : nullptr;
-  return name ? name : "";
 }
 
 }  // namespace

@@ -5,14 +5,11 @@
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
+#include "world/gazebo/sdf_names.h"
 #include "world/gazebo/sdf_shapes.h"
 
 namespace jetbot_rl {
 namespace {
-
-std::string nameAttribute(const tinyxml2::XMLElement& e) {
-  return e.Attribute("name") ? e.Attribute("name") : "";
-}
 
 /// The <pose> of `e` ("x y z roll pitch yaw"; the identity without one) in the world frame.
 Eigen::Isometry3d poseOf(const tinyxml2::XMLElement& e, const std::string& path) {
@@ -34,7 +31,7 @@ Eigen::Isometry3d poseOf(const tinyxml2::XMLElement& e, const std::string& path)
 /// A model state and its nested ones: their poses and links' poses under `scope`.
 void readModel(const tinyxml2::XMLElement& m, const std::string& scope, const std::string& path,
                SavedState& state) {
-  const std::string name = scope.empty() ? nameAttribute(m) : scope + "::" + nameAttribute(m);
+  const std::string name = scope.empty() ? nameAttribute(&m) : scope + "::" + nameAttribute(&m);
   if (m.FirstChildElement("pose")) state.models[name] = poseOf(m, path);
   if (const tinyxml2::XMLElement* scale = m.FirstChildElement("scale")) {
     std::istringstream in(scale->GetText() ? scale->GetText() : "");
@@ -48,19 +45,12 @@ void readModel(const tinyxml2::XMLElement& m, const std::string& scope, const st
   for (const tinyxml2::XMLElement* l = m.FirstChildElement("link"); l;
        l = l->NextSiblingElement("link")) {
     if (l->FirstChildElement("pose"))
-      state.links[name + "::" + nameAttribute(*l)] = poseOf(*l, path);
+      state.links[name + "::" + nameAttribute(l)] = poseOf(*l, path);
   }
   for (const tinyxml2::XMLElement* n = m.FirstChildElement("model"); n;
        n = n->NextSiblingElement("model")) {
     readModel(*n, name, path, state);
   }
-}
-
-/// The name of a top-level <model> or <include> of the world.
-std::string entityName(const tinyxml2::XMLElement& e) {
-  if (std::string(e.Name()) == "model") return nameAttribute(e);
-  const tinyxml2::XMLElement* n = e.FirstChildElement("name");
-  return n && n->GetText() ? n->GetText() : "";
 }
 
 }  // namespace

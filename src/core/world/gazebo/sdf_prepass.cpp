@@ -11,6 +11,7 @@
 
 #include "jetbot_rl/config/file_checks.h"
 #include "world/gazebo/inertia_free_models.h"
+#include "world/gazebo/sdf_names.h"
 
 namespace jetbot_rl {
 namespace {
@@ -27,12 +28,6 @@ std::string shapeKey(const tinyxml2::XMLElement& e) {
   tinyxml2::XMLPrinter printer(nullptr, /*compact=*/true);
   copy->Accept(&printer);
   return printer.CStr();
-}
-
-std::string nameOf(const tinyxml2::XMLElement& e) {
-  if (std::string(e.Name()) == "model") return e.Attribute("name") ? e.Attribute("name") : "";
-  const tinyxml2::XMLElement* n = e.FirstChildElement("name");
-  return n && n->GetText() ? n->GetText() : "";
 }
 
 bool hasPlacementFrame(const tinyxml2::XMLElement& e) {
@@ -150,7 +145,7 @@ std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedMode
         uri->SetText((folder / text).lexically_normal().c_str());
       }
     }
-    const std::string name = nameOf(*e);
+    const std::string name = entityName(*e);
     if ((tag != "model" && tag != "include") || name.empty() || hasPlacementFrame(*e) ||
         (state && state->models.count(name))) {  // a saved pose of its own: read as it is
       e = next;
