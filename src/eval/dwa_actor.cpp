@@ -25,7 +25,15 @@ const NavigationTask& navigationOf(const BatchedEnv& env) {
 }  // namespace
 
 DwaActor::DwaActor(const BatchedEnv& env, const DwaConfig& config)
-    : task_(navigationOf(env)), planner_(config, env.world() ? env.world()->robotRadius() : 0.0) {}
+    : task_(navigationOf(env)),
+      planner_(config, env.world() ? env.world()->robotRadius() : 0.0),
+      trackers_(env.numEnvs()) {
+  for (int e = 0; e < env.numEnvs(); ++e) trackers_[e].reset(task_.path(e));
+}
+
+void DwaActor::episodesBegan(const std::vector<std::uint32_t>& ids) {
+  for (std::uint32_t e : ids) trackers_[e].reset(task_.path(static_cast<int>(e)));
+}
 
 void DwaActor::act(const BatchedEnv& env, std::vector<float>& actions) {
   const ScannerSpec& scanner = *env.scanner();
@@ -41,6 +49,8 @@ void DwaActor::act(const BatchedEnv& env, std::vector<float>& actions) {
     in.speed = s.comLinearVelocityBody().x();
     in.yaw_rate = s.angular_velocity.z();
     in.path = task_.path(e);
+    trackers_[e].track(in.position);
+    in.local_goal = trackers_[e].lookahead(planner_.config().local_goal_distance);
     // The scan's returns in the env frame (its beams' frame on the root body, else on its body).
     in.obstacles.clear();
     if (const float* scan = view.scan()) {

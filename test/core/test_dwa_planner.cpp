@@ -16,6 +16,7 @@ DwaInput ahead(double speed) {
   DwaInput in;
   in.speed = speed;
   in.path = {{0.0, 0.0}, {3.0, 0.0}};
+  in.local_goal = {2.0, 0.0};  // local_goal_distance along it
   return in;
 }
 

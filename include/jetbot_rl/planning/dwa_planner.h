@@ -80,6 +80,9 @@ struct DwaInput {
   double yaw_rate = 0.0;                               ///< [rad/s]
   std::vector<Eigen::Vector2d> obstacles;              ///< Scan returns [m].
   std::vector<Eigen::Vector2d> path;                   ///< The global path to the goal [m].
+  /// The local goal: local_goal_distance along the path past the robot (a PathTracker's
+  /// lookahead()) [m].
+  Eigen::Vector2d local_goal = Eigen::Vector2d::Zero();
 };
 
 /// The twist it commands.

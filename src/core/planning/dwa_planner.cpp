@@ -28,31 +28,6 @@ double distanceToPath(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2
   return best;
 }
 
-/// The point `distance` [m] along `path` past its point nearest `p` (the path's end at most).
-Eigen::Vector2d pointAlong(const std::vector<Eigen::Vector2d>& path, const Eigen::Vector2d& p,
-                           double distance) {
-  std::size_t segment = 0;
-  double nearest = std::numeric_limits<double>::infinity(), along = 0.0;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const Eigen::Vector2d a = path[i], ab = path[i + 1] - a;
-    const double t =
-        ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    const double d = (p - (a + t * ab)).norm();
-    if (d < nearest) {
-      nearest = d;
-      segment = i;
-      along = t * ab.norm();
-    }
-  }
-  double left = distance + along;
-  for (std::size_t i = segment; i + 1 < path.size(); ++i) {
-    const double length = (path[i + 1] - path[i]).norm();
-    if (left <= length && length > 0.0) return path[i] + (path[i + 1] - path[i]) * (left / length);
-    left -= length;
-  }
-  return path.back();
-}
-
 /// The distance to the nearest obstacle near the robot, per cell of kCell (costmap_2d's local
 /// costmap, its cells' centres): what a trajectory point reads, in place of every return.
 class LocalDistances {
@@ -119,7 +94,7 @@ DwaCommand DwaPlanner::plan(const DwaInput& in) const {
   const DwaConfig& c = config_;
   DwaCommand best;
   if (in.path.empty()) return best;
-  const Eigen::Vector2d local_goal = pointAlong(in.path, in.position, c.local_goal_distance);
+  const Eigen::Vector2d& local_goal = in.local_goal;
   // What a trajectory can come near, as distances per local cell.
   const double known = std::max(c.inflation_radius, robot_radius_);
   const double reach = c.max_vel_x * c.sim_time + known;
