@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """A short command-task training through train.launch: the reward per step rises far above the
 random policy's first iteration and, late in the episodes, the robots face their commands and
-drive along them (progress.csv's obs_mean_* columns); then the trained policy, played in lockstep
-mode with commands set through ~set_command (held across resets), turns to each command and
-drives along it."""
+drive along them (progress.csv's obs_mean_* columns); then the shipped command policy
+(policies/command), played in lockstep mode with commands set through ~set_command (held across
+resets), turns to each command and drives along it."""
 import math
 import os
 import threading
 import unittest
 
+import rospkg
 import rospy
 import rostest
 
@@ -24,10 +25,11 @@ LATE_STEP = 149           # second half of an episode (as the trainer's obs_mean
 LAST_STEP = 298           # observation of an episode's last step (time-out after 299 steps)
 PLAY_ENVS = 8             # envs 0..7 get the commands at 22.5 + 45 k degrees
 PLAY_STEPS = 700          # two episodes of 299 steps and a bit
+SHIPPED = os.path.join(rospkg.RosPack().get_path('jetbot_rl'), 'policies', 'command')
 
 
 class TestTrainCommand(unittest.TestCase):
-    def test_train_then_play(self):
+    def test_train_then_play_shipped(self):
         run_dir = rospy.get_param('~run_dir')
         iterations = rospy.get_param('~iterations')
         stats = StatsWatcher('/jetbot_ppo_trainer/training_stats')
@@ -55,7 +57,7 @@ class TestTrainCommand(unittest.TestCase):
         self.assertGreater(dot, 0.8, summary)
         self.assertGreater(vx, 0.5 * MAX_SPEED, summary)
 
-        # --- play: known commands (held across resets) for envs 0..7 ---
+        # --- play the shipped policy: known commands (held across resets) for envs 0..7 ---
         rospy.wait_for_service('/jetbot_env/set_command', timeout=TIMEOUT)
         set_command = rospy.ServiceProxy('/jetbot_env/set_command', SetCommand)
         commands = []
@@ -81,7 +83,7 @@ class TestTrainCommand(unittest.TestCase):
         sub = rospy.Subscriber('/jetbot_env/env_step', EnvStep, on_step, queue_size=1000,
                                tcp_nodelay=True)
         code, output = run_node('jetbot_policy_node', 'jetbot_policy', {
-            'checkpoint': os.path.join(run_dir, 'checkpoints/latest.pt'),
+            'checkpoint': SHIPPED,
             'mode': 'lockstep', 'steps': PLAY_STEPS, 'reset_seed': 1}, timeout=TIMEOUT)
         sub.unregister()
         self.assertEqual(code, 0, output)

@@ -143,7 +143,7 @@ class TestPpoExampleSignals(unittest.TestCase):
     foreground lane of the test run (the trainings above run beside it, niced)."""
 
     def test_ctrl_c_saves_the_policy(self):
-        """SIGINT (Ctrl-C) and SIGTERM mid-training: the current iteration's policy is saved,
+        """SIGINT (Ctrl-C) and SIGTERM mid-training: the last whole iteration's policy is saved,
         exit 0."""
         for sig in (signal.SIGINT, signal.SIGTERM):
             with tempfile.TemporaryDirectory() as tmp:
