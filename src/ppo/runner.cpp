@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
 #include "jetbot_rl/ppo/progress_csv.h"
 
 namespace jetbot_rl {
@@ -77,6 +79,8 @@ OnPolicyRunner::OnPolicyRunner(VecEnv& env, const PpoConfig& config, const Runne
                        static_cast<std::uint64_t>(iteration_));
   }
 }
+
+OnPolicyRunner::~OnPolicyRunner() = default;
 
 void OnPolicyRunner::save(const std::string& path, double elapsed_s, double best_reward) {
   CheckpointMeta meta;

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/update_stats.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -12,18 +12,10 @@
 #include "jetbot_rl/ppo/policy_memory.h"
 #include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/rollout_storage.h"
+#include "jetbot_rl/ppo/update_stats.h"
 
 namespace jetbot_rl {
 namespace ppo {
-
-/// Means over the minibatch updates of one iteration.
-struct UpdateStats {
-  double value_loss = 0.0;      ///< Clipped value loss [(return units)^2].
-  double surrogate_loss = 0.0;  ///< Clipped surrogate (to minimise).
-  double entropy = 0.0;         ///< Policy entropy [nats].
-  double approx_kl = 0.0;       ///< KL(old || new) of the Gaussians, mean per minibatch.
-  double learning_rate = 0.0;   ///< Learning rate at the end of the update.
-};
 
 /**
  * Proximal Policy Optimisation (the PPO paper, as rsl_rl's algorithms/ppo.py): owns the

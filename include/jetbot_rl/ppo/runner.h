@@ -7,8 +7,7 @@
 
 #include "jetbot_rl/env/vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
-#include "jetbot_rl/ppo/ppo.h"
-#include "jetbot_rl/ppo/ppo_checkpoint.h"
+#include "jetbot_rl/ppo/ppo_config.h"
 #include "jetbot_rl/ppo/runner_options.h"
 #include "jetbot_rl/ppo/training_logger.h"
 
@@ -25,11 +24,14 @@ std::vector<std::uint32_t> staggeredStarts(int num_envs, int max_episode_length)
  * returns, updates, logs (TrainingLogger) and saves checkpoints. Knows the env only through
  * VecEnv.
  */
+class Ppo;  // ppo.h (libtorch's headers): a node that runs a runner need not parse them
+
 class OnPolicyRunner {
  public:
   /// Seeds torch with config.seed and builds the algorithm, or loads options.resume. Throws
   /// ConfigError (bad hyper-parameter) or Error (unreadable checkpoint).
   OnPolicyRunner(VecEnv& env, const PpoConfig& config, const RunnerOptions& options);
+  ~OnPolicyRunner();
 
   /// Where progress lines and notes go (default: stdout).
   void setLogger(std::function<void(const std::string&)> sink) { sink_ = std::move(sink); }

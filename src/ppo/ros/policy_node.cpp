@@ -3,7 +3,6 @@
 #include <ros/console.h>
 #include <ros/node_handle.h>
 #include <std_msgs/Float32.h>
-#include <torch/utils.h>
 
 #include <cmath>
 #include <filesystem>
@@ -32,7 +31,7 @@ int runPolicyNode() {
 }
 
 int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& stop) {
-  torch::set_num_threads(1);
+  ppo::setTorchThreads(1);
   const std::optional<PolicyParams> loaded = loadPolicyParams(pnh);
   if (!loaded) return 1;
   const PolicyParams& params = *loaded;

@@ -3,7 +3,6 @@
 #include <ros/console.h>
 #include <ros/node_handle.h>
 #include <std_msgs/Float32MultiArray.h>
-#include <torch/utils.h>
 
 #include <memory>
 #include <sstream>
@@ -11,6 +10,7 @@
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/env/local_vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
+#include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ppo/runner.h"
 #include "jetbot_rl/ros/client/connect_envs.h"
@@ -68,7 +68,7 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
   if (!config) return 1;
   const TrainerParams& params = config->trainer;
   const PpoConfig& ppo = config->ppo;
-  torch::set_num_threads(params.torch_threads);
+  ppo::setTorchThreads(params.torch_threads);
 
   // Latched: a late subscriber (a test, rqt_plot started later) still gets the newest row.
   ros::Publisher stats_pub =
