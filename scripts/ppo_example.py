@@ -25,8 +25,8 @@ import sys
 import time
 
 import numpy as np
-import torch
 import rospy
+import torch
 import torch.nn as nn
 
 from jetbot_rl import JetbotVecEnv

@@ -23,7 +23,8 @@ run_one() {
   # /fast: the test alone, without make checking (in every lane at once) what it depends on.
   /usr/bin/time -f "%U %S" -o "$cpu_file" \
     make --no-print-directory -C "$build" "$target/fast" 2>&1 | sed -u "s/^/$prefix/"
-  read -r user system < "$cpu_file"
+  # The last line: time writes "Command exited with non-zero status N" before it when make fails.
+  read -r user system < <(tail -n 1 "$cpu_file")
   rm -f "$cpu_file"
   echo "$prefix== ${target#run_tests_jetbot_rl_}: $((SECONDS - started)) s" \
     "(CPU $(awk "BEGIN { print $user + $system }") s)"

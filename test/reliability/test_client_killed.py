@@ -57,9 +57,8 @@ class TestClientKilled(unittest.TestCase):
             return next((k for k in range(len(msgs) - 1, -1, -1)
                          if msgs[k].step == res.state.step and not any(msgs[k].rewards)), None)
         wait_for(lambda: reset_index() is not None, what='the reset state after ' + what)
-        msgs = self.env.received()
-        before = msgs[reset_index() - 1]
-        self.assertEqual((before.step, bool(any(before.rewards))), (res.state.step, True),
+        before = self.env.received()[reset_index() - 1]
+        self.assertEqual((before.step, any(before.rewards)), (res.state.step, True),
                          '%s: the EnvStep before the reset state' % what)
         return res.state
 
