@@ -1,10 +1,9 @@
 #include "jetbot_rl/ppo/action_scaler.h"
 
-#include <torch/torch.h>
-
 #include <cmath>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

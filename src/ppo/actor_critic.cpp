@@ -2,11 +2,11 @@
 
 #include <torch/nn/modules/activation.h>
 #include <torch/nn/modules/linear.h>
-#include <torch/torch.h>
 
 #include <cmath>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

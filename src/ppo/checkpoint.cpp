@@ -1,12 +1,12 @@
 #include "jetbot_rl/ppo/checkpoint.h"
 
 #include <torch/serialize.h>
-#include <torch/torch.h>
 
 #include <cstdio>
 #include <filesystem>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,8 +1,7 @@
 #include "jetbot_rl/ppo/input_history.h"
 
-#include <torch/torch.h>
-
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

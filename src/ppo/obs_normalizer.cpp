@@ -1,6 +1,6 @@
 #include "jetbot_rl/ppo/obs_normalizer.h"
 
-#include <torch/torch.h>
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

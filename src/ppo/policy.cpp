@@ -1,12 +1,11 @@
 #include "jetbot_rl/ppo/policy.h"
 
-#include <torch/torch.h>
-
 #include <sstream>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/policy_model.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

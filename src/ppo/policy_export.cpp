@@ -2,7 +2,6 @@
 // Lab's exporter writes it (normaliser and action scaling inside).
 #include <torch/csrc/jit/api/module.h>
 #include <torch/nn/modules/linear.h>
-#include <torch/torch.h>
 
 #include <filesystem>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/policy_memory.h"
 #include "jetbot_rl/ppo/policy_model.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,9 +1,8 @@
 #include "jetbot_rl/ppo/policy_memory.h"
 
-#include <torch/torch.h>
-
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/recurrent_memory.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,9 +1,9 @@
 // memoryScript(): PolicyMemory's steps as TorchScript, for the exported policy (policy_export.cpp).
 #include <torch/csrc/jit/api/module.h>
-#include <torch/torch.h>
 
 #include "jetbot_rl/ppo/policy_memory.h"
 #include "jetbot_rl/ppo/recurrent_memory.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,13 +1,13 @@
 #include "jetbot_rl/ppo/ppo.h"
 
 #include <torch/nn/utils/clip_grad.h>
-#include <torch/torch.h>
 
 #include <algorithm>
 #include <string>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/ppo_losses.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,11 +1,11 @@
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
 
 #include <torch/serialize.h>
-#include <torch/torch.h>
 
 #include <filesystem>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,8 +1,8 @@
 #include "jetbot_rl/ppo/ppo_losses.h"
 
-#include <torch/torch.h>
-
 #include <algorithm>
+
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

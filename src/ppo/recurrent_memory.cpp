@@ -1,11 +1,10 @@
 #include "jetbot_rl/ppo/recurrent_memory.h"
 
-#include <torch/torch.h>
-
 #include <cmath>
 #include <string>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,8 +1,7 @@
 #include "jetbot_rl/ppo/rollout_storage.h"
 
-#include <torch/torch.h>
-
 #include "jetbot_rl/ppo/gae.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

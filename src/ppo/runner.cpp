@@ -1,7 +1,5 @@
 #include "jetbot_rl/ppo/runner.h"
 
-#include <torch/torch.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
 #include "jetbot_rl/ppo/progress_csv.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

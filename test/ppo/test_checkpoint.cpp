@@ -1,7 +1,6 @@
 // Checkpoint round trips: same outputs after reload; normaliser, optimiser and metadata restored.
 #include <gtest/gtest.h>
 #include <torch/script.h>
-#include <torch/torch.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,6 +12,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -1,9 +1,9 @@
 // GAE(lambda) and returns with time-out bootstrapping: hand-computed cases.
 #include <gtest/gtest.h>
-#include <torch/torch.h>
 
 #include "jetbot_rl/ppo/gae.h"
 #include "jetbot_rl/ppo/rollout_storage.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

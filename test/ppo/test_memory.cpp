@@ -3,7 +3,6 @@
 // bootstrapped from the remembered state, and the TorchScript export of each kind.
 #include <gtest/gtest.h>
 #include <torch/script.h>
-#include <torch/torch.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

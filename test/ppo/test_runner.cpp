@@ -1,7 +1,6 @@
 // The training loop on a toy VecEnv (no ROS): it learns, is deterministic for a seed, resumes,
 // and saves on interruption.
 #include <gtest/gtest.h>
-#include <torch/torch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +10,7 @@
 
 #include "jetbot_rl/ppo/checkpoint.h"
 #include "jetbot_rl/ppo/runner.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {

@@ -2,12 +2,12 @@
 // value loss (and where their gradients vanish), the adaptive learning rate, the observation
 // normaliser and the action scaler.
 #include <gtest/gtest.h>
-#include <torch/torch.h>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/action_scaler.h"
 #include "jetbot_rl/ppo/obs_normalizer.h"
 #include "jetbot_rl/ppo/ppo_losses.h"
+#include "jetbot_rl/ppo/torch_api.h"
 
 namespace jetbot_rl {
 namespace ppo {
