@@ -48,8 +48,8 @@ build() {
 run_tests() {
   cd "$ws"
   rm -rf "$ws/build/test_results"
-  # Two lanes (run_tests.sh): the tests that time what they measure in the foreground, one at a
-  # time, the rest beside them at nice 10; then the rate comparisons alone.
+  # Four lanes (run_tests.sh): the tests that time what they measure in the foreground and the
+  # driving lane, the rest beside them in two lanes at nice 10; then the rate comparisons alone.
   local start=$SECONDS
   bash "$repo/scripts/run_tests.sh" "$ws"
   echo "== tests ran in $((SECONDS - start)) s"
