@@ -67,8 +67,10 @@ add_library(jetbot_rl_core
   src/core/tasks/command_task.cpp
   src/core/tasks/navigation_task.cpp
   src/core/tasks/observer_spec.cpp
+  src/core/tasks/road_following_task.cpp
   src/core/tasks/task.cpp
   src/core/tasks/task_factory.cpp
+  src/core/tasks/track.cpp
   src/core/tasks/velocity_task.cpp
   src/core/world/gazebo/gazebo_world_model.cpp
   src/core/world/gazebo/inertia_free_models.cpp

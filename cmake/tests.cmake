@@ -49,6 +49,8 @@ catkin_add_gtest(test_core
   test/core/test_team.cpp
   test/core/test_team_people.cpp
   test/core/test_navigation.cpp
+  test/core/test_road_following.cpp
+  test/core/test_notebook_dataset.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
   test/core/test_grid_planner.cpp
@@ -56,7 +58,7 @@ catkin_add_gtest(test_core
   test/core/test_map_planner.cpp
   test/core/test_goal_watch.cpp
 )
-target_link_libraries(test_core jetbot_rl_core ${STB_LIBRARIES})
+target_link_libraries(test_core jetbot_rl_core jetbot_rl_dataset_writer ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
 target_compile_definitions(test_core PRIVATE ${_robots} JETBOT_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
@@ -70,6 +72,7 @@ catkin_add_gtest(test_ppo
   test/ppo/test_update.cpp
   test/ppo/test_in_process.cpp
   test/ppo/test_memory.cpp
+  test/ppo/test_image_policy.cpp
   test/ppo/test_nav_benchmark.cpp
   test/ppo/test_navigation_metrics.cpp
   test/ppo/test_dwa_actor.cpp

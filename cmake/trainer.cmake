@@ -10,6 +10,7 @@ add_library(jetbot_rl_policy
   src/ppo/action_scaler.cpp
   src/ppo/actor_critic.cpp
   src/ppo/checkpoint.cpp
+  src/ppo/image_encoder.cpp
   src/ppo/input_history.cpp
   src/ppo/network_config.cpp
   src/ppo/obs_normalizer.cpp

@@ -20,9 +20,10 @@ declare -A recipe=(
   [navigation_arena]="task:=navigation iterations:=200 task_config:=$config/navigation_arena.yaml"
   [people]="task:=navigation task_config:=$config/navigation_people.yaml config:=$config/ppo_navigation_people.yaml"
   [swap]="task:=navigation task_config:=$config/navigation_swap.yaml config:=$config/ppo_navigation_swap.yaml"
+  [road_following]="task:=road_following"
 )
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(velocity command command_memory command_motors navigation_arena people navigation swap)
+[ ${#names[@]} -gt 0 ] || names=(velocity command command_memory command_motors navigation_arena people navigation swap road_following)
 for name in "${names[@]}"; do
   [ -n "${recipe[$name]+x}" ] || { echo "unknown policy '$name': one of ${!recipe[*]}" >&2; exit 2; }
 done

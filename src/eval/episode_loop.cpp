@@ -6,7 +6,7 @@
 
 namespace jetbot_rl {
 void PolicyActor::act(const BatchedEnv& env, std::vector<float>& actions) {
-  policy_.act(env.state().observations, env.numEnvs(), actions);
+  policy_.act(env.state().observations, env.state().images.rgb, env.numEnvs(), actions);
 }
 
 void PolicyActor::episodesBegan(const std::vector<std::uint32_t>& ids) { policy_.resetMemory(ids); }
@@ -46,6 +46,7 @@ EpisodeTotals runEpisodes(EpisodeActor& actor, BatchedEnv& env, int episodes, in
       if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kCollisionRobot)) {
         ++totals.robot_collisions;
       }
+      if (r.outcomes[i] == static_cast<std::uint8_t>(Outcome::kOffTrack)) ++totals.off_track;
       totals.episode_steps += lengths[e] + 1;
       ++totals.episodes;
       watch.episodeEnded(static_cast<int>(e), r.outcomes[i], lengths[e] + 1);

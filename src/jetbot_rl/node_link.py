@@ -100,7 +100,7 @@ class Batch(object):
                 or self.episode_steps.shape != (num_envs,)
                 or self.final_obs.shape[0] != self.reset_env_ids.shape[0]
                 or self.outcomes.shape[0] != self.reset_env_ids.shape[0]
-                or np.any(self.outcomes > EnvStep.OUTCOME_WAITED)):
+                or np.any(self.outcomes > EnvStep.OUTCOME_OFF_TRACK)):
             raise RuntimeError('%s: EnvStep %d does not match its spec (%d envs, obs_dim %d)'
                                % (node, msg.step, num_envs, obs_dim))
         # The images (ImageLayout `images`): {kind: (n, height, width, channels)}, views of the

@@ -253,9 +253,9 @@ class JetbotVecEnv(_Base):
             infos['final_obs'] = final_obs
             infos['_final_obs'] = final_mask
             # How each ended episode ended (EnvStep.OUTCOME_*: 0 time-out, 1 success, 2-4 a
-            # collision with the world, a mover or a robot, 5 a round's wait that is no episode),
-            # for the envs in _outcome (the same envs as _final_obs; a mask of its own, as
-            # gymnasium's "_key" convention has one per key).
+            # collision with the world, a mover or a robot, 5 a round's wait that is no episode,
+            # 6 off the tape), for the envs in _outcome (the same envs as _final_obs; a mask of its
+            # own, as gymnasium's "_key" convention has one per key).
             outcome = np.zeros(self.num_envs, dtype=np.uint8)
             outcome[ids] = np.concatenate([b.outcomes for b in batches])
             infos['outcome'] = outcome

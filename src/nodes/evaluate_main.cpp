@@ -86,6 +86,9 @@ int main(int argc, char** argv) {
                   totals.outcomes[1] / n, totals.outcomes[2] / n, totals.outcomes[0] / n);
       std::printf("mover_collision_rate=%.4f\n", totals.mover_collisions / n);  // of collisions
       std::printf("robot_collision_rate=%.4f\n", totals.robot_collisions / n);  // of collisions
+      if (env.task().name() == "road_following") {
+        std::printf("off_track_rate=%.4f\n", totals.off_track / n);  // the collision rate's
+      }
       std::printf("mean_episode_steps=%.1f\n", totals.episode_steps / n);
       if (metrics) {
         const NavigationMetricsResult m = metrics->result();

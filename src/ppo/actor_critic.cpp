@@ -58,13 +58,22 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim,
         return c;
       }()) {}
 
-ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& c)
+ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& c,
+                                 ImageShape image)
     : input_dim_(input_dim), action_dim_(action_dim) {
   if (input_dim < 1 || action_dim < 1) {
     throw ConfigError("invalid model size: input " + std::to_string(input_dim) + ", action_dim " +
                       std::to_string(action_dim));
   }
   int features = input_dim;
+  if (!image.empty()) {
+    if (c.rnn_type != RnnType::kNone) {
+      throwInvalid("rnn_type", enumName(c.rnn_type),
+                   "must be none for a policy that observes an image (not supported yet)");
+    }
+    encoder_ = register_module("image_encoder", ImageEncoder(c, image));
+    features += encoder_->features();
+  }
   if (c.rnn_type != RnnType::kNone) {
     actor_rnn_ = register_module(
         "actor_rnn", RecurrentMemory(c.rnn_type, input_dim, c.rnn_hidden_size, c.rnn_num_layers));
@@ -79,6 +88,13 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkCon
       "log_std", torch::full({action_dim}, std::log(c.init_noise_std), torch::kFloat));
 }
 
+torch::Tensor ActorCriticImpl::features(const torch::Tensor& input) {
+  if (encoder_.is_empty()) return input;
+  return torch::cat({input.narrow(-1, 0, input_dim_),
+                     encoder_->forward(input.narrow(-1, input_dim_, imageValues()))},
+                    -1);
+}
+
 MemoryState ActorCriticImpl::initialState(int64_t batch) const {
   MemoryState s;
   if (recurrent()) {
@@ -91,14 +107,15 @@ MemoryState ActorCriticImpl::initialState(int64_t batch) const {
 ActionSample ActorCriticImpl::act(const torch::Tensor& input, MemoryState* state) {
   torch::NoGradGuard no_grad;
   ActionSample s;
-  s.mean = actionMean(input, state ? &state->actor : nullptr);
+  const torch::Tensor x = features(input);
+  s.mean = meanOf(x, state ? &state->actor : nullptr);
   s.std = torch::exp(log_std_).expand_as(s.mean);
   s.actions = s.mean + s.std * torch::randn_like(s.mean);
   s.log_probs = gaussianLogProb(s.actions, s.mean, log_std_);
   if (recurrent()) {
-    s.values = critic_->forward(critic_rnn_->step(input, state->critic)).squeeze(-1);
+    s.values = critic_->forward(critic_rnn_->step(x, state->critic)).squeeze(-1);
   } else {
-    s.values = critic_->forward(input).squeeze(-1);
+    s.values = critic_->forward(x).squeeze(-1);
   }
   return s;
 }
@@ -107,11 +124,12 @@ ActionEvaluation ActorCriticImpl::evaluate(const torch::Tensor& input,
                                            const torch::Tensor& actions) {
   if (recurrent()) throw Error("ActorCritic::evaluate of a recurrent model: use evaluateSequence");
   ActionEvaluation e;
-  e.mean = actor_->forward(input);
+  const torch::Tensor x = features(input);
+  e.mean = actor_->forward(x);
   e.std = torch::exp(log_std_).expand_as(e.mean);
   e.log_probs = gaussianLogProb(actions, e.mean, log_std_);
   e.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({input.size(0)});
-  e.values = critic_->forward(input).squeeze(-1);
+  e.values = critic_->forward(x).squeeze(-1);
   return e;
 }
 
@@ -132,17 +150,22 @@ ActionEvaluation ActorCriticImpl::evaluateSequence(const torch::Tensor& input,
 }
 
 torch::Tensor ActorCriticImpl::actionMean(const torch::Tensor& input, torch::Tensor* actor_state) {
-  if (!recurrent()) return actor_->forward(input);
+  return meanOf(features(input), actor_state);
+}
+
+torch::Tensor ActorCriticImpl::meanOf(const torch::Tensor& x, torch::Tensor* actor_state) {
+  if (!recurrent()) return actor_->forward(x);
   if (!actor_state) throw Error("ActorCritic::actionMean of a recurrent model without a state");
-  return actor_->forward(actor_rnn_->step(input, *actor_state));
+  return actor_->forward(actor_rnn_->step(x, *actor_state));
 }
 
 torch::Tensor ActorCriticImpl::value(const torch::Tensor& input,
                                      const torch::Tensor* critic_state) {
-  if (!recurrent()) return critic_->forward(input).squeeze(-1);
+  const torch::Tensor x = features(input);
+  if (!recurrent()) return critic_->forward(x).squeeze(-1);
   if (!critic_state) throw Error("ActorCritic::value of a recurrent model without a state");
   torch::Tensor state = *critic_state;  // step() replaces its copy, not the caller's
-  return critic_->forward(critic_rnn_->step(input, state)).squeeze(-1);
+  return critic_->forward(critic_rnn_->step(x, state)).squeeze(-1);
 }
 
 torch::Tensor ActorCriticImpl::actionStd() const { return torch::exp(log_std_).detach(); }

@@ -13,8 +13,8 @@ namespace ppo {
 Policy::Policy(const std::string& checkpoint)
     : meta_(readCheckpointMeta(checkpoint)), model_(std::make_unique<Model>()) {
   const NetworkConfig& c = meta_.config;
-  model_->net =
-      ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c);
+  model_->net = ActorCritic(policyInputDim(c, meta_.obs_dim, meta_.action_dim), meta_.action_dim, c,
+                            imageShapeOf(meta_.spec));
   model_->normalizer = ObsNormalizer(meta_.obs_dim, c.normalize_observations);
   loadPolicy(checkpoint, model_->net, model_->normalizer);
   model_->net->eval();
@@ -80,7 +80,25 @@ void Policy::resetMemory() {
 }
 
 void Policy::act(const std::vector<float>& observations, int num_envs, std::vector<float>& out) {
+  if (observesImage()) {
+    throw InputError("the policy observes " + std::to_string(imageWidth()) + " x " +
+                     std::to_string(imageHeight()) +
+                     " rgb camera images: act(observations, images, ...) takes them");
+  }
+  act(observations, {}, num_envs, out);
+}
+
+void Policy::act(const std::vector<float>& observations, const std::vector<std::uint8_t>& images,
+                 int num_envs, std::vector<float>& out) {
   if (!model_->scaler) throw Error("Policy::act before setActionLimits");
+  const std::int64_t image_bytes =
+      observesImage() ? static_cast<std::int64_t>(num_envs) * imageWidth() * imageHeight() * 3 : 0;
+  if (observesImage() && static_cast<std::int64_t>(images.size()) != image_bytes) {
+    throw InputError("expected " + std::to_string(image_bytes) + " image bytes (" +
+                     std::to_string(num_envs) + " rgb8 images of " + std::to_string(imageWidth()) +
+                     " x " + std::to_string(imageHeight()) + "), got " +
+                     std::to_string(images.size()));
+  }
   if (num_envs < 1 || static_cast<std::int64_t>(observations.size()) !=
                           static_cast<std::int64_t>(num_envs) * obsDim()) {
     throw InputError("expected " + std::to_string(num_envs * obsDim()) + " observations, got " +
@@ -95,8 +113,14 @@ void Policy::act(const std::vector<float>& observations, int num_envs, std::vect
                                             actionDim(), /*with_critic=*/false);
   }
   const ObsNormalizer& normalizer = model_->normalizer;
-  const torch::Tensor input = memory->begin(
+  torch::Tensor input = memory->begin(
       obs, [&normalizer](const torch::Tensor& o) { return normalizer->normalize(o); });
+  if (image_bytes > 0) {
+    const torch::Tensor pixels = torch::from_blob(const_cast<std::uint8_t*>(images.data()),
+                                                  {num_envs, image_bytes / num_envs}, torch::kUInt8)
+                                     .to(torch::kFloat);
+    input = torch::cat({input, pixels}, -1);
+  }
   const torch::Tensor mean =
       model_->net->actionMean(input, memory->recurrent() ? &memory->state().actor : nullptr);
   memory->end(model_->scaler->squash(mean));

@@ -1,6 +1,7 @@
 // Policy::exportTorchScript: the trained policy as a self-contained TorchScript module, as Isaac
 // Lab's exporter writes it (normaliser and action scaling inside).
 #include <torch/csrc/jit/api/module.h>
+#include <torch/nn/modules/conv.h>
 #include <torch/nn/modules/linear.h>
 
 #include <filesystem>
@@ -32,7 +33,12 @@ std::string activationCall(Activation a) {
 std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta,
                      const MemoryScript& memory) {
   std::ostringstream s;
-  if (memory.hidden_size == 0) {
+  if (!spec.observer.camera_image.empty()) {
+    s << "# jetbot_rl image policy: forward(obs [B, obs_dim] float32, image [B, camera_height, "
+         "camera_width, 3] uint8 rgb8"
+      << (memory.hidden_size == 0 ? "" : ", hidden [B, hidden_size]") << ") -> actions"
+      << (memory.hidden_size == 0 ? "" : ", hidden") << "; the image's pre-processing inside\n";
+  } else if (memory.hidden_size == 0) {
     s << "# jetbot_rl policy: forward(obs [B, obs_dim] float32) -> actions [B, action_dim]\n";
   } else {
     s << "# jetbot_rl policy with memory: forward(obs [B, obs_dim] float32, hidden [B, "
@@ -45,6 +51,35 @@ std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta,
     << "\nhidden_size: " << memory.hidden_size << "\nhidden_layout: \"" << memory.layout << "\"\n"
     << networkYaml(meta.config);
   return s.str();
+}
+
+/// Lines of forward() that append the image encoder's features of `image` to `x`, as
+/// ImageEncoder::forward computes them; its weights registered as buffers of `module`.
+std::string imageScript(const ImageEncoderImpl& encoder, torch::jit::Module& module) {
+  const ImageShape shape = encoder.shape();
+  std::ostringstream code;
+  code << "    p = image.reshape([-1, " << shape.height << ", " << shape.width
+       << ", 3]).float().permute([0, 3, 1, 2]) * (1.0 / 255.0)\n";
+  if (encoder.grayscale()) {
+    module.register_buffer("luma", torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 3, 1, 1}));
+    code << "    p = (p * self.luma).sum(1, True)\n";
+  }
+  int layer = 0;
+  for (const auto& child : encoder.convolutions()->children()) {
+    auto* conv = child->as<torch::nn::Conv2d>();
+    if (!conv) continue;  // the ReLUs, written with each convolution
+    const std::string n = std::to_string(layer);
+    const int stride = encoder.strides()[static_cast<std::size_t>(layer++)];
+    module.register_buffer("conv_weight_" + n, conv->weight.detach().clone());
+    module.register_buffer("conv_bias_" + n, conv->bias.detach().clone());
+    code << "    p = torch.relu(torch.conv2d(p.contiguous(), self.conv_weight_" << n
+         << ", self.conv_bias_" << n << ", [" << stride << ", " << stride << "]))\n";
+  }
+  module.register_buffer("image_weight", encoder.linear()->weight.detach().clone());
+  module.register_buffer("image_bias", encoder.linear()->bias.detach().clone());
+  code << "    p = torch.relu(torch.addmm(self.image_bias, p.flatten(1), self.image_weight.t()))\n"
+       << "    x = torch.cat([x, p], 1)\n";
+  return code.str();
 }
 
 }  // namespace
@@ -71,14 +106,17 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
   }
 
   const MemoryScript memory = memoryScript(c, model_->net, obsDim(), actionDim(), module);
+  const std::string image_arg = observesImage() ? ", image: Tensor" : "";
   if (memory.hidden_size == 0) {
-    code << "def forward(self, obs: Tensor) -> Tensor:\n";
+    code << "def forward(self, obs: Tensor" << image_arg << ") -> Tensor:\n";
   } else {
     code << "def initial_hidden(self, batch: int) -> Tensor:\n"
          << "    return torch.zeros([batch, " << memory.hidden_size << "])\n"
-         << "def forward(self, obs: Tensor, hidden: Tensor) -> Tuple[Tensor, Tensor]:\n";
+         << "def forward(self, obs: Tensor" << image_arg
+         << ", hidden: Tensor) -> Tuple[Tensor, Tensor]:\n";
   }
   code << memory.code;
+  if (observesImage()) code << imageScript(*model_->net->imageEncoder(), module);
   int layer = 0;
   for (const auto& child : model_->net->actor()->children()) {
     if (auto* linear = child->as<torch::nn::Linear>()) {

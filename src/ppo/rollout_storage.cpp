@@ -6,9 +6,12 @@
 namespace jetbot_rl {
 namespace ppo {
 
-RolloutStorage::RolloutStorage(int num_steps, int num_envs, int obs_dim, int action_dim)
-    : num_steps_(num_steps), num_envs_(num_envs) {
+RolloutStorage::RolloutStorage(int num_steps, int num_envs, int obs_dim, int action_dim,
+                               int image_values)
+    : num_steps_(num_steps), num_envs_(num_envs), obs_dim_(obs_dim) {
   obs_ = torch::zeros({num_steps, num_envs, obs_dim});
+  // Pixels as bytes: a quarter of their floats' memory (64 x 64 rgb: 12 KB a step and env).
+  if (image_values > 0) images_ = torch::zeros({num_steps, num_envs, image_values}, torch::kUInt8);
   actions_ = torch::zeros({num_steps, num_envs, action_dim});
   mean_ = torch::zeros({num_steps, num_envs, action_dim});
   std_ = torch::zeros({num_steps, num_envs, action_dim});
@@ -26,7 +29,12 @@ void RolloutStorage::add(int t, const torch::Tensor& obs, const torch::Tensor& a
                          const torch::Tensor& mean, const torch::Tensor& std,
                          const torch::Tensor& rewards, const torch::Tensor& terminated,
                          const torch::Tensor& truncated, const torch::Tensor& truncated_values) {
-  obs_[t].copy_(obs);
+  if (images_.defined()) {
+    obs_[t].copy_(obs.narrow(-1, 0, obs_dim_));
+    images_[t].copy_(obs.narrow(-1, obs_dim_, images_.size(2)));  // whole values: exact
+  } else {
+    obs_[t].copy_(obs);
+  }
   actions_[t].copy_(actions);
   log_probs_[t].copy_(log_probs);
   values_[t].copy_(values);
@@ -51,6 +59,7 @@ std::vector<MiniBatch> RolloutStorage::miniBatches(int num_mini_batches) const {
   const int64_t size = total / num_mini_batches;
   const torch::Tensor perm = torch::randperm(total, torch::kLong);
   auto flat = [](const torch::Tensor& x) { return x.flatten(0, 1); };
+  const torch::Tensor images = images_.defined() ? flat(images_) : torch::Tensor();
   const torch::Tensor obs = flat(obs_), actions = flat(actions_), log_probs = flat(log_probs_),
                       values = flat(values_), advantages = flat(advantages_),
                       returns = flat(returns_), mean = flat(mean_), std = flat(std_);
@@ -59,6 +68,9 @@ std::vector<MiniBatch> RolloutStorage::miniBatches(int num_mini_batches) const {
     const torch::Tensor idx = perm.slice(0, i * size, (i + 1) * size);
     MiniBatch b;
     b.obs = obs.index_select(0, idx);
+    if (images.defined()) {
+      b.obs = torch::cat({b.obs, images.index_select(0, idx).to(torch::kFloat)}, -1);
+    }
     b.actions = actions.index_select(0, idx);
     b.old_log_probs = log_probs.index_select(0, idx);
     b.old_values = values.index_select(0, idx);
@@ -86,6 +98,7 @@ std::vector<MiniBatch> RolloutStorage::sequenceMiniBatches(int num_mini_batches)
     const torch::Tensor idx = perm.slice(0, i * size, (i + 1) * size);
     MiniBatch b;
     b.obs = envs(obs_, idx);
+    if (images_.defined()) b.obs = torch::cat({b.obs, envs(images_, idx).to(torch::kFloat)}, -1);
     b.actions = envs(actions_, idx);
     b.old_log_probs = flat(log_probs_, idx);
     b.old_values = flat(values_, idx);

@@ -1,5 +1,6 @@
 #pragma once
-// What the camera's tests share: intrinsics, upright boxes, and images compared bit for bit.
+// What the camera's tests share: the camera Jetbot, intrinsics, upright boxes, and images compared
+// bit for bit.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,13 @@
 #include "test_util.h"
 
 namespace jetbot_rl {
+
+/// urdf/jetbot_camera.urdf: the Jetbot with its IMX219 camera block, loaded once.
+inline RobotModelConstPtr cameraJetbot() {
+  static const RobotModelConstPtr model =
+      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf");
+  return model;
+}
 
 /// Intrinsics of `width` x `height` px, horizontal fov `fov` [rad], clip [0.05, 20] m.
 inline CameraIntrinsics cameraIntrinsics(int width, int height, double fov) {

@@ -21,13 +21,6 @@
 namespace jetbot_rl {
 namespace {
 
-/// urdf/jetbot_camera.urdf: the Jetbot with its IMX219 camera block, loaded once.
-RobotModelConstPtr cameraJetbot() {
-  static const RobotModelConstPtr model =
-      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf");
-  return model;
-}
-
 /// The one camera `config` gives on `robot`, or none.
 std::optional<CameraSpec> oneCamera(const CameraConfig& config, const RobotModel& robot) {
   const std::vector<CameraSpec> cameras = resolveCameras(config, robot, 1.0 / 60);

@@ -152,7 +152,8 @@ TEST(TaskFactory, BuildsEveryTaskByNameAndNamesBadOnes) {
     fieldsFromYaml("task: maze", config);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("task = 'maze': must be velocity, command or navigation"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "task = 'maze': must be velocity, command, navigation or road_following"),
               std::string::npos)
         << e.what();
   }

@@ -159,6 +159,21 @@ class TestTaskDefaults(unittest.TestCase):
             else:
                 self.assertNotIn(key, env, '%s loads %s of navigation_env.yaml' % (what, key))
 
+    def test_road_following_defaults_of_jetbot_env_launch(self):
+        """task:=road_following alone: the camera Jetbot and config/road_following_env.yaml, no
+        world; the same as given explicitly."""
+        road_urdf = os.path.join(PKG, 'urdf', 'jetbot_camera.urdf')
+        road_env = os.path.join(PKG, 'config', 'road_following_env.yaml')
+        params = dump('jetbot_env.launch', 'task:=road_following')
+        env = under(params, '/jetbot_env')
+        self.assertEqual(params['/robot_description'], text(road_urdf))
+        self.assertEqual(env['task'], 'road_following')
+        for key, value in file_params(road_env).items():
+            self.assertEqual(env[key], value, key)
+        self.assertFalse([k for k in env if k.startswith('world/')], 'a world was loaded')
+        self.assertEqual(params, dump('jetbot_env.launch', 'task:=road_following',
+                                      'urdf:=' + road_urdf, 'task_config:=' + road_env))
+
     def test_other_tasks_keep_the_jetbot_without_a_task_file(self):
         for launch_file, args in (('jetbot_env.launch', []), ('jetbot_env.launch', ['task:=command']),
                                   ('train.launch', []), ('train.launch', ['task:=command']),

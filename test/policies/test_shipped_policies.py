@@ -50,6 +50,12 @@ CASES = {
     'swap': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--num-envs', '5',
                            '--episodes', '400', '--seed', '123'],
              {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
+    # from the camera alone, on tracks, colours and light of seeds not used in training
+    'road_following': (['--urdf', os.path.join(PKG, 'urdf', 'jetbot_camera.urdf'), '--config',
+                        config('jetbot_env.yaml'), '--config', config('road_following_env.yaml'),
+                        '--task', 'road_following', '--num-envs', '25', '--episodes', '50',
+                        '--steps', '100000', '--seed', '777'],
+                       {'success_rate': (0.95, None), 'off_track_rate': (None, 0.03)}),
 }
 
 

@@ -216,21 +216,25 @@ TEST(StepConversion, MoverAndRobotCollisionsAndWaitsCrossAndAnUnknownOutcomeIsRe
   StepResult r = sampleStep(spec);
   r.outcomes = {static_cast<std::uint8_t>(Outcome::kCollisionMover),
                 static_cast<std::uint8_t>(Outcome::kWaited),
-                static_cast<std::uint8_t>(Outcome::kCollisionRobot)};
+                static_cast<std::uint8_t>(Outcome::kOffTrack)};
   EnvStep msg;
   toMsg(r, spec, ros::Time(1.0), msg);
   EXPECT_EQ(msg.outcomes[0], EnvStep::OUTCOME_COLLISION_MOVER);
   EXPECT_EQ(msg.outcomes[1], EnvStep::OUTCOME_WAITED);
-  EXPECT_EQ(msg.outcomes[2], EnvStep::OUTCOME_COLLISION_ROBOT);
+  EXPECT_EQ(msg.outcomes[2], EnvStep::OUTCOME_OFF_TRACK);
   StepResult back;
   fromMsg(msg, spec, back);
   EXPECT_EQ(back.outcomes, r.outcomes);
-  msg.outcomes[1] = EnvStep::OUTCOME_WAITED + 1;
+  msg.outcomes[2] = static_cast<std::uint8_t>(Outcome::kCollisionRobot);
+  fromMsg(msg, spec, back);
+  EXPECT_EQ(back.outcomes[2], EnvStep::OUTCOME_COLLISION_ROBOT);
+  msg.outcomes[1] = EnvStep::OUTCOME_OFF_TRACK + 1;
   try {
     fromMsg(msg, spec, back);
-    ADD_FAILURE() << "outcome 6 accepted";
+    ADD_FAILURE() << "outcome 7 accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("outcomes holds 6"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outcomes holds 7, not 0 to 6"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -51,6 +51,7 @@ struct EpisodeTotals {
   std::int64_t outcomes[3] = {0, 0, 0};  ///< Per outcomeRate(): time-out, success, collision.
   std::int64_t mover_collisions = 0;     ///< Of the collisions: with a mover.
   std::int64_t robot_collisions = 0;     ///< Of the collisions: with another robot.
+  std::int64_t off_track = 0;            ///< Of the failures: off the tape (road following).
   std::int64_t episode_steps = 0;        ///< Control steps of the episodes counted.
   bool steps_ran_out = false;            ///< Not every env ended its quota of episodes.
 };

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/ppo/image_encoder.h"
 #include "jetbot_rl/ppo/network_config.h"
 #include "jetbot_rl/ppo/recurrent_memory.h"
 
@@ -38,7 +39,9 @@ struct MemoryState {
 /**
  * Gaussian policy with a learned, state-independent log-std and a separate MLP value function;
  * with `rnn_type` gru or lstm, a recurrent layer before each MLP (rsl_rl's ActorCriticRecurrent).
- * Its input is the observation, or the history InputHistory stacks.
+ * Its input is the observation, or the history InputHistory stacks; an image policy's input is
+ * that followed by the camera image's bytes (as floats, ImageShape::values() of them), which its
+ * ImageEncoder turns into features beside it for both MLPs.
  */
 class ActorCriticImpl : public torch::nn::Module {
  public:
@@ -46,8 +49,11 @@ class ActorCriticImpl : public torch::nn::Module {
   ActorCriticImpl(int input_dim, int action_dim, const std::vector<int>& actor_hidden_dims,
                   const std::vector<int>& critic_hidden_dims, Activation activation,
                   double init_noise_std);
-  /// The same with config's widths, activation, noise and recurrent layer.
-  ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& config);
+  /// The same with config's widths, activation, noise and recurrent layer; with `image`, an
+  /// image encoder of config's layers (ConfigError naming the field when the image does not fit
+  /// them, or with an RNN: not yet for image policies). `input_dim` excludes the image.
+  ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& config,
+                  ImageShape image = {});
 
   /// Samples actions (no gradients); uses torch's default generator. With an RNN, `state` is
   /// advanced by the step (its rows zeroed first where an episode starts).
@@ -74,11 +80,22 @@ class ActorCriticImpl : public torch::nn::Module {
   const torch::nn::Sequential& actor() const { return actor_; }
   /// The actor's recurrent layer (empty without one).
   const RecurrentMemory& actorMemory() const { return actor_rnn_; }
+  /// The image encoder (empty without an image).
+  const ImageEncoder& imageEncoder() const { return encoder_; }
+  /// The input's width without the image.
   int inputDim() const { return input_dim_; }
+  /// The image's values that follow it in the input (0 without one).
+  int imageValues() const { return encoder_.is_empty() ? 0 : encoder_->shape().values(); }
   int actionDim() const { return action_dim_; }
 
  private:
+  /// What both MLPs (or RNNs) take: the input, with an image its features after the rest.
+  torch::Tensor features(const torch::Tensor& input);
+  /// actionMean() of features `x`.
+  torch::Tensor meanOf(const torch::Tensor& x, torch::Tensor* actor_state);
+
   int input_dim_, action_dim_;
+  ImageEncoder encoder_{nullptr};
   RecurrentMemory actor_rnn_{nullptr}, critic_rnn_{nullptr};
   torch::nn::Sequential actor_{nullptr}, critic_{nullptr};
   torch::Tensor log_std_;

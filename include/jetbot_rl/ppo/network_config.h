@@ -30,6 +30,12 @@ struct NetworkConfig {
   RnnType rnn_type = RnnType::kNone;  ///< Recurrent layer before the actor's and critic's MLPs.
   int rnn_hidden_size = 64;           ///< Its state width per layer.
   int rnn_num_layers = 1;             ///< Its stacked layers.
+  // The image encoder of a policy that observes a camera image (ObserverSpec::camera_image).
+  std::vector<int> conv_channels{16, 32};  ///< Output channels of each convolution.
+  std::vector<int> conv_kernels{5, 3};     ///< Their square kernels [px].
+  std::vector<int> conv_strides{2, 2};     ///< Their strides [px].
+  int image_features = 64;                 ///< The encoder's output width.
+  bool image_grayscale = false;            ///< The image is turned grey before the encoder.
 };
 
 /// Enables the visitors below for NetworkConfig and the configs that extend it (PpoConfig).
@@ -55,6 +61,18 @@ void visitNetworkFields(C& c, V&& v) {
   v("rnn_hidden_size", c.rnn_hidden_size, inRange(1, 4096),
     "The recurrent state's width per layer.");
   v("rnn_num_layers", c.rnn_num_layers, inRange(1, 16), "Stacked recurrent layers.");
+  v("conv_channels", c.conv_channels, IntList{1, 1024},
+    "An image policy (the env's observation contract names a camera_image): the output channels "
+    "of each convolution of its image encoder (each followed by a ReLU); the encoder's features "
+    "join the vector observation before both MLPs.");
+  v("conv_kernels", c.conv_kernels, IntList{1, 64, "px"},
+    "Their square kernels, one per convolution.");
+  v("conv_strides", c.conv_strides, IntList{1, 64, "px"},
+    "Their strides, one per convolution (no padding).");
+  v("image_features", c.image_features, inRange(1, 4096),
+    "The image encoder's output width: a Linear and a ReLU after the convolutions.");
+  v("image_grayscale", c.image_grayscale, AnyValue{},
+    "The image is turned grey (ITU-R BT.601 luma) before the encoder: one channel, not three.");
 }
 
 /// Every field of NetworkConfig in PpoConfig's order (the network's, then the initial noise, the

@@ -41,7 +41,17 @@ class Policy {
   /// Deterministic actions for `num_envs` observations (num_envs x obs_dim, row-major) into
   /// `out` (num_envs x action_dim, env units, e.g. rad/s); the memory steps as in training
   /// (PolicyMemory). Another num_envs than the last call's starts every env's memory over.
+  /// A policy that observes a camera image refuses it (InputError): the overload below.
   void act(const std::vector<float>& observations, int num_envs, std::vector<float>& out);
+  /// The same for a policy that observes a camera image (observesImage()): `images` holds
+  /// num_envs rgb8 images of imageWidth() x imageHeight(), row-major from the top left (the
+  /// batch's images_rgb); a policy without ignores them. InputError on a wrong size.
+  void act(const std::vector<float>& observations, const std::vector<std::uint8_t>& images,
+           int num_envs, std::vector<float>& out);
+  /// True when the policy observes a camera image (its contract's camera_image).
+  bool observesImage() const { return !meta_.spec.observer.camera_image.empty(); }
+  int imageWidth() const { return meta_.spec.observer.camera_width; }    ///< [px]
+  int imageHeight() const { return meta_.spec.observer.camera_height; }  ///< [px]
   /// Starts the memory of `envs` over: their next act() is an episode's first step.
   void resetMemory(const std::vector<std::uint32_t>& envs);
   /// Starts every env's memory over.

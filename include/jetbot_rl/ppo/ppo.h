@@ -53,7 +53,8 @@ class Ppo {
   void setLearningRate(double lr);
   /// Mean policy std [normalised action units].
   double actionStd();
-  /// The network's input width (the observation, or the history stacked).
+  /// The network's input width (the observation, or the history stacked; an image's values
+  /// follow it).
   int inputDim() const { return input_dim_; }
   /// The recurrent states of every env now [N, S] (undefined tensors without an RNN).
   const MemoryState& memoryState() const { return memory_->state(); }
@@ -64,14 +65,16 @@ class Ppo {
   torch::optim::Adam& optimizer() { return *optimizer_; }
 
  private:
-  /// V of envs `rows` [R] if they observed `obs` [R, obs_dim] (raw) next, where `fresh` [R]
-  /// (bool) marks an episode start; nothing changes (no gradients).
+  /// V of envs `rows` [R] if they observed `obs` [R, obs_dim] (raw) and, for an image policy,
+  /// `images` [R, pixel values] next, where `fresh` [R] (bool) marks an episode start; nothing
+  /// changes (no gradients).
   torch::Tensor peekValues(const torch::Tensor& rows, const torch::Tensor& obs,
-                           const torch::Tensor& fresh);
+                           const torch::Tensor& fresh, const torch::Tensor& images);
   torch::Tensor normalize(const torch::Tensor& obs) const { return normalizer_->normalize(obs); }
 
   PpoConfig config_;
   int num_envs_, obs_dim_, input_dim_;
+  ImageShape image_;  // the camera image the policy observes, or none
   ActorCritic model_;
   ObsNormalizer normalizer_;
   std::unique_ptr<torch::optim::Adam> optimizer_;

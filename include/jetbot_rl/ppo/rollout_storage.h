@@ -18,10 +18,12 @@ struct MiniBatch {
 };
 
 /// A rollout of T steps x N envs: normalised observations, actions, their log-probabilities,
-/// values, rewards, episode ends and the V(final observation) of truncated steps.
+/// values, rewards, episode ends and the V(final observation) of truncated steps. An image
+/// policy's inputs end in `image_values` pixel values, kept as bytes.
 class RolloutStorage {
  public:
-  RolloutStorage(int num_steps, int num_envs, int obs_dim, int action_dim);
+  /// `obs_dim`: the network input's width without the image.
+  RolloutStorage(int num_steps, int num_envs, int obs_dim, int action_dim, int image_values = 0);
 
   /// Records step `t` (tensors [N, ...]); `truncated_values` [N] is read where `truncated` is 1.
   void add(int t, const torch::Tensor& obs, const torch::Tensor& actions,
@@ -44,6 +46,8 @@ class RolloutStorage {
   int numSteps() const { return num_steps_; }
   int numEnvs() const { return num_envs_; }
   const torch::Tensor& rewards() const { return rewards_; }
+  /// [T, N, pixel values] an image policy's images as bytes (undefined without an image).
+  const torch::Tensor& images() const { return images_; }
   const torch::Tensor& returns() const { return returns_; }
   const torch::Tensor& values() const { return values_; }
   /// [T, N] V(final observation) where a step was truncated, else 0.
@@ -52,7 +56,8 @@ class RolloutStorage {
   const torch::Tensor& rawAdvantages() const { return raw_advantages_; }
 
  private:
-  int num_steps_, num_envs_;
+  int num_steps_, num_envs_, obs_dim_;
+  torch::Tensor images_;  // [T, N, pixel values] bytes, or undefined
   torch::Tensor obs_, actions_, log_probs_, values_, mean_, std_, rewards_, terminated_, truncated_,
       truncated_values_;
   torch::Tensor advantages_, raw_advantages_, returns_;

@@ -143,6 +143,10 @@ class CameraEnvScene {
 
   /// Replaces the env's obstacles with the placed ones of `obstacles` (env frame).
   void setObstacles(const std::vector<Obstacle>& obstacles);
+  /// The floor on the env's ground from now on (a task's painted track), or nullptr: the world's.
+  void setFloor(std::shared_ptr<const FloorImage> floor) { floor_ = std::move(floor); }
+  /// The floor the env's ground shows, or nullptr (a plain ground).
+  const FloorImage* floor() const { return floor_ ? floor_.get() : world_.floor(); }
   /// How the scene looks from now on.
   void setAppearance(const Appearance& appearance) { appearance_ = appearance; }
   /// Shadows of the directional light: a surface the light does not reach gets the ambient share
@@ -205,6 +209,7 @@ class CameraEnvScene {
   std::vector<Eigen::Vector4f> obstacle_spheres_;  // bounding: centre and radius [m], env frame
   Appearance appearance_;
   bool shadows_ = false;
+  std::shared_ptr<const FloorImage> floor_;  // the env's own, or none: the world's
 };
 
 /// The optical frame of a camera whose body frame (x forward, y left, z up: REP 103) is `body`.

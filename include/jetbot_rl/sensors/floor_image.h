@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct FloorImage {
   int width = 0, height = 0;              ///< [px]
   std::vector<std::uint8_t> rgb;  ///< width x height x 3, row-major from the lower-left pixel.
   float cos_yaw = 1.0f, sin_yaw = 0.0f;  ///< Of origin_yaw, for colourAt().
+  /// The colour of the ground beyond the image (a painted track's floor), or none: the ground's.
+  std::optional<Eigen::Vector3f> outside;
 
   /// Loads the YAML (image, resolution, origin; map_server's other fields are not needed) and its
   /// image (PNG, PGM, JPEG, ...: grey, grey + alpha, RGB or RGBA, the alpha ignored). Throws
@@ -33,7 +36,7 @@ struct FloorImage {
   static FloorImage fromYamlFile(const std::string& path);
 
   /// The colour at (x, y) of the env frame [m] (each channel in [0, 1], the nearest pixel's);
-  /// false outside the image.
+  /// false outside the image (unless `outside` is set, which it gives there).
   bool colourAt(float x, float y, Eigen::Vector3f& colour) const;
 };
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "jetbot_rl/config/config_fields.h"
@@ -27,6 +28,10 @@ struct ObserverSpec {
   double wheel_radius = 0.0;         ///< The cmd_vel kinematics [m]; 0: no differential drive.
   double wheel_separation = 0.0;     ///< The cmd_vel kinematics [m]; 0: no differential drive.
   double footprint_radius = 0.0;     ///< The robot's footprint, paths are planned for [m].
+  /// The camera image the policy observes beside the vector (rgb); empty: none.
+  std::string camera_image;
+  int camera_width = 0, camera_height = 0;  ///< Its size [px]; 0 without camera_image.
+  double camera_hfov = 0.0;                 ///< Its horizontal field of view [rad]; 0 without.
 };
 
 /// The fields that make the observation itself (a policy is bound to them, as to its names).
@@ -44,6 +49,14 @@ IfConfig<C, ObserverSpec> visitObservationFields(C& c, V&& v) {
   v("path_lookahead", c.path_lookahead, AnyValue{"m"},
     "A task that observes a global path (nav/path): the observed point's distance along it past "
     "the robot (nav/path_lookahead); 0: no path observed.");
+  v("camera_image", c.camera_image, AnyValue{},
+    "The camera image the policy observes beside the vector: rgb (the batch's images_rgb), or "
+    "empty: none.");
+  v("camera_width", c.camera_width, AnyValue{"px"}, "Its width; 0 without camera_image.");
+  v("camera_height", c.camera_height, AnyValue{"px"}, "Its height; 0 without camera_image.");
+  v("camera_hfov", c.camera_hfov, AnyValue{"rad"},
+    "Its horizontal field of view (a robot's camera is resized to the policy's image, not "
+    "cropped: its field of view should be this); 0 without camera_image.");
 }
 
 /// The fields of how goals end and of the robot the policy was trained on (a robot elsewhere

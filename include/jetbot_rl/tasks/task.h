@@ -10,6 +10,7 @@
 
 namespace jetbot_rl {
 
+struct CameraSpec;
 struct ScannerSpec;
 class TaskObserver;
 struct ObserverSpec;
@@ -19,6 +20,7 @@ class WorldModel;
 struct TaskContext {
   const ScannerSpec* scanner = nullptr;  ///< The laser scanner, or none.
   const WorldModel* world = nullptr;     ///< The world, or none.
+  const CameraSpec* camera = nullptr;    ///< The camera whose images the batch carries, or none.
   int action_dim = 0;
   double control_dt = 0.0;  ///< [s]
 };
@@ -41,7 +43,8 @@ enum class Outcome : std::uint8_t {
   kCollision = 2,       ///< The robot hit the world: a wall, the map, an obstacle (navigation).
   kCollisionMover = 3,  ///< The robot hit a mover, a person or a cart (navigation, movers/...).
   kCollisionRobot = 4,  ///< The robot hit another robot of its world (navigation, robots_per_env).
-  kWaited = 5,  ///< Not an episode of the task: the row waited for its round to end (rounds).
+  kWaited = 5,    ///< Not an episode of the task: the row waited for its round to end (rounds).
+  kOffTrack = 6,  ///< The robot left the tape (road following): a failure, counted as a collision.
 };
 
 /// The rate an ended episode counts in: 0 time-out, 1 success, 2 collision (with the world, a

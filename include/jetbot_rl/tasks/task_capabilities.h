@@ -4,6 +4,7 @@
 // the code that serves it asks for it with capability<C>(task) (task.h).
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ namespace jetbot_rl {
 class WorldModel;
 struct WorldDraft;
 struct EnvLayout;
+struct FloorImage;
+struct RootState;
 
 /// A task with a command a user can set per env (served by the env node's ~set_command).
 class Commandable {
@@ -41,6 +44,17 @@ class WorldDrawing {
   virtual void layoutDrawn(int env, const WorldModel& world, const EnvLayout& layout) {
     (void)env, (void)world, (void)layout;
   }
+};
+
+/// A task that paints the floor of each episode (road following's tape), with or without a world.
+class FloorDrawing {
+ public:
+  virtual ~FloorDrawing() = default;
+  /// At every reset of env `env`, once its robot stands at `start` (env frame): draws the floor
+  /// of its new episode about it from `rng`; what the camera sees on the ground instead of the
+  /// world's floor (kept by the task until its next draw).
+  virtual std::shared_ptr<const FloorImage> drawFloor(int env, Rng& rng,
+                                                      const RootState& start) = 0;
 };
 
 /// A task with directions worth drawing per env besides the robot's forward arrow (markers).

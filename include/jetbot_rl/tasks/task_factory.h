@@ -8,6 +8,7 @@
 #include "jetbot_rl/tasks/command_task.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 #include "jetbot_rl/tasks/observer_spec.h"
+#include "jetbot_rl/tasks/road_following_task.h"
 #include "jetbot_rl/tasks/task.h"
 #include "jetbot_rl/tasks/task_observer.h"
 #include "jetbot_rl/tasks/velocity_task.h"
@@ -16,15 +17,17 @@ namespace jetbot_rl {
 
 /// The tasks makeTask() builds.
 enum class TaskKind {
-  kVelocity,    ///< VelocityTask: drive fast (the walkthrough's first part).
-  kCommand,     ///< CommandTask: turn to a random command and drive along it.
-  kNavigation,  ///< NavigationTask: reach a goal without hitting anything.
+  kVelocity,       ///< VelocityTask: drive fast (the walkthrough's first part).
+  kCommand,        ///< CommandTask: turn to a random command and drive along it.
+  kNavigation,     ///< NavigationTask: reach a goal without hitting anything.
+  kRoadFollowing,  ///< RoadFollowingTask: follow a track of floor tape with the camera.
 };
 
 inline const EnumNameList<TaskKind>& enumNames(TaskKind) {
   static const EnumNameList<TaskKind> names{{TaskKind::kVelocity, "velocity"},
                                             {TaskKind::kCommand, "command"},
-                                            {TaskKind::kNavigation, "navigation"}};
+                                            {TaskKind::kNavigation, "navigation"},
+                                            {TaskKind::kRoadFollowing, "road_following"}};
   return names;
 }
 
@@ -46,18 +49,21 @@ struct TaskConfig {
   /// sparse; the velocity task has one.
   RewardVariant reward_variant = RewardVariant::kDefault;
   NavigationConfig navigation;  ///< The navigation task's.
+  TrackConfig road;             ///< The road following task's.
 };
 
 template <typename C, typename V>
 IfConfig<C, TaskConfig> visitFields(C& c, V&& v) {
   v("task", c.task, AnyValue{},
     "RL task: velocity (observes the body-frame COM velocity, rewarded by its norm), command "
-    "(turn to a random command and drive along it) or navigation (reach a goal without "
-    "collisions; needs a laser scanner).");
+    "(turn to a random command and drive along it), navigation (reach a goal without "
+    "collisions; needs a laser scanner) or road_following (follow a track of floor tape; needs "
+    "a camera).");
   v("reward_variant", c.reward_variant, AnyValue{},
     "The task's reward: command: exp (v_x exp(dot), default), sum (v_x + dot) or product (v_x "
     "dot); navigation: progress (default) or sparse; default: the task's first.");
   visitFields(c.navigation, v);
+  visitFields(c.road, v);
 }
 
 /// The reward variant fits the task: ConfigError naming reward_variant otherwise.

@@ -14,6 +14,7 @@ namespace jetbot_rl {
 
 class WorldDrawing;
 class FootprintGrid;
+struct FloorImage;
 struct GazeboWorld;
 
 /// A box or a vertical cylinder standing on the ground, in an env's frame.
@@ -51,6 +52,9 @@ struct EnvLayout {
   /// Generated: no layout with a start and a reachable goal was made in kLayoutAttempts; the
   /// episode runs in the bare arena instead (counted, see BatchedEnv::layoutsUnmade()).
   bool unmade = false;
+  /// The floor a task painted for the episode (FloorDrawing: road following's tape), or none:
+  /// the world's.
+  std::shared_ptr<const FloorImage> floor;
 };
 
 /// What a task draws its points into at a reset: the start, the obstacles already placed (a

@@ -51,6 +51,14 @@ void checkFieldRules(const BatchSpec& s) {
   need(s.image_height >= low && s.image_height <= high, "image_height", text(s.image_height),
        range);
   checkFieldRules(s.observer);
+  if (!s.observer.camera_image.empty()) {  // the policy's image is the batch's
+    const bool carried = carriesImage(s, s.observer.camera_image) &&
+                         s.image_width == s.observer.camera_width &&
+                         s.image_height == s.observer.camera_height;
+    need(carried, "camera_image", s.observer.camera_image,
+         "must be among image_kinds at image_width x image_height (" + text(s.image_width) + " x " +
+             text(s.image_height) + ") when the policy observes it");
+  }
 }
 
 std::unique_ptr<TaskObserver> makeObserver(const BatchSpec& spec) {

@@ -53,7 +53,8 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   const std::vector<CameraSpec> cameras =
       resolveCameras(config_.camera, *robot_, config_.controlDt());
   config_.world.read_visuals = !cameras.empty() && config_.camera.world_visuals;  // only if drawn
-  scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_);
+  scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_,
+                                      capability<FloorDrawing>(*task_));
   const int n = config_.numRows();
   if (scanner) {
     scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
@@ -75,6 +76,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;
   context.world = scene_->world();
+  if (!cameras_.empty() && config_.camera.batch_images) context.camera = &cameras_[0]->spec();
   context.action_dim = actionDim();
   context.control_dt = config_.controlDt();
   task_->attach(context);

@@ -13,8 +13,12 @@
 
 namespace jetbot_rl {
 
-EnvScene::EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* drawer)
-    : config_(config), drawer_(drawer), k_(config.team.robots_per_env) {
+EnvScene::EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* drawer,
+                   FloorDrawing* floor_drawer)
+    : config_(config),
+      drawer_(drawer),
+      floor_drawer_(floor_drawer),
+      k_(config.team.robots_per_env) {
   const int n = config_.numRows();
   if (config_.world.enabled()) {
     world_ = std::make_shared<const WorldModel>(config_.world, robot_radius);
@@ -86,9 +90,15 @@ void EnvScene::endRound(int world) {
 void EnvScene::place(int row) {
   if (team_) {
     placeTeamRobot(row);
-    return;
+  } else if (world_) {
+    placeRobot(row);
   }
-  if (!world_) return;
+  if (floor_drawer_) {
+    layouts_[row].floor = floor_drawer_->drawFloor(row, rngs_[row], (*envs_)[row]->rootState());
+  }
+}
+
+void EnvScene::placeRobot(int row) {
   // The layout from the row's own stream: its start, the task's goal, the obstacles.
   EnvPhysics& physics = *(*envs_)[row];
   EnvLayout& layout = layouts_[row];

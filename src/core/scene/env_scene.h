@@ -20,6 +20,7 @@ class MoverSet;
 class PeopleBodies;
 class RobotTeam;
 class WorldDrawing;
+class FloorDrawing;
 class WorldShapes;
 
 /**
@@ -33,7 +34,9 @@ class WorldShapes;
 class EnvScene {
  public:
   /// The world of `config` (none when it has none) and its movers; ConfigError from them.
-  EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* drawer);
+  /// `drawer`, `floor_drawer`: the task's draws at every placing, or none.
+  EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* drawer,
+           FloorDrawing* floor_drawer = nullptr);
   ~EnvScene();
   EnvScene(const EnvScene&) = delete;
   EnvScene& operator=(const EnvScene&) = delete;
@@ -69,7 +72,7 @@ class EnvScene {
   /// Restarts row `row`'s streams from `seed` (one robot per world: its movers' too).
   void reseed(int row, std::uint64_t seed);
   /// After the robot of row `row` was put at rest (and randomised): its start, the task's draw
-  /// (`drawer`), the obstacles, and, with one robot per world, its people.
+  /// (`drawer`), the obstacles, with one robot per world its people, and the task's floor.
   void place(int row);
   /// After the rows of beginReset() were placed: the people of the worlds reset whole.
   void endReset();
@@ -90,6 +93,8 @@ class EnvScene {
   SensedEnv sensed(int row) const;
 
  private:
+  /// A row of a world with one robot: its layout, start and people.
+  void placeRobot(int row);
   /// A row of a team: its start (and a circle swap's goal) clear of the others of its world.
   void placeTeamRobot(int row);
   /// Draws the people of world `world` anew, clear of its robots' starts.
@@ -97,6 +102,7 @@ class EnvScene {
 
   EnvConfig config_;
   WorldDrawing* drawer_;
+  FloorDrawing* floor_drawer_;
   int k_;  // robots per world
   std::vector<std::unique_ptr<EnvPhysics>>* envs_ = nullptr;
   std::shared_ptr<const WorldModel> world_;

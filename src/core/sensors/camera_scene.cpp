@@ -209,7 +209,7 @@ void CameraEnvScene::render(const CameraModel& model, const Eigen::Isometry3d& p
   frame.bodies = &group_bodies;
   frame.movers = &group_movers;
   const Appearance& a = appearance_;
-  frame.plain_ground = !world_.floor() && !shadows_;
+  frame.plain_ground = !floor() && !shadows_;
   const float ground_lit = std::max(0.0f, -Eigen::Vector3f::UnitZ().dot(a.light_direction));
   const float ground_shade = a.exposure * (a.ambient + (1.0f - a.ambient) * a.light * ground_lit);
   for (int c = 0; c < 3; ++c) {
@@ -368,7 +368,7 @@ void CameraEnvScene::renderTile(const Frame& frame, int x0, int y0) const {
     Eigen::Vector3f albedo = robot      ? world_.robot()->colour(robot->body, robot->own, geometry)
                              : material ? *material
                                         : a.colour(surface);
-    const FloorImage* floor = world_.floor();
+    const FloorImage* floor = this->floor();
     if (on_ground && floor &&
         floor->colourAt(origin.x() + t * lanes.dir_x[k], origin.y() + t * lanes.dir_y[k], albedo)) {
       albedo = albedo.cwiseProduct(a.floor_tint);

@@ -128,6 +128,7 @@ void CameraSensor::afterStep(int env, const SensedEnv& sensed) {
 
 void CameraSensor::afterReset(int env, const SensedEnv& sensed) {
   scenes_[env]->setObstacles(sensed.layout.obstacles);
+  scenes_[env]->setFloor(sensed.layout.floor);
   if (spec_.randomizesAppearance()) drawAppearance(env);
   render(env, sensed);
 }

@@ -42,7 +42,11 @@ bool FloorImage::colourAt(float x, float y, Eigen::Vector3f& colour) const {
   const float dx = x - static_cast<float>(origin_x), dy = y - static_cast<float>(origin_y);
   const float u = (cos_yaw * dx + sin_yaw * dy) / static_cast<float>(resolution);
   const float v = (-sin_yaw * dx + cos_yaw * dy) / static_cast<float>(resolution);
-  if (!(u >= 0.0f && v >= 0.0f && u < width && v < height)) return false;
+  if (!(u >= 0.0f && v >= 0.0f && u < width && v < height)) {
+    if (!outside) return false;
+    colour = *outside;
+    return true;
+  }
   const std::size_t i = (static_cast<std::size_t>(v) * width + static_cast<std::size_t>(u)) * 3;
   colour = Eigen::Vector3f(rgb[i], rgb[i + 1], rgb[i + 2]) / 255.0f;
   return true;

@@ -5,6 +5,18 @@
 namespace jetbot_rl {
 
 void checkFieldRules(const ObserverSpec& s) {
+  if (!s.camera_image.empty() && s.camera_image != "rgb") {
+    throwInvalid("camera_image", s.camera_image, "must be rgb or empty");
+  }
+  const bool image = !s.camera_image.empty();
+  for (const auto& [name, side] :
+       {std::pair{"camera_width", s.camera_width}, std::pair{"camera_height", s.camera_height}}) {
+    if (image ? side < 1 || side > 4096 : side != 0) {
+      throwInvalid(
+          name, side,
+          image ? "must be in [1, 4096] with a camera_image" : "must be 0 without a camera_image");
+    }
+  }
   if (s.scan_beam_angles.empty()) {
     if (!s.scan_range.empty()) {
       throwInvalid("scan_range", listText(s.scan_range), "must be empty without scan beams");

@@ -27,6 +27,9 @@ void checkFieldRules(const TaskConfig& config) {
         wrongVariant(config, "progress or sparse (or default)");
       }
       break;
+    case TaskKind::kRoadFollowing:
+      if (!any && v != RewardVariant::kProgress) wrongVariant(config, "progress (or default)");
+      break;
     case TaskKind::kVelocity:  // one reward: the variant is ignored
       break;
   }
@@ -45,6 +48,8 @@ std::unique_ptr<Task> makeTask(const TaskConfig& config) {
                                               config.reward_variant == RewardVariant::kSparse
                                                   ? NavigationTask::Variant::kSparse
                                                   : NavigationTask::Variant::kProgress);
+    case TaskKind::kRoadFollowing:
+      return std::make_unique<RoadFollowingTask>(config.road);
     case TaskKind::kVelocity:
       break;
   }
@@ -58,6 +63,8 @@ std::unique_ptr<TaskObserver> makeObserver(const std::string& task, int action_d
       return std::make_unique<CommandObserver>();
     case TaskKind::kNavigation:
       return std::make_unique<NavigationObserver>(observer, action_dim);
+    case TaskKind::kRoadFollowing:
+      return std::make_unique<RoadObserver>(action_dim);
     case TaskKind::kVelocity:
       break;
   }

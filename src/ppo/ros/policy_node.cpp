@@ -103,7 +103,7 @@ int runPolicy(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>& 
              policy->hasMemory() ? "; the policy's memory starts over with each episode" : "");
     ended_envs.clear();
     for (std::int64_t k = 0; params.steps == 0 || k < params.steps; ++k) {
-      policy->act(batch->observations, info.num_envs, actions);
+      policy->act(batch->observations, batch->images.rgb, info.num_envs, actions);
       batch = &env->step(actions);
       policy->resetMemory(ended_envs);
       ended_envs.clear();

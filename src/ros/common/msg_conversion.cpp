@@ -83,9 +83,9 @@ void fromMsg(const EnvStep& msg, const BatchSpec& spec, StepResult& r) {
   checkSize("final_images_depth", msg.final_images_depth.size(), ended * depth, msg.step);
   checkSize("final_images_label", msg.final_images_label.size(), ended * label, msg.step);
   for (std::uint8_t o : msg.outcomes) {
-    if (o > EnvStep::OUTCOME_WAITED) {
+    if (o > EnvStep::OUTCOME_OFF_TRACK) {
       throw Error("EnvStep " + std::to_string(msg.step) + ": outcomes holds " + std::to_string(o) +
-                  ", not 0 to 5");
+                  ", not 0 to 6");
     }
   }
   for (std::uint32_t id : msg.reset_env_ids) {

@@ -39,6 +39,12 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
                       "(train.launch resume:=RUN_DIR/checkpoints/latest.pt iterations:=N+1), "
                       "which saves it in format 2");
   }
+  if (policy.observesImage()) {
+    throw ConfigError("checkpoint " + checkpoint + " holds a policy that observes " +
+                      std::to_string(policy.imageWidth()) + " x " +
+                      std::to_string(policy.imageHeight()) + " camera images (task " + spec.task +
+                      "): the deploy node does not drive image policies yet");
+  }
   PolicyRun run;
   run.control_rate = 1.0 / spec.control_dt;
   run.path_lookahead = spec.observer.path_lookahead;

@@ -1,0 +1,153 @@
+// An image policy (the road following task's): its encoder refuses images its layers cannot take,
+// naming the field and the layer; PPO learns on a camera batch with the pixels kept as bytes; the
+// checkpoint's Policy acts on images as the learner's model does, and the exported TorchScript
+// (forward(obs, image uint8)) as the Policy.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/policy.h"
+#include "jetbot_rl/ppo/ppo.h"
+#include "jetbot_rl/ppo/ppo_checkpoint.h"
+#include "jetbot_rl/ppo/torch_api.h"
+#include "jetbot_rl/tasks/task_factory.h"
+
+namespace jetbot_rl {
+namespace ppo {
+namespace {
+
+std::string imageTempPath(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "jetbot_rl_test_image_policy";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+/// Road following on 6 camera Jetbots, 24 x 24 images every step.
+std::unique_ptr<BatchedEnv> cameraBatch() {
+  EnvConfig c;
+  c.num_envs = 6;
+  c.num_threads = 1;
+  c.camera.width = 24;
+  c.camera.height = 24;
+  c.camera.update_every = 1;
+  TaskConfig t;
+  t.task = TaskKind::kRoadFollowing;
+  t.road.random_colours = true;
+  return std::make_unique<BatchedEnv>(
+      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf"), c,
+      makeTask(t));
+}
+
+PpoConfig imageConfig() {
+  PpoConfig c;
+  c.actor_hidden_dims = {16};
+  c.critic_hidden_dims = {16};
+  c.conv_channels = {4, 8};
+  c.conv_kernels = {5, 3};
+  c.conv_strides = {2, 2};
+  c.image_features = 16;
+  c.image_grayscale = true;
+  c.num_steps_per_env = 8;
+  c.num_mini_batches = 2;
+  c.num_learning_epochs = 2;
+  return c;
+}
+
+void expectEncoderRefused(const NetworkConfig& c, ImageShape shape, const std::string& words) {
+  try {
+    ImageEncoder encoder(c, shape);
+    (void)encoder;
+    ADD_FAILURE() << "accepted; expected " << words;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("conv_kernels"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImageEncoder, RefusesAnImageItsLayersCannotTakeNamingTheLayer) {
+  NetworkConfig c;
+  c.conv_channels = {8, 16, 16};
+  c.conv_kernels = {5, 5, 5};
+  c.conv_strides = {2, 2, 2};
+  expectEncoderRefused(c, {16, 16}, "convolution 2 gets a 1 x 1 px image");  // 16 -> 6 -> 1
+  EXPECT_NO_THROW(ImageEncoder(c, ImageShape{32, 32}));                      // 32 -> 14 -> 5 -> 1
+  c.conv_strides = {2, 2};
+  expectEncoderRefused(c, {32, 32}, "as many values");
+  c.conv_strides = {2, 2, 2};
+  c.rnn_type = RnnType::kGru;
+  EXPECT_THROW(ActorCritic(4, 2, c, ImageShape{32, 32}), ConfigError);
+}
+
+TEST(ImagePolicy, LearnsFromBytesAndActsAsItsCheckpointAndItsExport) {
+  torch::manual_seed(3);
+  std::unique_ptr<BatchedEnv> env = cameraBatch();
+  const BatchSpec spec = env->spec();
+  ASSERT_EQ(spec.observer.camera_image, "rgb");
+  const PpoConfig config = imageConfig();
+  Ppo ppo(spec, config);
+  ASSERT_EQ(ppo.model()->imageValues(), 24 * 24 * 3);
+  const torch::Tensor before = ppo.model()->imageEncoder()->linear()->weight.clone();
+  const std::vector<std::uint8_t> first_images = env->state().images.rgb;
+  for (int t = 0; t < config.num_steps_per_env; ++t) {
+    const std::vector<float> actions = ppo.act(env->state());
+    ppo.processEnvStep(env->step(actions));
+  }
+  // The rollout keeps the pixels as the bytes the env made.
+  const torch::Tensor stored = ppo.storage().images();
+  ASSERT_EQ(stored.scalar_type(), torch::kUInt8);
+  const torch::Tensor step0 = stored[0].contiguous();
+  EXPECT_TRUE(std::equal(first_images.begin(), first_images.end(), step0.data_ptr<std::uint8_t>()));
+  ppo.computeReturns(env->state());
+  const UpdateStats stats = ppo.update();
+  EXPECT_TRUE(std::isfinite(stats.value_loss));
+  EXPECT_FALSE(torch::equal(before, ppo.model()->imageEncoder()->linear()->weight));  // it learnt
+
+  CheckpointMeta meta;
+  meta.obs_dim = spec.obs_dim;
+  meta.action_dim = spec.action_dim;
+  meta.config = config;
+  meta.spec = spec;
+  meta.spec.num_envs = 0;
+  const std::string path = imageTempPath("image_policy.pt");
+  saveCheckpoint(path, ppo, meta);
+  Policy policy(path);
+  ASSERT_TRUE(policy.observesImage());
+  const StepResult& state = env->state();
+  std::vector<float> actions;
+  policy.act(state.observations, state.images.rgb, spec.num_envs, actions);
+  // The learner's model, acting with its mean on the same input.
+  torch::Tensor input = torch::cat(
+      {ppo.normalizer()->normalize(torch::from_blob(const_cast<float*>(state.observations.data()),
+                                                    {spec.num_envs, spec.obs_dim}, torch::kFloat)),
+       torch::from_blob(const_cast<std::uint8_t*>(state.images.rgb.data()),
+                        {spec.num_envs, 24 * 24 * 3}, torch::kUInt8)
+           .to(torch::kFloat)},
+      -1);
+  const torch::Tensor mean = torch::clamp(ppo.model()->actionMean(input), -1.0, 1.0) * 20.0;
+  for (int i = 0; i < spec.num_envs * 2; ++i) {
+    EXPECT_NEAR(actions[i], mean.flatten()[i].item<float>(), 1e-4) << i;
+  }
+  std::vector<float> no_image;
+  EXPECT_THROW(policy.act(state.observations, spec.num_envs, no_image), InputError);
+  EXPECT_THROW(policy.act(state.observations, {1, 2, 3}, spec.num_envs, no_image), InputError);
+
+  const std::string exported = imageTempPath("image_policy_export.pt");
+  policy.exportTorchScript(exported, spec);
+  torch::jit::Module module = torch::jit::load(exported);
+  const torch::Tensor obs = torch::from_blob(const_cast<float*>(state.observations.data()),
+                                             {spec.num_envs, spec.obs_dim}, torch::kFloat);
+  const torch::Tensor image = torch::from_blob(const_cast<std::uint8_t*>(state.images.rgb.data()),
+                                               {spec.num_envs, 24, 24, 3}, torch::kUInt8);
+  const torch::Tensor out = module.forward({obs, image}).toTensor().contiguous();
+  ASSERT_EQ(out.numel(), spec.num_envs * 2);
+  for (int i = 0; i < spec.num_envs * 2; ++i) {
+    EXPECT_NEAR(out.data_ptr<float>()[i], actions[i], 1e-5) << i;
+  }
+}
+
+}  // namespace
+}  // namespace ppo
+}  // namespace jetbot_rl
