@@ -112,7 +112,7 @@ struct TrackPlace {
 };
 
 /**
- * A track's centreline, resampled every kTrackSpacing metres along it; closed or open. Built
+ * A track's centreline, resampled every kSpacing metres along it; closed or open. Built
  * from points (a drawn shape's or a user's), checked against the tightest curve allowed.
  */
 class Track {

@@ -76,6 +76,7 @@ void checkFieldRules(const TrackConfig& c) {
     throwInvalid("road/start_offset", c.start_offset,
                  "must be below half road/width (" + std::to_string(0.5 * c.width) + " m)");
   }
+  // Half the painted floor's side: room for the margins and for a track scaled up for its curves.
   if (c.size[1] / c.resolution > kMaxPaintSide / 2) {
     throwInvalid("road/size", listText(c.size),
                  "its max over road/resolution (" + std::to_string(c.resolution) +
