@@ -40,16 +40,16 @@ void writeJpeg(const std::string& path, const EnvImages& images, int quality) {
 
 }  // namespace
 
-bool blockedAhead(const BatchedEnv& env, int row, double distance, double half_width) {
+bool blockedAhead(const BatchedEnv& env, const CameraModel& camera, int row, double distance,
+                  double half_width) {
   const EnvImages images = env.view(row).images();
   if (!images.depth || !images.label) {
     throw InputError(
         "the blocked test reads the camera's depth and label images: give "
         "camera/images [rgb, depth, label]");
   }
-  const CameraModel model(env.camera()->intrinsics);
   const Eigen::Isometry3d to_base = rootPose(env, row).inverse() * env.view(row).cameraPose();
-  const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
+  const std::vector<Eigen::Vector3f>& rays = camera.pixelRays();
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const float depth = images.depth[i];
     if (!obstructs(images.label[i]) || !std::isfinite(depth)) continue;
@@ -59,16 +59,16 @@ bool blockedAhead(const BatchedEnv& env, int row, double distance, double half_w
   return false;
 }
 
-std::optional<Eigen::Vector2d> roadTarget(const BatchedEnv& env, int row, double lookahead) {
+std::optional<Eigen::Vector2d> roadTarget(const BatchedEnv& env, const CameraModel& camera, int row,
+                                          double lookahead) {
   const auto* road = dynamic_cast<const RoadFollowingTask*>(&env.task());
   if (!road) throw InputError("the road following target needs task road_following");
   const Track& track = road->track(row);
   const Eigen::Vector2d p = track.at(road->place(row).s + lookahead);
-  const CameraModel model(env.camera()->intrinsics);
   const std::optional<Eigen::Vector2d> pixel =
-      model.project(env.view(row).cameraPose().inverse() * Eigen::Vector3d(p.x(), p.y(), 0.0));
-  if (!pixel || pixel->x() < 0.0 || pixel->y() < 0.0 || pixel->x() >= model.width() ||
-      pixel->y() >= model.height()) {
+      camera.project(env.view(row).cameraPose().inverse() * Eigen::Vector3d(p.x(), p.y(), 0.0));
+  if (!pixel || pixel->x() < 0.0 || pixel->y() < 0.0 || pixel->x() >= camera.width() ||
+      pixel->y() >= camera.height()) {
     return std::nullopt;
   }
   return pixel;
@@ -100,6 +100,7 @@ DatasetSummary writeNotebookDataset(BatchedEnv& env, const DatasetOptions& o) {
     if (made) throw Error("cannot make the folder " + dir.string() + ": " + made.message());
   }
   const double half_width = env.spec().observer.footprint_radius;
+  const CameraModel model(camera->intrinsics);  // its pixel rays: once, not per image
   const int half = o.count / 2;
   DatasetSummary summary;
   const long long max_resets = 1000LL * std::max(1, o.count);
@@ -116,13 +117,13 @@ DatasetSummary writeNotebookDataset(BatchedEnv& env, const DatasetOptions& o) {
     for (int row = 0; row < env.numEnvs(); ++row) {
       const EnvImages images = env.view(row).images();
       if (collision) {
-        const bool blocked = blockedAhead(env, row, o.blocked_distance, half_width);
+        const bool blocked = blockedAhead(env, model, row, o.blocked_distance, half_width);
         int& n = blocked ? summary.blocked : summary.free;
         if (n >= (blocked ? half : o.count - half)) continue;
         std::snprintf(name, sizeof(name), "%06d.jpg", n++);
         writeJpeg(((blocked ? blocked_dir : free_dir) / name).string(), images, o.quality);
       } else if (summary.road < o.count) {
-        const std::optional<Eigen::Vector2d> target = roadTarget(env, row, o.lookahead);
+        const std::optional<Eigen::Vector2d> target = roadTarget(env, model, row, o.lookahead);
         if (!target) continue;
         std::snprintf(name, sizeof(name), "xy_%03d_%03d_%06d.jpg",
                       static_cast<int>(std::lround(target->x())),

@@ -11,6 +11,8 @@
 #include "jetbot_rl/dataset/notebook_dataset.h"
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/sensors/camera_model.h"
+#include "jetbot_rl/sensors/camera_spec.h"
 #include "jetbot_rl/tasks/task_factory.h"
 #include "test_util.h"
 
@@ -48,13 +50,14 @@ int filesIn(const std::filesystem::path& dir) {
 TEST(NotebookDataset, AWallCloseAheadBlocksAndOneFarAwayDoesNot) {
   BatchedEnv env(cameraJetbot(), datasetConfig(1));
   const std::vector<float> stop = test::uniformActions(env, 0.0f, 0.0f);
+  const CameraModel model(env.camera()->intrinsics);
   test::place(env, 0, {1.3, 0.0}, 0.0);  // the wall at x = 1.5: 0.2 m ahead
   env.step(stop);
-  EXPECT_TRUE(blockedAhead(env, 0, 0.3, 0.1));
-  EXPECT_FALSE(blockedAhead(env, 0, 0.1, 0.1));
+  EXPECT_TRUE(blockedAhead(env, model, 0, 0.3, 0.1));
+  EXPECT_FALSE(blockedAhead(env, model, 0, 0.1, 0.1));
   test::place(env, 0, {1.3, 0.0}, 3.14159);  // facing the far wall, 2.8 m away
   env.step(stop);
-  EXPECT_FALSE(blockedAhead(env, 0, 0.3, 0.1));
+  EXPECT_FALSE(blockedAhead(env, model, 0, 0.3, 0.1));
 }
 
 TEST(NotebookDataset, BalancedBlockedAndFreeImages) {
@@ -84,14 +87,15 @@ TEST(NotebookDataset, RoadImagesAreNamedByTheCentrelinesPixelAhead) {
   t.road.start_offset = 0.0;
   t.road.start_yaw = 0.0;
   BatchedEnv env(cameraJetbot(), c, makeTask(t));
+  const CameraModel model(env.camera()->intrinsics);
   // Straight ahead on a straight track: the middle column, below the horizon.
-  const std::optional<Eigen::Vector2d> target = roadTarget(env, 0, 0.25);
+  const std::optional<Eigen::Vector2d> target = roadTarget(env, model, 0, 0.25);
   ASSERT_TRUE(target);
   EXPECT_NEAR(target->x(), 24.0, 0.5);
   // The camera looks 0.2 rad down from about 9 cm: 0.25 m ahead is below the image's centre,
   // 2 m ahead above it (towards the horizon, 0.2 rad above).
   EXPECT_GT(target->y(), 24.0);
-  EXPECT_LT(roadTarget(env, 0, 2.0)->y(), 24.0);
+  EXPECT_LT(roadTarget(env, model, 0, 2.0)->y(), 24.0);
   EXPECT_THROW(writeNotebookDataset(env,
                                     [] {
                                       DatasetOptions o;

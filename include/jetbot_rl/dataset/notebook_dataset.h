@@ -15,6 +15,7 @@
 namespace jetbot_rl {
 
 class BatchedEnv;
+class CameraModel;
 
 /// Which notebook's data set.
 enum class DatasetKind { kCollisionAvoidance, kRoadFollowing };
@@ -44,15 +45,18 @@ struct DatasetSummary {
   int resets = 0;             ///< Resets of the batch drawn.
 };
 
-/// True when something (a wall, the map, an obstacle, a person) that env `row`'s camera sees lies
-/// within `distance` [m] ahead of its robot and `half_width` [m] of its heading line: what the
-/// collision avoidance notebook calls blocked. Needs depth and label images (InputError).
-bool blockedAhead(const BatchedEnv& env, int row, double distance, double half_width);
+/// True when something (a wall, the map, an obstacle, a person) that env `row`'s camera (of
+/// projection `camera`: the batch camera's, built once) sees lies within `distance` [m] ahead of
+/// its robot and `half_width` [m] of its heading line: what the collision avoidance notebook
+/// calls blocked. Needs depth and label images (InputError).
+bool blockedAhead(const BatchedEnv& env, const CameraModel& camera, int row, double distance,
+                  double half_width);
 
-/// Where in env `row`'s image [px] the point `lookahead` [m] along its track's centreline lies
-/// (the road following notebook's target), or none outside the image. Needs the road following
-/// task (InputError).
-std::optional<Eigen::Vector2d> roadTarget(const BatchedEnv& env, int row, double lookahead);
+/// Where in env `row`'s image [px] (of projection `camera`) the point `lookahead` [m] along its
+/// track's centreline lies (the road following notebook's target), or none outside the image.
+/// Needs the road following task (InputError).
+std::optional<Eigen::Vector2d> roadTarget(const BatchedEnv& env, const CameraModel& camera, int row,
+                                          double lookahead);
 
 /// Writes the data set of `options` from `env`'s resets (rgb images of its batch camera as
 /// JPEG): collision avoidance into out/blocked and out/free until each holds count / 2, road
