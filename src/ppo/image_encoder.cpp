@@ -19,6 +19,20 @@ ImageShape imageShapeOf(const BatchSpec& spec) {
   return shape;
 }
 
+torch::Tensor imageInput(const std::vector<std::uint8_t>& bytes, int rows, ImageShape shape,
+                         const std::string& what) {
+  const auto expected = static_cast<std::size_t>(rows) * static_cast<std::size_t>(shape.values());
+  if (bytes.size() != expected) {
+    throw InputError("expected " + std::to_string(expected) + " bytes of " + what + " (" +
+                     std::to_string(rows) + " rgb8 images of " + std::to_string(shape.width) +
+                     " x " + std::to_string(shape.height) + "), got " +
+                     std::to_string(bytes.size()));
+  }
+  return torch::from_blob(const_cast<std::uint8_t*>(bytes.data()), {rows, shape.values()},
+                          torch::kUInt8)
+      .to(torch::kFloat);
+}
+
 ImageEncoderImpl::ImageEncoderImpl(const NetworkConfig& c, ImageShape shape)
     : shape_(shape),
       grayscale_(c.image_grayscale),

@@ -91,19 +91,15 @@ void Policy::act(const std::vector<float>& observations, int num_envs, std::vect
 void Policy::act(const std::vector<float>& observations, const std::vector<std::uint8_t>& images,
                  int num_envs, std::vector<float>& out) {
   if (!model_->scaler) throw Error("Policy::act before setActionLimits");
-  const std::int64_t image_bytes =
-      observesImage() ? static_cast<std::int64_t>(num_envs) * imageWidth() * imageHeight() * 3 : 0;
-  if (observesImage() && static_cast<std::int64_t>(images.size()) != image_bytes) {
-    throw InputError("expected " + std::to_string(image_bytes) + " image bytes (" +
-                     std::to_string(num_envs) + " rgb8 images of " + std::to_string(imageWidth()) +
-                     " x " + std::to_string(imageHeight()) + "), got " +
-                     std::to_string(images.size()));
-  }
   if (num_envs < 1 || static_cast<std::int64_t>(observations.size()) !=
                           static_cast<std::int64_t>(num_envs) * obsDim()) {
     throw InputError("expected " + std::to_string(num_envs * obsDim()) + " observations, got " +
                      std::to_string(observations.size()));
   }
+  // Checked before anything changes: a wrong number of image bytes steps no memory.
+  const torch::Tensor pixels =
+      observesImage() ? imageInput(images, num_envs, imageShapeOf(meta_.spec), "images")
+                      : torch::Tensor();
   torch::NoGradGuard no_grad;
   const torch::Tensor obs = torch::from_blob(const_cast<float*>(observations.data()),
                                              {num_envs, obsDim()}, torch::kFloat);
@@ -115,12 +111,7 @@ void Policy::act(const std::vector<float>& observations, const std::vector<std::
   const ObsNormalizer& normalizer = model_->normalizer;
   torch::Tensor input = memory->begin(
       obs, [&normalizer](const torch::Tensor& o) { return normalizer->normalize(o); });
-  if (image_bytes > 0) {
-    const torch::Tensor pixels = torch::from_blob(const_cast<std::uint8_t*>(images.data()),
-                                                  {num_envs, image_bytes / num_envs}, torch::kUInt8)
-                                     .to(torch::kFloat);
-    input = torch::cat({input, pixels}, -1);
-  }
+  if (pixels.defined()) input = torch::cat({input, pixels}, -1);
   const torch::Tensor mean =
       model_->net->actionMean(input, memory->recurrent() ? &memory->state().actor : nullptr);
   memory->end(model_->scaler->squash(mean));

@@ -18,20 +18,6 @@ torch::Tensor floats(const std::vector<float>& v, int rows, int cols) {
   return torch::from_blob(const_cast<float*>(v.data()), {rows, cols}, torch::kFloat).clone();
 }
 
-/// `rows` images of `shape` from `bytes` (rgb8, one after another) as floats [rows, values].
-torch::Tensor pixels(const std::vector<std::uint8_t>& bytes, int rows, ImageShape shape,
-                     const char* what) {
-  const auto expected = static_cast<std::size_t>(rows) * static_cast<std::size_t>(shape.values());
-  if (bytes.size() != expected) {
-    throw Error(std::string("the policy observes ") + std::to_string(shape.width) + " x " +
-                std::to_string(shape.height) + " rgb images: expected " + std::to_string(expected) +
-                " bytes of " + what + ", got " + std::to_string(bytes.size()));
-  }
-  return torch::from_blob(const_cast<std::uint8_t*>(bytes.data()), {rows, shape.values()},
-                          torch::kUInt8)
-      .to(torch::kFloat);
-}
-
 torch::Tensor flags(const std::vector<std::uint8_t>& v) {
   return torch::from_blob(const_cast<std::uint8_t*>(v.data()), {static_cast<int64_t>(v.size())},
                           torch::kUInt8)
@@ -99,7 +85,7 @@ const std::vector<float>& Ppo::act(const StepResult& state) {
   if (model_->recurrent() && step_ == 0) storage_.setInitialState(memory_->state());
   obs_ = memory_->begin(obs, [this](const torch::Tensor& o) { return normalize(o); });
   if (!image_.empty()) {
-    obs_ = torch::cat({obs_, pixels(state.images.rgb, num_envs_, image_, "images_rgb")}, -1);
+    obs_ = torch::cat({obs_, imageInput(state.images.rgb, num_envs_, image_, "images_rgb")}, -1);
   }
   if (model_->recurrent()) storage_.addStarts(step_, memory_->starts());
   sample_ = model_->act(obs_, &memory_->state());
@@ -145,11 +131,11 @@ void Ppo::processEnvStep(const StepResult& r) {
     const int ended = static_cast<int>(r.reset_env_ids.size());
     std::vector<int64_t> ended_ids(r.reset_env_ids.begin(), r.reset_env_ids.end());
     const torch::Tensor v =
-        peekValues(torch::tensor(ended_ids, torch::kLong),
-                   floats(r.final_observations, ended, obs_dim_),
-                   torch::zeros({ended}, torch::kBool),
-                   image_.empty() ? torch::Tensor()
-                                  : pixels(r.final_images.rgb, ended, image_, "final_images_rgb"))
+        peekValues(
+            torch::tensor(ended_ids, torch::kLong), floats(r.final_observations, ended, obs_dim_),
+            torch::zeros({ended}, torch::kBool),
+            image_.empty() ? torch::Tensor()
+                           : imageInput(r.final_images.rgb, ended, image_, "final_images_rgb"))
             .index_select(0, torch::tensor(rows, torch::kLong));
     truncated_values.index_copy_(0, torch::tensor(envs, torch::kLong), v);
   }
@@ -167,10 +153,11 @@ void Ppo::computeReturns(const StepResult& state) {
     throw Error("Ppo::computeReturns: the rollout holds " + std::to_string(step_) + " of " +
                 std::to_string(storage_.numSteps()) + " steps");
   }
-  const torch::Tensor last_values = peekValues(
-      torch::arange(num_envs_, torch::kLong), floats(state.observations, num_envs_, obs_dim_),
-      memory_->fresh(),
-      image_.empty() ? torch::Tensor() : pixels(state.images.rgb, num_envs_, image_, "images_rgb"));
+  const torch::Tensor last_values =
+      peekValues(torch::arange(num_envs_, torch::kLong),
+                 floats(state.observations, num_envs_, obs_dim_), memory_->fresh(),
+                 image_.empty() ? torch::Tensor()
+                                : imageInput(state.images.rgb, num_envs_, image_, "images_rgb"));
   storage_.computeReturns(last_values, config_.gamma, config_.lam);
 }
 

@@ -5,6 +5,8 @@
 #include <torch/nn/modules/linear.h>
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "jetbot_rl/env/step_result.h"
 #include "jetbot_rl/ppo/network_config.h"
@@ -22,6 +24,12 @@ struct ImageShape {
 
 /// The image `spec`'s observation contract names (camera_image), or none.
 ImageShape imageShapeOf(const BatchSpec& spec);
+
+/// `rows` rgb8 images of `shape` in `bytes` (one after another) as the image part of a network
+/// input: [rows, values()] floats 0-255. InputError naming `what` and both sizes when `bytes`
+/// holds another number of values.
+torch::Tensor imageInput(const std::vector<std::uint8_t>& bytes, int rows, ImageShape shape,
+                         const std::string& what);
 
 /**
  * The convolutional encoder of an image policy: its input is the camera's rgb8 bytes (as floats
