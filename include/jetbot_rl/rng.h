@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 
@@ -45,5 +46,12 @@ class Rng {
 
 /// Uniform double in [lo, hi) from `rng` (one draw).
 inline double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.uniform(); }
+
+/// A colour (RGB) whose channels are each uniform in [lo, hi], drawn red first.
+inline Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
+  Eigen::Vector3f c;
+  for (int k = 0; k < 3; ++k) c[k] = static_cast<float>(uniform(rng, lo, hi));
+  return c;
+}
 
 }  // namespace jetbot_rl

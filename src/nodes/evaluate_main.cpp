@@ -22,6 +22,7 @@
 #include "jetbot_rl/eval/observation_means.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/tasks/road_following_task.h"
 
 int main(int argc, char** argv) {
   using namespace jetbot_rl;
@@ -86,7 +87,7 @@ int main(int argc, char** argv) {
                   totals.outcomes[1] / n, totals.outcomes[2] / n, totals.outcomes[0] / n);
       std::printf("mover_collision_rate=%.4f\n", totals.mover_collisions / n);  // of collisions
       std::printf("robot_collision_rate=%.4f\n", totals.robot_collisions / n);  // of collisions
-      if (env.task().name() == "road_following") {
+      if (dynamic_cast<const RoadFollowingTask*>(&env.task())) {
         std::printf("off_track_rate=%.4f\n", totals.off_track / n);  // the collision rate's
       }
       std::printf("mean_episode_steps=%.1f\n", totals.episode_steps / n);

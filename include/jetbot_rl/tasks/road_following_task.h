@@ -36,7 +36,7 @@ class RoadFollowingTask : public Task, public FloorDrawing {
   explicit RoadFollowingTask(const TrackConfig& config);
 
   std::string name() const override { return "road_following"; }
-  const TaskObserver& observer() const override { return *observer_; }
+  const TaskObserver& observer() const override { return observer_; }
   void describeObservation(ObserverSpec& spec) const override;
   void attach(const TaskContext& context) override;
   void resize(int num_envs) override;
@@ -63,15 +63,14 @@ class RoadFollowingTask : public Task, public FloorDrawing {
   Step look(int env, const RootState& state) const;
 
   TrackConfig config_;
-  Track user_track_;  // road/points, when given
-  std::unique_ptr<RoadObserver> observer_;
+  Track user_track_;          // road/points, when given
+  RoadObserver observer_{2};  // two actions until attach() gives the batch's
   TaskContext context_;
-  std::vector<Track> tracks_;                        // per env
-  std::vector<std::shared_ptr<FloorImage>> floors_;  // per env: its track painted
-  std::vector<EnvSenses> senses_;                    // per env
-  mutable std::vector<TrackPlace> places_;           // per env: after its last step
-  mutable std::vector<double> progress_;             // per env [m]
-  mutable std::vector<unsigned char> outcome_;       // per env: of the episode that ended
+  std::vector<Track> tracks_;                   // per env
+  std::vector<EnvSenses> senses_;               // per env
+  mutable std::vector<TrackPlace> places_;      // per env: after its last step
+  mutable std::vector<double> progress_;        // per env [m]
+  mutable std::vector<unsigned char> outcome_;  // per env: of the episode that ended
 };
 
 }  // namespace jetbot_rl

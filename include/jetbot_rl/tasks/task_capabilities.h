@@ -52,7 +52,7 @@ class FloorDrawing {
   virtual ~FloorDrawing() = default;
   /// At every reset of env `env`, once its robot stands at `start` (env frame): draws the floor
   /// of its new episode about it from `rng`; what the camera sees on the ground instead of the
-  /// world's floor (kept by the task until its next draw).
+  /// world's floor (the env's layout and its camera scene hold it while they show it).
   virtual std::shared_ptr<const FloorImage> drawFloor(int env, Rng& rng,
                                                       const RootState& start) = 0;
 };

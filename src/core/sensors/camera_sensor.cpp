@@ -20,13 +20,6 @@ constexpr std::uint64_t kCameraStream = streams::kCamera;
 constexpr std::uint64_t kCameraStride = 1ULL << 32;  // more than any env id
 constexpr std::uint64_t kAppearanceStream = streams::kAppearance;
 
-/// Each channel uniform in [lo, hi].
-Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
-  Eigen::Vector3f c;
-  for (int k = 0; k < 3; ++k) c[k] = static_cast<float>(uniform(rng, lo, hi));
-  return c;
-}
-
 }  // namespace
 
 CameraSensor::CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot,

@@ -21,12 +21,6 @@ Eigen::Vector3f colourOf(const std::vector<double>& c) {
   return Eigen::Vector3d(c[0], c[1], c[2]).cast<float>();
 }
 
-Eigen::Vector3f uniformColour(Rng& rng, double lo, double hi) {
-  Eigen::Vector3f c;
-  for (int k = 0; k < 3; ++k) c[k] = static_cast<float>(uniform(rng, lo, hi));
-  return c;
-}
-
 }  // namespace
 
 std::vector<std::string> RoadObserver::observationNames() const {
@@ -44,8 +38,7 @@ void RoadObserver::observe(const MeasuredState& state, float* obs) const {
   }
 }
 
-RoadFollowingTask::RoadFollowingTask(const TrackConfig& config)
-    : config_(config), observer_(std::make_unique<RoadObserver>(2)) {
+RoadFollowingTask::RoadFollowingTask(const TrackConfig& config) : config_(config) {
   validateConfig(config_);
   if (!config_.points.empty()) user_track_ = userTrack(config_);
 }
@@ -58,7 +51,7 @@ void RoadFollowingTask::attach(const TaskContext& context) {
         "camera (a Gazebo camera block, e.g. urdf/jetbot_camera.urdf, or camera/link) with rgb "
         "among camera/images and camera/batch_images true");
   }
-  observer_ = std::make_unique<RoadObserver>(context.action_dim > 0 ? context.action_dim : 2);
+  observer_ = RoadObserver(context.action_dim > 0 ? context.action_dim : 2);
 }
 
 void RoadFollowingTask::describeObservation(ObserverSpec& spec) const {
@@ -72,7 +65,6 @@ void RoadFollowingTask::describeObservation(ObserverSpec& spec) const {
 void RoadFollowingTask::resize(int num_envs) {
   const auto n = static_cast<std::size_t>(num_envs);
   tracks_.assign(n, Track());
-  floors_.assign(n, nullptr);
   senses_.assign(n, EnvSenses());
   places_.assign(n, TrackPlace());
   progress_.assign(n, 0.0);
@@ -103,8 +95,7 @@ std::shared_ptr<const FloorImage> RoadFollowingTask::drawFloor(int env, Rng& rng
     tape = uniformColour(rng, 0.55, 1.0);
     floor = uniformColour(rng, 0.05, 0.45);
   }
-  floors_[env] = paintTrack(tracks_[env], config_.width, tape, floor, config_.resolution);
-  return floors_[env];
+  return paintTrack(tracks_[env], config_.width, tape, floor, config_.resolution);
 }
 
 void RoadFollowingTask::sense(int env, const EnvSenses& senses) { senses_[env] = senses; }
@@ -113,7 +104,7 @@ void RoadFollowingTask::observe(int env, const RootState& state, float* obs) con
   MeasuredState measured;
   measured.root = state;
   measured.last_action = senses_[env].action;
-  observer_->observe(measured, obs);
+  observer_.observe(measured, obs);
 }
 
 RoadFollowingTask::Step RoadFollowingTask::look(int env, const RootState& state) const {
