@@ -81,7 +81,9 @@ class TestEnvHung(unittest.TestCase):
         figure('env hung in ~reset: trainer exit status %d %.2f s after its call (step_timeout '
                '%.1f s)' % (trainer.returncode, stopped_s, STEP_TIMEOUT))
         self.assertNotEqual(trainer.returncode, 0, output)
-        self.assertLess(stopped_s, STEP_TIMEOUT + 1.0, output)
+        # The time-out, then saving the initial model and libtorch's exit: 3.006 s once in the
+        # suite's lanes on the 2-core machine (a bound of + 1.0 s failed by 6 ms).
+        self.assertLess(stopped_s, STEP_TIMEOUT + 1.5, output)
         errors = [line for line in output.splitlines()
                   if 'FATAL' in line and HUNG + '/reset' in line and 'hung?' in line]
         self.assertTrue(errors, 'no FATAL line naming %s/reset in:\n%s' % (HUNG, output))
