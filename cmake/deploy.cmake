@@ -1,4 +1,5 @@
-# The deploy node: a trained policy driving a robot (odometry, scan and goals in, cmd_vel out).
+# The deploy node: a trained policy driving a robot (odometry, scan, images and goals in, cmd_vel
+# out).
 #   jetbot_rl_deploy  the driver, its inputs and parameters (over jetbot_rl_policy's Policy and the
 #                     core's task observers)
 add_library(jetbot_rl_deploy
@@ -8,11 +9,14 @@ add_library(jetbot_rl_deploy
   src/ros/deploy/map_input.cpp
   src/ros/deploy/move_base_server.cpp
   src/ros/deploy/goal_pursuit.cpp
+  src/ros/deploy/image_input.cpp
   src/ros/deploy/path_follower.cpp
   src/ros/deploy/planar_transform.cpp
   src/ros/deploy/scan_beams.cpp
 )
-target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_policy jetbot_rl_ros_common)
+target_link_libraries(jetbot_rl_deploy PUBLIC jetbot_rl_policy jetbot_rl_ros_common
+  ${IMAGE_TRANSPORT_LIBRARY} PRIVATE ${OPENCV_IMGPROC_LIBRARY} ${OPENCV_CORE_LIBRARY})
+target_include_directories(jetbot_rl_deploy SYSTEM PRIVATE ${OPENCV_INCLUDE_DIR})
 
 add_executable(jetbot_deploy_node src/nodes/jetbot_deploy_node.cpp)
 target_link_libraries(jetbot_deploy_node jetbot_rl_deploy)

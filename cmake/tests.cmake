@@ -96,9 +96,10 @@ target_link_libraries(test_ros_adapter jetbot_rl_env_node jetbot_rl_client)
 target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 
 # ---- the deploy node without a master: its scan handling, the robot view's messages observed
-# as the simulated task observes, and the settings it takes from the checkpoint ----
+# as the simulated task observes, the settings it takes from the checkpoint, camera images ----
 catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.cpp
-  test/deploy/test_observer_agreement.cpp test/deploy/test_trained_settings.cpp)
+  test/deploy/test_observer_agreement.cpp test/deploy/test_trained_settings.cpp
+  test/deploy/test_image_input.cpp)
 target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
 target_compile_definitions(test_deploy PRIVATE ${_robots})
 
@@ -156,6 +157,7 @@ foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigatio
     closed_loop_move_base
     move_base_client
     closed_loop_memory
+    closed_loop_road
     deploy_node
     evaluator_options)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})

@@ -39,12 +39,6 @@ PolicyRun policyRunOf(const ppo::Policy& policy, const std::string& checkpoint) 
                       "(train.launch resume:=RUN_DIR/checkpoints/latest.pt iterations:=N+1), "
                       "which saves it in format 2");
   }
-  if (policy.observesImage()) {
-    throw ConfigError("checkpoint " + checkpoint + " holds a policy that observes " +
-                      std::to_string(policy.imageWidth()) + " x " +
-                      std::to_string(policy.imageHeight()) + " camera images (task " + spec.task +
-                      "): the deploy node does not drive image policies yet");
-  }
   PolicyRun run;
   run.control_rate = 1.0 / spec.control_dt;
   run.path_lookahead = spec.observer.path_lookahead;
@@ -97,6 +91,12 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
         },
         drops_);
     inputs += ", " + scan_->topic();
+  }
+  if (policy.observesImage()) {
+    image_ = std::make_unique<ImageInput>(nh, p.driver.image_topic, p.driver.image_transport,
+                                          policy.imageWidth(), policy.imageHeight(),
+                                          p.driver.image_timeout, drops_);
+    inputs += ", " + image_->describe();
   }
   if (observer.hasGoal()) {
     pursuit_ = std::make_unique<GoalPursuit>(
@@ -161,9 +161,11 @@ void DeployDriver::publish(const geometry_msgs::Twist& twist, bool stop) {
 void DeployDriver::onTick(const ros::WallTimerEvent&) {
   const bool stale_odom = !odom_.fresh();
   const bool stale_scan = scan_ && !scan_->fresh();
-  if (stale_odom || stale_scan) {
-    const std::string what =
-        stale_odom ? "odometry on " + odom_.topic() : "scan on " + scan_->topic();
+  const bool stale_image = image_ && !image_->fresh();
+  if (stale_odom || stale_scan || stale_image) {
+    const std::string what = stale_odom   ? "odometry on " + odom_.topic()
+                             : stale_scan ? "scan on " + scan_->topic()
+                                          : "image on " + image_->topic();
     ROS_WARN_THROTTLE(2.0, "no fresh %s: the robot stands", what.c_str());
     stand("no fresh " + what, true);  // its memory starts over with the next drive
     if (pursuit_) pursuit_->stale(what);
@@ -207,7 +209,11 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
 geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
   obs_.resize(static_cast<std::size_t>(policy_.obsDim()));
   observer_.observe(state, obs_.data());
-  policy_.act(obs_, 1, actions_);
+  if (image_) {
+    policy_.act(obs_, image_->rgb(), 1, actions_);
+  } else {
+    policy_.act(obs_, 1, actions_);
+  }
   std::copy(actions_.begin(), actions_.begin() + last_action_.size(), last_action_.begin());
   geometry_msgs::Twist twist;
   if (run_.twist) {
@@ -236,6 +242,7 @@ void DeployDriver::onStatus(const ros::WallTimerEvent&) {
   };
   add("odometry age [s]", std::to_string(odom_.age()));
   if (scan_) add("scan age [s]", std::to_string(scan_->age()));
+  if (image_) add("image age [s]", std::to_string(image_->age()));
   add("dropped input", std::to_string(drops_.count()));
   if (pursuit_) pursuit_->addStatus(add);
   diagnostic_msgs::DiagnosticArray msg;

@@ -20,6 +20,7 @@
 #include "jetbot_rl/ros/deploy/deploy_params.h"
 #include "jetbot_rl/ros/deploy/fresh_input.h"
 #include "jetbot_rl/ros/deploy/goal_pursuit.h"
+#include "jetbot_rl/ros/deploy/image_input.h"
 #include "jetbot_rl/ros/deploy/scan_beams.h"
 #include "jetbot_rl/tasks/task_observer.h"
 
@@ -50,7 +51,8 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_r
 /**
  * The deploy node's driver, one for every task: the robot's inputs the task's observer needs
  * (odometry always; a scan resampled to the policy's beams and goals for navigation; a command
- * for the command task), each with its freshness, become the observation through the same
+ * for the command task; camera images at the policy's size for an image policy), each with its
+ * freshness, become the observation through the same
  * TaskObserver the simulated task observes with; the policy's mean action goes out as a Twist at
  * the policy's control rate. The robot stands while an input is stale (zero Twists; with goals
  * one zero, and the goal pursued on); a task with goals is pursued by GoalPursuit (the move_base
@@ -89,6 +91,7 @@ class DeployDriver {
   DropCounter drops_;
   FreshInput<nav_msgs::Odometry> odom_;
   std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
+  std::unique_ptr<ImageInput> image_;                         // a policy that observes images
   std::unique_ptr<GoalPursuit> pursuit_;                      // a task with goals
   bool stopped_ = false;                                      // the last Twist published was a stop
   ros::Subscriber command_sub_;                               // a task with a command

@@ -9,7 +9,7 @@
 namespace jetbot_rl {
 
 /// The driver's parameters (DeployDriver, runDeploy): the checkpoint, the robot's topics and
-/// kinematics, the scan's beams.
+/// kinematics, the scan's beams, the camera.
 struct DriverParams {
   std::string checkpoint;  ///< Checkpoint file, or a run directory (its checkpoints/best.pt).
   std::string task;        ///< The task the policy was trained on; "": the checkpoint's.
@@ -25,8 +25,11 @@ struct DriverParams {
   double wheel_separation = 0.0;
   /// The wheel joints in the policy's action order (used with robot_description).
   std::vector<std::string> dof_names{"left_wheel_joint", "right_wheel_joint"};
-  std::string scan_topic = "scan";  ///< sensor_msgs/LaserScan of the robot.
-  double scan_timeout = 0.5;        ///< An older scan stops the robot [s, wall].
+  std::string scan_topic = "scan";               ///< sensor_msgs/LaserScan of the robot.
+  double scan_timeout = 0.5;                     ///< An older scan stops the robot [s, wall].
+  std::string image_topic = "camera/image_raw";  ///< sensor_msgs/Image of the robot's camera.
+  std::string image_transport = "raw";           ///< The image_transport its images come by.
+  double image_timeout = 0.5;                    ///< An older image stops the robot [s, wall].
 };
 
 /// The move_base action server's parameters (MoveBaseServer).
@@ -100,6 +103,14 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "The two wheel joints in the policy's action order (used with robot_description).");
   v("scan_topic", c.driver.scan_topic, AnyValue{},
     "Navigation: the robot's sensor_msgs/LaserScan.");
+  v("image_topic", c.driver.image_topic, AnyValue{},
+    "Image policies: the robot's camera, sensor_msgs/Image (rgb8, bgr8, rgba8, bgra8 or mono8) "
+    "through image_transport, resized by area averaging to the size the policy was trained on.");
+  v("image_transport", c.driver.image_transport, AnyValue{},
+    "Image policies: the image_transport the images come by (raw; compressed, theora where "
+    "their plugins are installed): image_topic's base topic is subscribed through it.");
+  v("image_timeout", c.driver.image_timeout, positive("s, wall"),
+    "Image policies: an older image stops the robot.");
   v("goal_topic", c.server.goal_topic, AnyValue{},
     "Navigation: geometry_msgs/PoseStamped goals (RViz's 2D Nav Goal), transformed into the "
     "odometry frame with tf2.");

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "jetbot_rl/ros/common/drop_counter.h"
@@ -24,12 +25,30 @@ class FreshInput {
  public:
   /// Returns "" for a message it takes, else why it is dropped.
   using Check = std::function<std::string(const M&)>;
+  using Callback = std::function<void(const typename M::ConstPtr&)>;
+  /// A subscription made by its owner (roscpp's, image_transport's): kept while the input lives.
+  struct Subscription {
+    std::shared_ptr<void> handle;
+    std::function<std::string()> topic;
+  };
+  /// Subscribes `callback` to the input's topic.
+  using Subscribe = std::function<Subscription(Callback callback)>;
 
+  /// Subscribed through roscpp, TCP_NODELAY.
   FreshInput(ros::NodeHandle& nh, const std::string& topic, const std::string& what, double timeout,
              Check check, DropCounter& drops)
+      : FreshInput(
+            [&nh, &topic](Callback callback) {
+              auto sub = std::make_shared<ros::Subscriber>(nh.subscribe<M>(
+                  topic, 10, callback, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+              return Subscription{sub, [sub] { return sub->getTopic(); }};
+            },
+            what, timeout, std::move(check), drops) {}
+  /// Subscribed through `subscribe` (a transport other than roscpp's).
+  FreshInput(const Subscribe& subscribe, const std::string& what, double timeout, Check check,
+             DropCounter& drops)
       : what_(what), timeout_(timeout), check_(std::move(check)), drops_(drops) {
-    sub_ =
-        nh.subscribe(topic, 10, &FreshInput::onMessage, this, ros::TransportHints().tcpNoDelay());
+    sub_ = subscribe([this](const typename M::ConstPtr& msg) { onMessage(msg); });
   }
   FreshInput(const FreshInput&) = delete;
   FreshInput& operator=(const FreshInput&) = delete;
@@ -47,13 +66,13 @@ class FreshInput {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - time_).count();
   }
   const std::string& what() const { return what_; }
-  std::string topic() const { return sub_.getTopic(); }
+  std::string topic() const { return sub_.topic(); }
 
  private:
   void onMessage(const typename M::ConstPtr& msg) {
     const std::string why = check_(*msg);
     if (!why.empty()) {
-      drops_.drop(what_ + " on " + sub_.getTopic() + " " + why + ": dropped");
+      drops_.drop(what_ + " on " + topic() + " " + why + ": dropped");
       return;
     }
     latest_ = msg;
@@ -64,7 +83,7 @@ class FreshInput {
   double timeout_;
   Check check_;
   DropCounter& drops_;
-  ros::Subscriber sub_;
+  Subscription sub_;
   typename M::ConstPtr latest_;
   std::chrono::steady_clock::time_point time_;
 };
