@@ -61,6 +61,8 @@ add_library(jetbot_rl_core
   src/core/sensors/embree_geometry.cpp
   src/core/sensors/floor_image.cpp
   src/core/sensors/laser_scanner.cpp
+  src/core/sensors/depth_scan.cpp
+  src/core/sensors/depth_scan_sensor.cpp
   src/core/sensors/scan_cast.cpp
   src/core/sensors/scan_reading.cpp
   src/core/sensors/scan_sensor.cpp

@@ -50,6 +50,7 @@ catkin_add_gtest(test_core
   test/core/test_team_people.cpp
   test/core/test_navigation.cpp
   test/core/test_road_following.cpp
+  test/core/test_depth_scan.cpp
   test/core/test_notebook_dataset.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp

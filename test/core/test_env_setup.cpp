@@ -106,7 +106,7 @@ TEST(EnvSetup, FieldNamesAreTheEnvsThenTheTasks) {
   ASSERT_FALSE(names.empty());
   EXPECT_EQ(names.front(), "num_envs");
   EXPECT_NE(std::find(names.begin(), names.end(), "reward_variant"), names.end());
-  EXPECT_EQ(names.back(), "road/lap_reward");  // the last task's last
+  EXPECT_EQ(names.back(), "road/curriculum_step");  // the last task's last
 }
 
 TEST(EnvProgramOptions, OptionsBuildTheSetupAndOldNamesAreRefused) {

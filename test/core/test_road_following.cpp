@@ -89,6 +89,25 @@ TEST(Track, DrawnShapesAreNoTighterThanTheRobotTurns) {
   }
 }
 
+TEST(Track, TheCurriculumStartsWithWideCurvesAndEndsAtTheRobotsTurn) {
+  TrackConfig road;
+  road.shapes = {"oval", "figure_eight", "s_bend", "random"};
+  TrackConfig curriculum = road;
+  curriculum.curriculum = true;
+  curriculum.curriculum_radius = 1.0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    Rng easy(seed), middle(seed), last(seed), off(seed);
+    EXPECT_GE(drawTrack(curriculum, easy, 0.0).minRadius(), 0.99) << seed;
+    EXPECT_GE(drawTrack(curriculum, middle, 0.5).minRadius(), 0.65 * 0.99) << seed;
+    // At difficulty 1 the curriculum's tracks are those drawn without it, from the same draws.
+    const Track hardest = drawTrack(curriculum, last, 1.0), plain = drawTrack(road, off);
+    EXPECT_EQ(hardest.points(), plain.points()) << seed;
+    EXPECT_EQ(last.uniform(), off.uniform()) << seed;
+  }
+  curriculum.curriculum_radius = 0.2;
+  expectRoadRefused(curriculum, {"road/curriculum_radius", "0.2", "road/min_radius"});
+}
+
 TEST(Track, APlaceIsItsArcLengthAndSignedOffset) {
   const Track ring(roadCircle(1.0, 720), true, "test");  // counter-clockwise from (1, 0)
   EXPECT_NEAR(ring.length(), 2.0 * kPi, 1e-3);
@@ -196,9 +215,15 @@ TEST(RoadFollowing, TheCameraSeesTheTapeAheadAndTheFloorBeside) {
 }
 
 TEST(RoadFollowing, ProgressIsRewardedTheEndSucceedsLeavingTheTapeFails) {
-  BatchedEnv env(cameraJetbot(), roadEnvConfig(1), roadTask(straightRoad()));
+  TrackConfig road = straightRoad();
+  road.curriculum = true;  // each episode a run: a lap raises the difficulty by half
+  road.curriculum_episodes = 1;
+  road.curriculum_success = 1.0;
+  road.curriculum_step = 0.5;
+  BatchedEnv env(cameraJetbot(), roadEnvConfig(1), roadTask(road));
   const auto& task = dynamic_cast<const RoadFollowingTask&>(env.task());
   EXPECT_NEAR(task.place(0).offset, 0.0, 1e-9);
+  EXPECT_EQ(task.difficulty(0), 0.0);
   // Straight ahead along the tape: rewarded, to the end of the track.
   double rewards = 0.0;
   std::uint8_t outcome = 255;
@@ -209,6 +234,7 @@ TEST(RoadFollowing, ProgressIsRewardedTheEndSucceedsLeavingTheTapeFails) {
   }
   EXPECT_EQ(outcome, static_cast<std::uint8_t>(Outcome::kSuccess));
   EXPECT_GT(rewards, 10.0 + 10.0 * 1.4);  // the lap reward and at least 1.5 m of progress
+  EXPECT_EQ(task.difficulty(0), 0.5);
   // Turning on the spot: off the tape within a quarter turn, penalised.
   outcome = 255;
   float last = 0.0f;
@@ -218,7 +244,8 @@ TEST(RoadFollowing, ProgressIsRewardedTheEndSucceedsLeavingTheTapeFails) {
     if (!r.reset_env_ids.empty()) outcome = r.outcomes[0];
   }
   EXPECT_EQ(outcome, static_cast<std::uint8_t>(Outcome::kOffTrack));
-  EXPECT_LT(last, -0.95f);  // road/off_track_penalty 1, little progress on the spot
+  EXPECT_LT(last, -0.95f);             // road/off_track_penalty 1, little progress on the spot
+  EXPECT_EQ(task.difficulty(0), 0.5);  // no lap: not raised
 }
 
 TEST(RoadFollowing, SameSeedSameTracksAndImagesOnOneAndTwoThreads) {

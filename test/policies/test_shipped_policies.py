@@ -50,6 +50,13 @@ CASES = {
     'swap': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--num-envs', '5',
                            '--episodes', '400', '--seed', '123'],
              {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
+    # the camera's depth as its scan (the forward field of view only), in the generated worlds
+    'navigation_camera': (['--urdf', os.path.join(PKG, 'urdf', 'jetbot_camera.urdf'), '--config',
+                           config('jetbot_env.yaml'), '--task', 'navigation', '--steps', '100000',
+                           '--config', config('navigation_camera_env.yaml'), '--config',
+                           config('world_generated.yaml'), '--num-envs', '25', '--episodes',
+                           '50', '--seed', '5000'],
+                          {'success_rate': (0.9, None), 'collision_rate': (None, 0.05)}),
     # from the camera alone, on tracks, colours and light of seeds not used in training
     'road_following': (['--urdf', os.path.join(PKG, 'urdf', 'jetbot_camera.urdf'), '--config',
                         config('jetbot_env.yaml'), '--config', config('road_following_env.yaml'),

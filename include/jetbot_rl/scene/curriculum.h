@@ -9,23 +9,32 @@
 namespace jetbot_rl {
 
 /**
- * The difficulty of each env's generated layouts (world/difficulty, world/curriculum): every
- * env starts at world/difficulty; with the curriculum, after each run of curriculum_episodes of
- * its episodes it moves up by curriculum_step (to at most 1) when at least curriculum_success of
- * them reached the goal. With curriculum_mix, that share of an env's resets draws its layout at a
- * difficulty uniform in [0, the env's] instead, so that what was learnt on easy layouts is kept.
- * Per env and from its own outcomes and stream only: the same on any thread count.
+ * The difficulty of each env's generated layouts (world/difficulty, world/curriculum), or of its
+ * tracks (road/curriculum): every env starts at world/difficulty (a track at 0); with the
+ * curriculum, after each run of curriculum_episodes of its episodes it moves up by curriculum_step
+ * (to at most 1) when at least curriculum_success of them reached the goal. With curriculum_mix,
+ * that share of an env's resets draws its layout at a difficulty uniform in [0, the env's] instead,
+ * so that what was learnt on easy layouts is kept. Per env and from its own outcomes and stream
+ * only: the same on any thread count.
  */
 class Curriculum {
  public:
   Curriculum() = default;
+  /// The world's (world/difficulty, world/curriculum...).
   Curriculum(const WorldConfig& config, int num_envs)
-      : enabled_(config.curriculum),
-        episodes_per_run_(config.curriculum_episodes),
-        success_(config.curriculum_success),
-        step_(config.curriculum_step),
-        mix_(config.curriculum_mix),
-        difficulty_(num_envs, config.difficulty),
+      : Curriculum(config.curriculum, config.difficulty, config.curriculum_episodes,
+                   config.curriculum_success, config.curriculum_step, config.curriculum_mix,
+                   num_envs) {}
+  /// Every env at `start`; `enabled`: raised by `step` after each run of `episodes` of its
+  /// episodes of which at least `success` (a share) succeeded; `mix` as curriculum_mix.
+  Curriculum(bool enabled, double start, int episodes, double success, double step, double mix,
+             int num_envs)
+      : enabled_(enabled),
+        episodes_per_run_(episodes),
+        success_(success),
+        step_(step),
+        mix_(mix),
+        difficulty_(num_envs, start),
         episodes_(num_envs, 0),
         successes_(num_envs, 0) {}
 

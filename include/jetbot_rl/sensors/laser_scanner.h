@@ -24,6 +24,10 @@ struct ScannerSpec {
   double range_min = 0.0, range_max = 0.0;   ///< [m]
   double noise_mean = 0.0, noise_std = 0.0;  ///< [m]
   int update_every = 1;                      ///< [control steps]
+  /// Where the ranges come from; camera_depth: the camera's points between these heights above
+  /// the ground [m] (scan/min_height, scan/max_height).
+  ScanSource source = ScanSource::kLaser;
+  double min_height = 0.0, max_height = 0.0;
   /// Per value, where it came from: "scan/<name>", "Gazebo" or "default".
   std::string samples_from, angles_from, range_from, noise_from, update_from, link_from;
 

@@ -11,9 +11,24 @@
 
 namespace jetbot_rl {
 
+/// Where a scan's ranges come from.
+enum class ScanSource {
+  kLaser,        ///< A planar laser scanner's rays.
+  kCameraDepth,  ///< The batch camera's depth image (pointcloud_to_laserscan's reduction).
+};
+
+inline const EnumNameList<ScanSource>& enumNames(ScanSource) {
+  static const EnumNameList<ScanSource> names{{ScanSource::kLaser, "laser"},
+                                              {ScanSource::kCameraDepth, "camera_depth"}};
+  return names;
+}
+
 /// The `scan/...` parameters; 0, -1 and [] stand for the robot description's value.
 struct ScannerConfig {
-  bool enabled = true;         ///< false: no scanner, even when the robot description declares one.
+  bool enabled = true;  ///< false: no scanner, even when the robot description declares one.
+  ScanSource source = ScanSource::kLaser;  ///< Rays, or the camera's depth image.
+  double min_height = 0.03;    ///< camera_depth: points below this above the ground are floor [m].
+  double max_height = 0.5;     ///< camera_depth: points above this pass over the robot [m].
   std::string link;            ///< Link of the scanner; empty: the Gazebo ray sensor's.
   int samples = 0;             ///< Beams; 0: Gazebo's (without a block: 360).
   std::vector<double> angles;  ///< [min, max] [rad]; []: Gazebo's (without: [-pi, pi)).
@@ -27,6 +42,17 @@ IfConfig<C, ScannerConfig> visitFields(C& c, V&& v) {
   const Range<double> any{-1e4, 1e4, false, false, ""};
   v("scan/enabled", c.enabled, AnyValue{},
     "false: no scanner, even when the robot description declares one.");
+  v("scan/source", c.source, AnyValue{},
+    "laser: a planar laser scanner's rays (a Gazebo ray sensor or scan/link); camera_depth: the "
+    "batch camera's depth image reduced to a scan as pointcloud_to_laserscan does: every pixel's "
+    "point between scan/min_height and scan/max_height above the ground counts for the sample "
+    "nearest its bearing from the robot's origin, the nearest one wins (the forward field of "
+    "view only; defaults: a sample per image column over the camera's horizontal field of view, "
+    "its cadence, range [0.12, min(far clip, 3.5)] m).");
+  v("scan/min_height", c.min_height, inRange(-10.0, 10.0, "m"),
+    "camera_depth: points lower than this above the ground are the floor, not obstacles.");
+  v("scan/max_height", c.max_height, inRange(-10.0, 10.0, "m"),
+    "camera_depth: points higher than this above the ground pass over the robot.");
   v("scan/link", c.link, AnyValue{"", "empty: the Gazebo ray sensor's link"},
     "URDF link the scanner sits on (beams in its x-y plane, angle 0 along its x axis); no link "
     "and no Gazebo ray sensor: no scanner.");

@@ -18,9 +18,13 @@ namespace jetbot_rl {
 struct ObserverSpec {
   /// The scan beams observed, in the scanner's frame, in observation order [rad]; empty: no scan.
   std::vector<double> scan_beam_angles;
-  double scan_beam_width = 0.0;      ///< Each beam's sector [rad]; 0: the nearest sample.
-  std::vector<double> scan_range;    ///< [range_min, range_max] beams are clamped into [m].
-  bool log_beams = false;            ///< Beams on a log scale of range (nav/log_beams).
+  double scan_beam_width = 0.0;    ///< Each beam's sector [rad]; 0: the nearest sample.
+  std::vector<double> scan_range;  ///< [range_min, range_max] beams are clamped into [m].
+  bool log_beams = false;          ///< Beams on a log scale of range (nav/log_beams).
+  /// Where the scan came from: empty, a laser scanner; camera_depth, the camera's depth image.
+  std::string scan_source;
+  /// camera_depth: the points' [min, max] height above the ground [m]; empty: a laser's.
+  std::vector<double> scan_heights;
   double goal_radius = 0.0;          ///< A goal is reached within this [m]; 0: no goal.
   double path_lookahead = 0.0;       ///< A global path's observed point along it [m]; 0: no path.
   double path_clearance = 0.0;       ///< Paths keep this beyond the footprint where there is room.
@@ -46,6 +50,14 @@ IfConfig<C, ObserverSpec> visitObservationFields(C& c, V&& v) {
     "sample nearest to its angle.");
   v("log_beams", c.log_beams, AnyValue{},
     "The beams are observed on a log scale of range (nav/log_beams), not as range / range_max.");
+  v("scan_source", c.scan_source, AnyValue{},
+    "Where the scan beams came from in training: empty, a planar laser scanner (a LaserScan); "
+    "camera_depth, the camera's depth image reduced to a scan (scan/source; on a robot: a "
+    "LaserScan from its depth camera's points between scan_heights, e.g. by "
+    "pointcloud_to_laserscan).");
+  v("scan_heights", c.scan_heights, AnyValue{"m"},
+    "camera_depth: [min, max] height above the ground of the points the scan was made of; "
+    "empty for a laser.");
   v("path_lookahead", c.path_lookahead, AnyValue{"m"},
     "A task that observes a global path (nav/path): the observed point's distance along it past "
     "the robot (nav/path_lookahead); 0: no path observed.");

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/scene/curriculum.h"
 #include "jetbot_rl/tasks/task.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
 #include "jetbot_rl/tasks/task_observer.h"
@@ -53,6 +54,10 @@ class RoadFollowingTask : public Task, public FloorDrawing {
   const TrackPlace& place(int env) const { return places_.at(env); }
   /// How far env `env`'s robot drove along the centreline in its episode [m].
   double progress(int env) const { return progress_.at(env); }
+  /// The difficulty env `env`'s next track is drawn at, in [0, 1] (road/curriculum; else 1).
+  double difficulty(int env) const {
+    return config_.curriculum ? curriculum_.difficulty(env) : 1.0;
+  }
 
  private:
   struct Step {
@@ -71,6 +76,8 @@ class RoadFollowingTask : public Task, public FloorDrawing {
   mutable std::vector<TrackPlace> places_;      // per env: after its last step
   mutable std::vector<double> progress_;        // per env [m]
   mutable std::vector<unsigned char> outcome_;  // per env: of the episode that ended
+  Curriculum curriculum_;                       // road/curriculum: per env, from its laps
+  std::vector<unsigned char> drawn_;            // per env: a track was drawn (an episode began)
 };
 
 }  // namespace jetbot_rl

@@ -39,15 +39,20 @@ struct TrackConfig {
   double min_radius = 0.3;             ///< The tightest curve the robot must turn [m].
   std::vector<double> tape_colour{0.95, 0.8, 0.15};  ///< RGB, each in [0, 1].
   std::vector<double> floor_colour{0.3, 0.3, 0.32};  ///< RGB, each in [0, 1].
-  bool random_colours = false;     ///< Tape and floor colours drawn at every reset.
-  double resolution = 0.01;        ///< The painted floor's cell [m].
-  double lap = 1.0;                ///< Success after this many laps of a closed track.
-  double start_offset = 0.03;      ///< The start's sideways offset from the centreline, up to [m].
-  double start_yaw = 0.2;          ///< The start's heading off the centreline's, up to [rad].
-  double progress_reward = 10.0;   ///< Per metre along the centreline.
-  double centre_cost = 0.02;       ///< Per step at the tape's edge, (offset / half width)^2.
-  double off_track_penalty = 1.0;  ///< On leaving the tape.
-  double lap_reward = 10.0;        ///< On success.
+  bool random_colours = false;      ///< Tape and floor colours drawn at every reset.
+  double resolution = 0.01;         ///< The painted floor's cell [m].
+  double lap = 1.0;                 ///< Success after this many laps of a closed track.
+  double start_offset = 0.03;       ///< The start's sideways offset from the centreline, up to [m].
+  double start_yaw = 0.2;           ///< The start's heading off the centreline's, up to [rad].
+  double progress_reward = 10.0;    ///< Per metre along the centreline.
+  double centre_cost = 0.02;        ///< Per step at the tape's edge, (offset / half width)^2.
+  double off_track_penalty = 1.0;   ///< On leaving the tape.
+  double lap_reward = 10.0;         ///< On success.
+  bool curriculum = false;          ///< Each env's tracks start wide and tighten with its laps.
+  double curriculum_radius = 1.0;   ///< The tightest curve of a track at difficulty 0 [m].
+  int curriculum_episodes = 20;     ///< Episodes an env's lap rate is counted over.
+  double curriculum_success = 0.8;  ///< The lap rate that raises its difficulty.
+  double curriculum_step = 0.1;     ///< By this much (1: road/min_radius's tracks).
 };
 
 template <typename C, typename V>
@@ -98,6 +103,22 @@ IfConfig<C, TrackConfig> visitFields(C& c, V&& v) {
     "first, for 100 to 200 iterations or more).");
   v("road/lap_reward", c.lap_reward, atLeast(0.0),
     "Reward on success (road/lap laps, or an open track's end).");
+  v("road/curriculum", c.curriculum, AnyValue{},
+    "Drawn shapes: each env starts at difficulty 0, its tracks scaled up until no curve is "
+    "tighter than road/curriculum_radius, and raises its difficulty by road/curriculum_step (up "
+    "to 1) after each run of road/curriculum_episodes of its episodes in which at least "
+    "road/curriculum_success completed their laps; at difficulty d no curve is tighter than "
+    "min_radius + (1 - d) x (curriculum_radius - min_radius). Off: every track at difficulty 1.");
+  v("road/curriculum_radius", c.curriculum_radius, positiveUpTo(100.0, "m"),
+    "With the curriculum: the tightest curve of a track at difficulty 0 (at least "
+    "road/min_radius).");
+  v("road/curriculum_episodes", c.curriculum_episodes, inRange(1, 100000),
+    "With the curriculum: the episodes of a run an env's lap rate is counted over.");
+  v("road/curriculum_success", c.curriculum_success, inRange(0.0, 1.0),
+    "With the curriculum: the share of a run's episodes with a lap that raises the env's "
+    "difficulty.");
+  v("road/curriculum_step", c.curriculum_step, inRange(0.0, 1.0),
+    "With the curriculum: by this much.");
 }
 
 /// Shapes known, colours of 3 values, points in pairs, at least 2 of them, and start_offset below
@@ -158,8 +179,9 @@ std::vector<Eigen::Vector2d> shapePoints(TrackShape shape, double size, Rng& rng
 Track userTrack(const TrackConfig& config);
 
 /// A track drawn from `rng`: a shape of road/shapes at a size of road/size, scaled up until its
-/// tightest curve is road/min_radius.
-Track drawTrack(const TrackConfig& config, Rng& rng);
+/// tightest curve is road/min_radius, or with road/curriculum at `difficulty` in [0, 1]
+/// min_radius + (1 - difficulty) x (curriculum_radius - min_radius).
+Track drawTrack(const TrackConfig& config, Rng& rng, double difficulty = 1.0);
 
 /// `track` painted as tape of `width` [m] in `tape` on `floor` (RGB in [0, 1]) at `resolution`
 /// [m per pixel], the ground beyond the image in `floor` too.

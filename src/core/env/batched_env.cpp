@@ -19,6 +19,7 @@
 #include "scene/env_scene.h"
 #include "scene/robot_team.h"
 #include "sensors/camera_sensor.h"
+#include "sensors/depth_scan_sensor.h"
 #include "sensors/scan_sensor.h"
 
 namespace jetbot_rl {
@@ -44,19 +45,25 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   }
   actions_layout_ = std::make_unique<ActionLayout>(makeActionLayout(
       *robot_, config_, std::vector<double>(wheel_high_.begin(), wheel_high_.end())));
+  const std::vector<CameraSpec> cameras =
+      resolveCameras(config_.camera, *robot_, config_.controlDt());
+  const bool depth_scan = config_.scan.source == ScanSource::kCameraDepth && config_.scan.enabled;
+  if (depth_scan && cameras.empty()) {
+    throwInvalid("scan/source", "camera_depth", "needs a camera (none is declared or enabled)");
+  }
   const std::optional<ScannerSpec> scanner =
-      resolveScanner(config_.scan, *robot_, config_.controlDt());
+      depth_scan
+          ? std::optional<ScannerSpec>(resolveDepthScanner(config_.scan, *robot_, cameras[0]))
+          : resolveScanner(config_.scan, *robot_, config_.controlDt());
   if (config_.world.enabled()) {
     config_.world.cut_height =
         resolveCutHeight(config_.world, scanner ? scannerHeight(*robot_, *scanner) : 0.0);
   }
-  const std::vector<CameraSpec> cameras =
-      resolveCameras(config_.camera, *robot_, config_.controlDt());
   config_.world.read_visuals = !cameras.empty() && config_.camera.world_visuals;  // only if drawn
   scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_,
                                       capability<FloorDrawing>(*task_));
   const int n = config_.numRows();
-  if (scanner) {
+  if (scanner && !depth_scan) {
     scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
     sensors_.push_back(scan_.get());
   }
@@ -72,6 +79,10 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
         batch ? &result_.images : nullptr, batch && config_.camera.batch_images,
         config_.camera.robot_visuals));
     sensors_.push_back(cameras_.back().get());
+  }
+  if (depth_scan) {  // after the camera: it reads the depth image of the same step
+    scan_ = std::make_unique<DepthScanSensor>(*scanner, *cameras_[0], n, config_.seed);
+    sensors_.push_back(scan_.get());
   }
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;

@@ -105,12 +105,17 @@ std::optional<ScannerSpec> resolveScanner(const ScannerConfig& config, const Rob
 
 std::string describeScanner(const ScannerSpec& s) {
   std::ostringstream out;
-  out << "laser scanner on link '" << s.link << "' (" << s.link_from << "): " << s.samples
-      << " beams (" << s.samples_from << ") over [" << text(s.min_angle) << ", "
-      << text(s.max_angle) << "] rad (" << s.angles_from << "), range [" << text(s.range_min)
-      << ", " << text(s.range_max) << "] m (" << s.range_from << "), noise mean "
-      << text(s.noise_mean) << " std " << text(s.noise_std) << " m (" << s.noise_from << "), every "
-      << s.update_every << " control steps (" << s.update_from << ")";
+  out << (s.source == ScanSource::kCameraDepth
+              ? "scan from the camera's depth image (points "
+                "between " +
+                    text(s.min_height) + " and " + text(s.max_height) + " m above the ground)"
+              : std::string("laser scanner"))
+      << " on link '" << s.link << "' (" << s.link_from << "): " << s.samples << " beams ("
+      << s.samples_from << ") over [" << text(s.min_angle) << ", " << text(s.max_angle) << "] rad ("
+      << s.angles_from << "), range [" << text(s.range_min) << ", " << text(s.range_max) << "] m ("
+      << s.range_from << "), noise mean " << text(s.noise_mean) << " std " << text(s.noise_std)
+      << " m (" << s.noise_from << "), every " << s.update_every << " control steps ("
+      << s.update_from << ")";
   return out.str();
 }
 

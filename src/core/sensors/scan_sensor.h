@@ -31,8 +31,9 @@ class ScanSensor : public EnvSensor {
   /// True when env `env` took a new scan in the last step or reset.
   bool isNew(int env) const { return new_[env] != 0; }
 
- private:
-  void scan(int env, const SensedEnv& sensed);
+ protected:
+  /// Takes env `env`'s scan now: its rays cast in its world.
+  virtual void scan(int env, const SensedEnv& sensed);
 
   ScannerSpec spec_;
   const WorldModel* world_;

@@ -188,8 +188,15 @@ void NavigationTask::describeObservation(ObserverSpec& spec) const {
   spec.scan_beam_angles = beam_angles_;
   spec.scan_beam_width = beam_width_;
   spec.scan_range.clear();
-  if (context_.scanner)
+  spec.scan_source.clear();
+  spec.scan_heights.clear();
+  if (context_.scanner) {
     spec.scan_range = {context_.scanner->range_min, context_.scanner->range_max};
+    if (context_.scanner->source == ScanSource::kCameraDepth) {
+      spec.scan_source = enumName(ScanSource::kCameraDepth);
+      spec.scan_heights = {context_.scanner->min_height, context_.scanner->max_height};
+    }
+  }
   spec.log_beams = config_.log_beams;
   spec.goal_radius = config_.goal_radius;
   spec.path_lookahead = config_.path ? config_.path_lookahead : 0.0;

@@ -17,6 +17,16 @@ void checkFieldRules(const ObserverSpec& s) {
           image ? "must be in [1, 4096] with a camera_image" : "must be 0 without a camera_image");
     }
   }
+  if (!s.scan_source.empty() && s.scan_source != "camera_depth") {
+    throwInvalid("scan_source", s.scan_source, "must be camera_depth or empty (a laser)");
+  }
+  if (s.scan_source.empty()
+          ? !s.scan_heights.empty()
+          : s.scan_heights.size() != 2 || !(s.scan_heights[0] < s.scan_heights[1])) {
+    throwInvalid("scan_heights", listText(s.scan_heights),
+                 s.scan_source.empty() ? "must be empty with a laser's scan"
+                                       : "must be [min, max] with min < max with camera_depth");
+  }
   if (s.scan_beam_angles.empty()) {
     if (!s.scan_range.empty()) {
       throwInvalid("scan_range", listText(s.scan_range), "must be empty without scan beams");

@@ -69,11 +69,20 @@ void RoadFollowingTask::resize(int num_envs) {
   places_.assign(n, TrackPlace());
   progress_.assign(n, 0.0);
   outcome_.assign(n, static_cast<unsigned char>(Outcome::kTimeOut));
+  curriculum_ = Curriculum(config_.curriculum, 0.0, config_.curriculum_episodes,
+                           config_.curriculum_success, config_.curriculum_step, 0.0, num_envs);
+  drawn_.assign(n, 0);
 }
 
 std::shared_ptr<const FloorImage> RoadFollowingTask::drawFloor(int env, Rng& rng,
                                                                const RootState& start) {
-  Track track = config_.points.empty() ? drawTrack(config_, rng) : user_track_;
+  // The episode that ends here counts for the curriculum: a lap, or not (off the tape, out of
+  // time, reset by a caller).
+  if (drawn_[env]) {
+    curriculum_.episodeEnded(env, outcome_[env] == static_cast<unsigned char>(Outcome::kSuccess));
+  }
+  drawn_[env] = 1;
+  Track track = config_.points.empty() ? drawTrack(config_, rng, difficulty(env)) : user_track_;
   if (track.closed() && rng.uniform() < 0.5) track = track.reversed();
   // A point of it under the robot, a little aside and askew: the track is placed about the
   // start, not the start on the track (the robot stands where the scene put it).

@@ -76,6 +76,11 @@ void checkFieldRules(const TrackConfig& c) {
     throwInvalid("road/start_offset", c.start_offset,
                  "must be below half road/width (" + std::to_string(0.5 * c.width) + " m)");
   }
+  if (c.curriculum && c.curriculum_radius < c.min_radius) {
+    throwInvalid("road/curriculum_radius", c.curriculum_radius,
+                 "must be at least road/min_radius " + std::to_string(c.min_radius) +
+                     " m (the curriculum's tracks start no tighter than its last)");
+  }
   // Half the painted floor's side: room for the margins and for a track scaled up for its curves.
   if (c.size[1] / c.resolution > kMaxPaintSide / 2) {
     throwInvalid("road/size", listText(c.size),
@@ -280,7 +285,17 @@ Track userTrack(const TrackConfig& config) {
   return track;
 }
 
-Track drawTrack(const TrackConfig& config, Rng& rng) {
+namespace {
+
+/// The tightest curve a track drawn at `difficulty` may have [m].
+double tightestRadius(const TrackConfig& config, double difficulty) {
+  if (!config.curriculum) return config.min_radius;
+  return config.min_radius + (1.0 - difficulty) * (config.curriculum_radius - config.min_radius);
+}
+
+}  // namespace
+
+Track drawTrack(const TrackConfig& config, Rng& rng, double difficulty) {
   const auto which = static_cast<std::size_t>(
       std::min<double>(rng.uniform() * config.shapes.size(), config.shapes.size() - 1));
   const TrackShape shape = parseEnum<TrackShape>("road/shapes", config.shapes[which]);
@@ -288,9 +303,9 @@ Track drawTrack(const TrackConfig& config, Rng& rng) {
   std::vector<Eigen::Vector2d> points = shapePoints(shape, size, rng);
   const bool closed = shape != TrackShape::kSBend;
   Track track(points, closed, "road/shapes");
-  const double radius = track.minRadius();
-  if (radius < config.min_radius) {  // curvature radius grows with the scale
-    const double scale = config.min_radius / radius * (1.0 + 1e-6);
+  const double radius = track.minRadius(), tightest = tightestRadius(config, difficulty);
+  if (radius < tightest) {  // curvature radius grows with the scale
+    const double scale = tightest / radius * (1.0 + 1e-6);
     for (auto& p : points) p *= scale;
     track = Track(points, closed, "road/shapes");
   }

@@ -1,0 +1,38 @@
+#pragma once
+
+// A scan from a camera's depth image (scan/source camera_depth): what pointcloud_to_laserscan
+// does with a depth camera's points, so that a policy that observes scan beams can see through
+// the Jetbot's camera alone (its forward field of view).
+
+#include <Eigen/Geometry>
+
+#include "jetbot_rl/robot/robot_model.h"
+#include "jetbot_rl/sensors/camera_model.h"
+#include "jetbot_rl/sensors/camera_spec.h"
+#include "jetbot_rl/sensors/laser_scanner.h"
+#include "jetbot_rl/sensors/scanner_config.h"
+
+namespace jetbot_rl {
+
+/// The scan `config` (scan/source camera_depth) makes from `camera`'s depth image: in the robot's
+/// root link frame (its link; beams in the ground's plane about the link's origin, angle 0 along
+/// its heading); by default a sample per image column over the camera's horizontal field of view,
+/// the camera's cadence, range [0.12, min(far clip, 3.5)] m; no noise of its own (the depth's).
+/// ConfigError naming the field: a camera without depth images (camera/images), scan/link given,
+/// min_height >= max_height, angles or range as resolveScanner() refuses them.
+ScannerSpec resolveDepthScanner(const ScannerConfig& config, const RobotModel& robot,
+                                const CameraSpec& camera);
+
+/**
+ * Reduces one depth image to a scan: each pixel's point (its ray x its depth along the optical
+ * axis, from `optical`: the optical frame in the env frame when it was made) between
+ * spec.min_height and spec.max_height above the ground (z = 0) counts for the sample nearest its
+ * bearing from `origin` (the robot's root link in the env frame, its heading taken about z), the
+ * nearest one wins. Writes spec.samples ranges to `ranges` (REP 117): +inf (kNoReturn) where no
+ * point lies within range_max, -inf (kTooClose) nearer than range_min. Depth out of range (+-inf,
+ * NaN) is no point.
+ */
+void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float* depth,
+                 const Eigen::Isometry3d& optical, const Eigen::Isometry3d& origin, float* ranges);
+
+}  // namespace jetbot_rl

@@ -1,0 +1,101 @@
+#include "jetbot_rl/sensors/depth_scan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "jetbot_rl/errors.h"
+#include "jetbot_rl/numeric.h"
+
+namespace jetbot_rl {
+namespace {
+
+// The default range's ends [m]: a laser's nearest, and no farther than the navigation scan's.
+constexpr double kDefaultRangeMin = 0.12;
+constexpr double kDefaultRangeMax = 3.5;
+
+}  // namespace
+
+ScannerSpec resolveDepthScanner(const ScannerConfig& config, const RobotModel& robot,
+                                const CameraSpec& camera) {
+  if (!camera.depth) {
+    throwInvalid("scan/source", "camera_depth",
+                 "needs the camera's depth image: give camera/images with depth (camera '" +
+                     camera.name + "' makes none)");
+  }
+  if (!config.link.empty()) {
+    throwInvalid("scan/link", "'" + config.link + "'",
+                 "must be empty with scan/source camera_depth (the scan lies about the root "
+                 "link, from the camera's points)");
+  }
+  if (!(config.min_height < config.max_height)) {
+    std::ostringstream rule;
+    rule << "must be below scan/max_height " << config.max_height;
+    throwInvalid("scan/min_height", config.min_height, rule.str());
+  }
+  const CameraIntrinsics& in = camera.intrinsics;
+  ScannerSpec spec;
+  spec.link = robot.bodies().front().link_name;
+  spec.link_from = "the root link (scan/source camera_depth)";
+  spec.body = 0;
+  spec.samples = config.samples > 0 ? config.samples : in.width;
+  spec.samples_from = config.samples > 0 ? "scan/samples" : "the camera's width";
+  const double half = 0.5 * in.horizontal_fov;
+  spec.min_angle = config.angles.size() == 2 ? config.angles[0] : -half;
+  spec.max_angle = config.angles.size() == 2 ? config.angles[1] : half;
+  spec.angles_from = config.angles.size() == 2 ? "scan/angles" : "the camera's field of view";
+  if (!(spec.min_angle < spec.max_angle) || !std::isfinite(spec.min_angle) ||
+      !std::isfinite(spec.max_angle)) {
+    throwInvalid("scan/angles", listText(config.angles), "must be [min, max] with min < max");
+  }
+  spec.range_min = config.range.size() == 2 ? config.range[0] : kDefaultRangeMin;
+  spec.range_max = config.range.size() == 2 ? config.range[1] : std::min(in.far, kDefaultRangeMax);
+  spec.range_from = config.range.size() == 2 ? "scan/range" : "default";
+  if (!(spec.range_min >= 0.0 && spec.range_min < spec.range_max &&
+        std::isfinite(spec.range_max))) {
+    throwInvalid("scan/range", listText(config.range),
+                 "must be [min, max] with 0 <= min < max, finite");
+  }
+  if (config.noise_std > 0.0) {
+    throwInvalid("scan/noise_std", config.noise_std,
+                 "must be -1 or 0 with scan/source camera_depth (the depth's noise is the "
+                 "camera's)");
+  }
+  spec.noise_from = "none (the camera's depth)";
+  spec.update_every = camera.update_every;
+  spec.update_from = "the camera's";
+  spec.source = ScanSource::kCameraDepth;
+  spec.min_height = config.min_height;
+  spec.max_height = config.max_height;
+  return spec;
+}
+
+void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float* depth,
+                 const Eigen::Isometry3d& optical, const Eigen::Isometry3d& origin, float* ranges) {
+  const double min_height = spec.min_height, max_height = spec.max_height;
+  std::fill(ranges, ranges + spec.samples, kNoReturn);
+  const Eigen::Matrix3d r = origin.linear();
+  const double heading = std::atan2(r(1, 0), r(0, 0));
+  const Eigen::Vector2d centre = origin.translation().head<2>();
+  const double c = std::cos(heading), s = std::sin(heading);
+  const double increment = spec.angleIncrement();
+  const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const double d = depth[i];
+    if (!std::isfinite(d)) continue;  // nothing within the clip (REP 118's +-inf)
+    const Eigen::Vector3d p = optical * (rays[i].cast<double>() * d);
+    if (p.z() < min_height || p.z() > max_height) continue;
+    const Eigen::Vector2d w = p.head<2>() - centre;
+    const double x = c * w.x() + s * w.y(), y = -s * w.x() + c * w.y();
+    const double bearing = std::atan2(y, x);
+    const double k = increment > 0.0 ? std::round((bearing - spec.min_angle) / increment) : 0.0;
+    if (k < 0.0 || k >= spec.samples) continue;
+    const double range = std::hypot(x, y);
+    if (range > spec.range_max) continue;
+    float& sample = ranges[static_cast<std::size_t>(k)];
+    const float value = range < spec.range_min ? kTooClose : static_cast<float>(range);
+    if (value == kTooClose || (sample != kTooClose && value < sample)) sample = value;
+  }
+}
+
+}  // namespace jetbot_rl
