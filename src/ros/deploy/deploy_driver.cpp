@@ -126,7 +126,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     s << "; " << trained_.scan_beam_angles.size() << " beams over ["
       << trained_.scan_beam_angles.front() << ", " << trained_.scan_beam_angles.back()
       << "] rad, range " << listText(trained_.scan_range) << " m";
-    if (trained_.scan_source == "camera_depth") {
+    if (trained_.scan_source == "camera_depth" && trained_.scan_heights.size() == 2) {
       s << " (trained on scans made from a depth camera's points " << trained_.scan_heights.at(0)
         << " to " << trained_.scan_heights.at(1)
         << " m above the ground: give it such a LaserScan, e.g. from pointcloud_to_laserscan with "

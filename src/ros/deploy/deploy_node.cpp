@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/robot/diff_drive.h"
@@ -84,13 +85,21 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     ROS_FATAL("%s: %s", pnh.getNamespace().c_str(), e.what());
     return 1;
   }
-  ROS_INFO(
-      "%s: settings in use (the checkpoint's unless given): xy_goal_tolerance %g m, "
-      "footprint_radius %g m, path_clearance %g m, path_clearance_cost %g, wheel_radius %g m, "
-      "wheel_separation %g m",
-      pnh.getNamespace().c_str(), p.pursuit.xy_goal_tolerance, p.pursuit.footprint_radius,
-      p.pursuit.path_clearance, p.pursuit.path_clearance_cost, p.driver.wheel_radius,
-      p.driver.wheel_separation);
+  // Only the settings the task uses: goals and paths for a task with goals, wheels for wheel
+  // actions.
+  std::ostringstream in_use;
+  if (observer->hasGoal()) {
+    in_use << "xy_goal_tolerance " << p.pursuit.xy_goal_tolerance << " m, footprint_radius "
+           << p.pursuit.footprint_radius << " m, path_clearance " << p.pursuit.path_clearance
+           << " m, path_clearance_cost " << p.pursuit.path_clearance_cost
+           << (kinematics ? ", " : "");
+  }
+  if (kinematics) {
+    in_use << "wheel_radius " << p.driver.wheel_radius << " m, wheel_separation "
+           << p.driver.wheel_separation << " m";
+  }
+  ROS_INFO("%s: settings in use (the checkpoint's unless given): %s", pnh.getNamespace().c_str(),
+           in_use.str().empty() ? "none (no goals, twist actions)" : in_use.str().c_str());
   ROS_INFO("policy from iteration %lld (%lld env steps) of task %s",
            static_cast<long long>(policy->meta().iteration),
            static_cast<long long>(policy->meta().env_steps), policy->meta().spec.task.c_str());
