@@ -3,6 +3,7 @@
 import unittest
 
 import numpy as np
+import rosgraph
 import rospy
 import rostest
 
@@ -25,10 +26,14 @@ class TargetsSeen(object):
         from jetbot_rl_test.env_client import UNREPORTED_RECHECK, wait_for
         from jetbot_rl_test.py_test_util import EventList
         self.messages = EventList()
-        self.sub = rospy.Subscriber(NODE + '/wheel_targets', WheelTargets, self.messages.append,
-                                    tcp_nodelay=True)
-        wait_for(lambda: self.sub.get_num_connections() > 0, what='wheel_targets to connect',
-                 recheck=UNREPORTED_RECHECK)
+        topic = NODE + '/wheel_targets'
+        self.sub = rospy.Subscriber(topic, WheelTargets, self.messages.append, tcp_nodelay=True)
+        # Connected to every client's publisher: the one that publishes next may be the newest
+        # (a connection to an older client's alone once lost the first message under load).
+        publishers = [p for t, p in rosgraph.Master(rospy.get_name()).getSystemState()[0]
+                      if t == topic][0]
+        wait_for(lambda: self.sub.get_num_connections() >= len(publishers),
+                 what='wheel_targets to connect to %s' % publishers, recheck=UNREPORTED_RECHECK)
 
     def next(self, count):
         """The velocities of the message after the first `count`, as float32 (NUM_ENVS, 2)."""
