@@ -5,6 +5,8 @@
 // the Jetbot's camera alone (its forward field of view).
 
 #include <Eigen/Geometry>
+#include <optional>
+#include <vector>
 
 #include "jetbot_rl/robot/robot_model.h"
 #include "jetbot_rl/sensors/camera_model.h"
@@ -22,6 +24,12 @@ namespace jetbot_rl {
 /// min_height >= max_height, angles or range as resolveScanner() refuses them.
 ScannerSpec resolveDepthScanner(const ScannerConfig& config, const RobotModel& robot,
                                 const CameraSpec& camera);
+
+/// The scan `config` gives: a laser's (resolveScanner()), or with scan/source camera_depth one
+/// from the first of `cameras` (the batch's; resolveDepthScanner()); ConfigError naming
+/// scan/source for camera_depth without a camera.
+std::optional<ScannerSpec> resolveScan(const ScannerConfig& config, const RobotModel& robot,
+                                       const std::vector<CameraSpec>& cameras, double control_dt);
 
 /**
  * Reduces one depth image to a scan: each pixel's point (its ray x its depth along the optical

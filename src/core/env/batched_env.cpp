@@ -47,14 +47,9 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
       *robot_, config_, std::vector<double>(wheel_high_.begin(), wheel_high_.end())));
   const std::vector<CameraSpec> cameras =
       resolveCameras(config_.camera, *robot_, config_.controlDt());
-  const bool depth_scan = config_.scan.source == ScanSource::kCameraDepth && config_.scan.enabled;
-  if (depth_scan && cameras.empty()) {
-    throwInvalid("scan/source", "camera_depth", "needs a camera (none is declared or enabled)");
-  }
   const std::optional<ScannerSpec> scanner =
-      depth_scan
-          ? std::optional<ScannerSpec>(resolveDepthScanner(config_.scan, *robot_, cameras[0]))
-          : resolveScanner(config_.scan, *robot_, config_.controlDt());
+      resolveScan(config_.scan, *robot_, cameras, config_.controlDt());
+  const bool depth_scan = scanner && scanner->source == ScanSource::kCameraDepth;
   if (config_.world.enabled()) {
     config_.world.cut_height =
         resolveCutHeight(config_.world, scanner ? scannerHeight(*robot_, *scanner) : 0.0);
@@ -63,7 +58,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   scene_ = std::make_unique<EnvScene>(config_, robot_->footprintRadius(), drawer_,
                                       capability<FloorDrawing>(*task_));
   const int n = config_.numRows();
-  if (scanner && !depth_scan) {
+  if (scanner && !depth_scan) {  // a laser; a depth scan follows the camera
     scan_ = std::make_unique<ScanSensor>(*scanner, scene_->world(), n, config_.seed);
     sensors_.push_back(scan_.get());
   }

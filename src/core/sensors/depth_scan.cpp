@@ -70,6 +70,17 @@ ScannerSpec resolveDepthScanner(const ScannerConfig& config, const RobotModel& r
   return spec;
 }
 
+std::optional<ScannerSpec> resolveScan(const ScannerConfig& config, const RobotModel& robot,
+                                       const std::vector<CameraSpec>& cameras, double control_dt) {
+  if (!config.enabled || config.source == ScanSource::kLaser) {
+    return resolveScanner(config, robot, control_dt);
+  }
+  if (cameras.empty()) {
+    throwInvalid("scan/source", "camera_depth", "needs a camera (none is declared or enabled)");
+  }
+  return resolveDepthScanner(config, robot, cameras.front());
+}
+
 void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float* depth,
                  const Eigen::Isometry3d& optical, const Eigen::Isometry3d& origin, float* ranges) {
   const double min_height = spec.min_height, max_height = spec.max_height;
