@@ -67,18 +67,15 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkCon
   }
   int features = input_dim;
   if (!image.empty()) {
-    if (c.rnn_type != RnnType::kNone) {
-      throwInvalid("rnn_type", enumName(c.rnn_type),
-                   "must be none for a policy that observes an image (not supported yet)");
-    }
     encoder_ = register_module("image_encoder", ImageEncoder(c, image));
     features += encoder_->features();
   }
   if (c.rnn_type != RnnType::kNone) {
+    // The RNNs remember what the MLPs would see: the input and the image's features.
     actor_rnn_ = register_module(
-        "actor_rnn", RecurrentMemory(c.rnn_type, input_dim, c.rnn_hidden_size, c.rnn_num_layers));
+        "actor_rnn", RecurrentMemory(c.rnn_type, features, c.rnn_hidden_size, c.rnn_num_layers));
     critic_rnn_ = register_module(
-        "critic_rnn", RecurrentMemory(c.rnn_type, input_dim, c.rnn_hidden_size, c.rnn_num_layers));
+        "critic_rnn", RecurrentMemory(c.rnn_type, features, c.rnn_hidden_size, c.rnn_num_layers));
     features = c.rnn_hidden_size;
   }
   actor_ =
@@ -90,8 +87,11 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkCon
 
 torch::Tensor ActorCriticImpl::features(const torch::Tensor& input) {
   if (encoder_.is_empty()) return input;
+  // The encoder takes rows of pixels: [B, values] or a sequence's [T, B, values].
+  std::vector<int64_t> sizes = input.sizes().vec();
+  sizes.back() = encoder_->features();
   return torch::cat({input.narrow(-1, 0, input_dim_),
-                     encoder_->forward(input.narrow(-1, input_dim_, imageValues()))},
+                     encoder_->forward(input.narrow(-1, input_dim_, imageValues())).view(sizes)},
                     -1);
 }
 
@@ -138,8 +138,9 @@ ActionEvaluation ActorCriticImpl::evaluateSequence(const torch::Tensor& input,
                                                    const MemoryState& state,
                                                    const torch::Tensor& starts) {
   if (!recurrent()) throw Error("ActorCritic::evaluateSequence of a model without an RNN");
-  const torch::Tensor actor_features = actor_rnn_->sequence(input, state.actor, starts);
-  const torch::Tensor critic_features = critic_rnn_->sequence(input, state.critic, starts);
+  const torch::Tensor x = features(input);
+  const torch::Tensor actor_features = actor_rnn_->sequence(x, state.actor, starts);
+  const torch::Tensor critic_features = critic_rnn_->sequence(x, state.critic, starts);
   ActionEvaluation e;
   e.mean = actor_->forward(actor_features.flatten(0, 1));
   e.std = torch::exp(log_std_).expand_as(e.mean);

@@ -117,6 +117,7 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
   }
   code << memory.code;
   if (observesImage()) code << imageScript(*model_->net->imageEncoder(), module);
+  code << memory.rnn_code;
   int layer = 0;
   for (const auto& child : model_->net->actor()->children()) {
     if (auto* linear = child->as<torch::nn::Linear>()) {

@@ -62,7 +62,9 @@ MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int 
   } else {
     code << "    x = self.normalize(obs)\n";
   }
+  script.code = code.str();
   if (!rnn.is_empty()) {
+    std::ostringstream rnn_code;  // after the image's features join x (policy_export.cpp)
     const int64_t h = rnn->hiddenSize();
     for (std::size_t l = 0; l < rnn->layers().size(); ++l) {
       const std::string n = std::to_string(l);
@@ -76,20 +78,21 @@ MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int 
       const std::string weights =
           "self.w_ih_" + n + ", self.w_hh_" + n + ", self.b_ih_" + n + ", self.b_hh_" + n;
       if (rnn->type() == RnnType::kGru) {
-        code << "    h" << n << " = torch.gru_cell(x, hidden"
-             << columns(rnn_at + l * h, rnn_at + (l + 1) * h) << ", " << weights << ")\n";
+        rnn_code << "    h" << n << " = torch.gru_cell(x, hidden"
+                 << columns(rnn_at + l * h, rnn_at + (l + 1) * h) << ", " << weights << ")\n";
         script.new_hidden.push_back("h" + n);
       } else {
         const int64_t at = rnn_at + 2 * l * h;
-        code << "    h" << n << ", c" << n << " = torch.lstm_cell(x, [hidden" << columns(at, at + h)
-             << ", hidden" << columns(at + h, at + 2 * h) << "], " << weights << ")\n";
+        rnn_code << "    h" << n << ", c" << n << " = torch.lstm_cell(x, [hidden"
+                 << columns(at, at + h) << ", hidden" << columns(at + h, at + 2 * h) << "], "
+                 << weights << ")\n";
         script.new_hidden.push_back("h" + n);
         script.new_hidden.push_back("c" + n);
       }
-      code << "    x = h" << n << "\n";
+      rnn_code << "    x = h" << n << "\n";
     }
+    script.rnn_code = rnn_code.str();
   }
-  script.code = code.str();
   return script;
 }
 

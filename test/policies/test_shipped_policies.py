@@ -48,7 +48,7 @@ CASES = {
                              '--episodes', '400', '--seed', '123'],
                {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
     'swap': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--num-envs', '5',
-                           '--episodes', '400', '--seed', '123'],
+                           '--episodes', '200', '--seed', '123'],
              {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
     # the camera's depth as its scan (the forward field of view only), in the generated worlds
     'navigation_camera': (['--urdf', os.path.join(PKG, 'urdf', 'jetbot_camera.urdf'), '--config',

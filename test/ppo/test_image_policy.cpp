@@ -1,7 +1,8 @@
 // An image policy (the road following task's): its encoder refuses images its layers cannot take,
 // naming the field and the layer; PPO learns on a camera batch with the pixels kept as bytes; the
 // checkpoint's Policy acts on images as the learner's model does, and the exported TorchScript
-// (forward(obs, image uint8)) as the Policy.
+// (forward(obs, image uint8)) as the Policy; with memory (a GRU or an LSTM after the encoder) the
+// update's sequences recompute what acting computed and the export carries the memory.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -76,9 +77,6 @@ TEST(ImageEncoder, RefusesAnImageItsLayersCannotTakeNamingTheLayer) {
   EXPECT_NO_THROW(ImageEncoder(c, ImageShape{32, 32}));                      // 32 -> 14 -> 5 -> 1
   c.conv_strides = {2, 2};
   expectEncoderRefused(c, {32, 32}, "as many values");
-  c.conv_strides = {2, 2, 2};
-  c.rnn_type = RnnType::kGru;
-  EXPECT_THROW(ActorCritic(4, 2, c, ImageShape{32, 32}), ConfigError);
 }
 
 TEST(ImagePolicy, LearnsFromBytesAndActsAsItsCheckpointAndItsExport) {
@@ -147,6 +145,91 @@ TEST(ImagePolicy, LearnsFromBytesAndActsAsItsCheckpointAndItsExport) {
     EXPECT_NEAR(out.data_ptr<float>()[i], actions[i], 1e-5) << i;
   }
 }
+
+/// Image policies with memory: the GRU or LSTM takes the vector's history and the image's features.
+class ImageMemoryTest : public testing::TestWithParam<RnnType> {};
+
+TEST_P(ImageMemoryTest, SequencesRecomputeActingAndTheExportCarriesTheMemory) {
+  torch::manual_seed(4);
+  std::unique_ptr<BatchedEnv> env = cameraBatch();
+  const BatchSpec spec = env->spec();
+  PpoConfig config = imageConfig();
+  config.rnn_type = GetParam();
+  config.rnn_hidden_size = 8;
+  config.obs_history_length = 2;
+  config.action_history_length = 1;
+  Ppo ppo(spec, config);
+  ASSERT_TRUE(ppo.model()->recurrent());
+  for (int t = 0; t < config.num_steps_per_env; ++t) {
+    const std::vector<float> actions = ppo.act(env->state());
+    ppo.processEnvStep(env->step(actions));
+  }
+  ppo.computeReturns(env->state());
+  int batches = 0;
+  for (const MiniBatch& b : ppo.storage().sequenceMiniBatches(config.num_mini_batches)) {
+    torch::NoGradGuard no_grad;
+    const ActionEvaluation e = ppo.model()->evaluateSequence(b.obs, b.actions, b.state, b.starts);
+    EXPECT_TRUE(torch::allclose(e.mean, b.old_mean, 0.0, 1e-5));
+    EXPECT_TRUE(torch::allclose(e.values, b.old_values, 0.0, 1e-5));
+    ++batches;
+  }
+  EXPECT_EQ(batches, config.num_mini_batches);
+  const torch::Tensor encoder_before = ppo.model()->imageEncoder()->linear()->weight.clone();
+  const torch::Tensor rnn_before = ppo.model()->actorMemory()->layers()[0].w_ih.clone();
+  const UpdateStats stats = ppo.update();
+  EXPECT_TRUE(std::isfinite(stats.value_loss));
+  EXPECT_FALSE(torch::equal(encoder_before, ppo.model()->imageEncoder()->linear()->weight));
+  EXPECT_FALSE(torch::equal(rnn_before, ppo.model()->actorMemory()->layers()[0].w_ih));
+
+  CheckpointMeta meta;
+  meta.obs_dim = spec.obs_dim;
+  meta.action_dim = spec.action_dim;
+  meta.config = config;
+  meta.spec = spec;
+  meta.spec.num_envs = 0;
+  const std::string path = imageTempPath("image_memory_" + enumName(GetParam()) + ".pt");
+  saveCheckpoint(path, ppo, meta);
+  Policy policy(path);
+  ASSERT_TRUE(policy.observesImage());
+  ASSERT_TRUE(policy.hasMemory());
+  const std::string exported = imageTempPath("image_memory_export.pt");
+  policy.exportTorchScript(exported, spec);
+  torch::jit::Module module = torch::jit::load(exported);
+  const int n = spec.num_envs;
+  torch::Tensor hidden = module.run_method("initial_hidden", n).toTensor();
+  std::vector<std::vector<float>> played;
+  for (int t = 0; t < 5; ++t) {
+    const StepResult& state = env->state();
+    std::vector<float> expected;
+    policy.act(state.observations, state.images.rgb, n, expected);
+    const auto out =
+        module
+            .forward({torch::from_blob(const_cast<float*>(state.observations.data()),
+                                       {n, spec.obs_dim}, torch::kFloat),
+                      torch::from_blob(const_cast<std::uint8_t*>(state.images.rgb.data()),
+                                       {n, 24, 24, 3}, torch::kUInt8),
+                      hidden})
+            .toTuple();
+    const torch::Tensor actions = out->elements()[0].toTensor().contiguous();
+    hidden = out->elements()[1].toTensor();
+    ASSERT_EQ(actions.numel(), n * 2);
+    for (int i = 0; i < n * 2; ++i) {
+      EXPECT_NEAR(actions.data_ptr<float>()[i], expected[i], 1e-5) << "step " << t << ", " << i;
+    }
+    played.push_back(expected);
+    const StepResult& next = env->step(expected);
+    std::vector<std::uint32_t> ended(next.reset_env_ids.begin(), next.reset_env_ids.end());
+    policy.resetMemory(ended);  // an ended episode starts over in both
+    for (std::uint32_t e : ended) hidden[e].zero_();
+  }
+  EXPECT_NE(played.front(), played.back());
+}
+
+INSTANTIATE_TEST_SUITE_P(GruAndLstm, ImageMemoryTest,
+                         testing::Values(RnnType::kGru, RnnType::kLstm),
+                         [](const testing::TestParamInfo<RnnType>& info) {
+                           return enumName(info.param);
+                         });
 
 }  // namespace
 }  // namespace ppo

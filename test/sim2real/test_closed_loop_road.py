@@ -69,7 +69,9 @@ class TestClosedLoopRoad(unittest.TestCase):
                  '--config', track.name, '--num-envs', '2', '--episodes', '6', '--steps', '1100',
                  '--seed', '777',
                  '--threads', '1'],
-                capture_output=True, text=True, timeout=10 * TIMEOUT)
+                capture_output=True, text=True, timeout=10 * TIMEOUT,
+                # at nice 10: in the suite's driving lane, beside the foreground's rate checks
+                preexec_fn=lambda: os.nice(10))
         finally:
             os.unlink(track.name)
         self.assertEqual(done.returncode, 0, done.stderr)

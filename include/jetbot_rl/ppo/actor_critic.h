@@ -41,7 +41,7 @@ struct MemoryState {
  * with `rnn_type` gru or lstm, a recurrent layer before each MLP (rsl_rl's ActorCriticRecurrent).
  * Its input is the observation, or the history InputHistory stacks; an image policy's input is
  * that followed by the camera image's bytes (as floats, ImageShape::values() of them), which its
- * ImageEncoder turns into features beside it for both MLPs.
+ * ImageEncoder turns into features beside it for both MLPs (or both RNNs).
  */
 class ActorCriticImpl : public torch::nn::Module {
  public:
@@ -51,7 +51,7 @@ class ActorCriticImpl : public torch::nn::Module {
                   double init_noise_std);
   /// The same with config's widths, activation, noise and recurrent layer; with `image`, an
   /// image encoder of config's layers (ConfigError naming the field when the image does not fit
-  /// them, or with an RNN: not yet for image policies). `input_dim` excludes the image.
+  /// them). `input_dim` excludes the image.
   ActorCriticImpl(int input_dim, int action_dim, const NetworkConfig& config,
                   ImageShape image = {});
 

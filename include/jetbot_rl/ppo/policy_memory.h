@@ -81,7 +81,8 @@ class PolicyMemory {
 struct MemoryScript {
   int64_t hidden_size = 0;
   std::string layout;                   ///< What the hidden row holds, for meta.yaml.
-  std::string code;                     ///< Lines of forward() before the actor MLP.
+  std::string code;                     ///< Lines of forward() that make the input x.
+  std::string rnn_code;                 ///< Then (after an image's features) the RNN's lines.
   std::vector<std::string> new_hidden;  ///< torch.cat() of these is the new hidden row.
 };
 
