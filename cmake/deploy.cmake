@@ -6,6 +6,7 @@ add_library(jetbot_rl_deploy
   src/ros/deploy/deploy_driver.cpp
   src/ros/deploy/deploy_node.cpp
   src/ros/deploy/deploy_params.cpp
+  src/ros/deploy/dwa_local_planner.cpp
   src/ros/deploy/map_input.cpp
   src/ros/deploy/move_base_server.cpp
   src/ros/deploy/goal_pursuit.cpp

@@ -100,7 +100,7 @@ target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 # as the simulated task observes, the settings it takes from the checkpoint, camera images ----
 catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.cpp
   test/deploy/test_observer_agreement.cpp test/deploy/test_trained_settings.cpp
-  test/deploy/test_image_input.cpp)
+  test/deploy/test_image_input.cpp test/deploy/test_dwa_local_planner.cpp)
 target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
 target_compile_definitions(test_deploy PRIVATE ${_robots})
 
@@ -159,6 +159,7 @@ foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigatio
     move_base_client
     closed_loop_memory
     closed_loop_road
+    closed_loop_dwa
     deploy_node
     evaluator_options)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})

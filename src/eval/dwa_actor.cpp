@@ -43,11 +43,7 @@ void DwaActor::act(const BatchedEnv& env, std::vector<float>& actions) {
   for (int e = 0; e < env.numEnvs(); ++e) {
     const EnvView view = env.view(e);
     const RootState s = view.rootState();
-    const Eigen::Vector3d forward = s.orientation * Eigen::Vector3d::UnitX();
-    in.position = s.position.head<2>();
-    in.yaw = std::atan2(forward.y(), forward.x());
-    in.speed = s.comLinearVelocityBody().x();
-    in.yaw_rate = s.angular_velocity.z();
+    setRobot(in, s.position, s.orientation, s.com_linear_velocity, s.angular_velocity);
     in.path = task_.path(e);
     trackers_[e].track(in.position);
     in.local_goal = trackers_[e].lookahead(planner_.config().local_goal_distance);

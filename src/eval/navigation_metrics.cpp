@@ -30,13 +30,6 @@ double forwardSpeed(const RootState& s) { return s.comLinearVelocityBody().x(); 
 
 }  // namespace
 
-double topSpeed(const BatchSpec& spec) {
-  if (actsByTwist(spec)) return spec.action_high.empty() ? 0.0 : spec.action_high[0];
-  if (!(spec.observer.wheel_radius > 0.0) || spec.action_high.empty()) return 0.0;
-  const double slowest = *std::min_element(spec.action_high.begin(), spec.action_high.end());
-  return std::max(0.0, slowest * spec.observer.wheel_radius);
-}
-
 NavigationMetrics::NavigationMetrics(const BatchedEnv& env, const NavigationTask& task,
                                      double top_speed)
     : task_(task),

@@ -1,9 +1,11 @@
 """Test helpers for a navigation policy deployed on the env node's robot: a shipped policy
 (policies/README.md), run by jetbot_deploy_node on env 0's scan, odometry and cmd_vel with the map, send goals as RViz's
 "2D Nav Goal" sends them and record odometry, scans, outcomes and plans."""
+import math
 import os
 import signal
 import subprocess
+import time
 import unittest
 
 import actionlib
@@ -16,6 +18,13 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 
 from jetbot_rl_test.env_client import TIMEOUT, EventList, wait_for
+
+
+REACH_WITHIN = 90.0  # [s]: a goal in another room of maps/office.yaml
+
+
+def length(points):
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
 
 
 def goal_msg(x, y, frame='env_0/map'):
@@ -92,3 +101,35 @@ class DeployedNavigation(unittest.TestCase):
         wait_for(lambda: len(self.odoms) > seen + 50, what='a second of odometry')
         end = self.position()
         self.assertLess(((end[0] - start[0]) ** 2 + (end[1] - start[1]) ** 2) ** 0.5, 0.02)
+
+    def reach(self, goal, label):
+        """Sends `goal` (in another room: the plan turns round a wall), waits for its plan and
+        arrival within REACH_WITHIN without a scan reading below range_min (a touch); prints the
+        FIGURE lines under `label`; returns the plan's points."""
+        start = self.position()
+        first_scan, plans = len(self.scans), len(self.plans)
+        count = self.send(goal_msg(*goal), 'accepted')
+        sent = time.monotonic()
+        # The first plan with poses: an empty one ends the previous goal's.
+        wait_for(lambda: any(p.poses for p in self.plans[plans:]), what='the plan')
+        plan = next(p for p in self.plans[plans:] if p.poses)
+        self.assertEqual(plan.header.frame_id, 'env_0/map')
+        points = [(p.pose.position.x, p.pose.position.y) for p in plan.poses]
+        self.assertGreaterEqual(len(points), 3, points)  # round a wall: it turns
+        self.assertLess(math.hypot(points[0][0] - start[0], points[0][1] - start[1]), 0.3)
+        self.assertAlmostEqual(points[-1][0], goal[0], places=3)
+        self.assertAlmostEqual(points[-1][1], goal[1], places=3)
+        wait_for(lambda: len(self.outcomes) > count + 1, timeout=REACH_WITHIN,
+                 what='the goal (%.1f, %.1f) to be reached' % goal)
+        took = time.monotonic() - sent
+        self.assertEqual(self.outcomes[count + 1], 'reached')
+        x, y = self.position()
+        print('FIGURE: %s: goal (%.1f, %.1f) behind a wall reached in %.1f s at (%.2f, %.2f); '
+              'plan %.2f m (straight line %.2f m), %d points'
+              % (label, goal[0], goal[1], took, x, y, length(points),
+                 math.hypot(goal[0] - start[0], goal[1] - start[1]), len(points)))
+        self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.3)
+        closest = min(min(r for r in s.ranges) for s in self.scans[first_scan:])
+        print('FIGURE: %s: closest scan reading %.3f m' % (label, closest))
+        self.assertGreater(closest, float('-inf'), 'a scan read below range_min: a touch')
+        return points

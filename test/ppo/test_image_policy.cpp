@@ -42,6 +42,21 @@ std::unique_ptr<BatchedEnv> cameraBatch() {
       makeTask(t));
 }
 
+/// Saves `ppo` (trained on `spec` with `config`) as a checkpoint at imageTempPath(`name`); its
+/// path.
+std::string saveImageCheckpoint(Ppo& ppo, const BatchSpec& spec, const PpoConfig& config,
+                                const std::string& name) {
+  CheckpointMeta meta;
+  meta.obs_dim = spec.obs_dim;
+  meta.action_dim = spec.action_dim;
+  meta.config = config;
+  meta.spec = spec;
+  meta.spec.num_envs = 0;
+  const std::string path = imageTempPath(name);
+  saveCheckpoint(path, ppo, meta);
+  return path;
+}
+
 PpoConfig imageConfig() {
   PpoConfig c;
   c.actor_hidden_dims = {16};
@@ -103,14 +118,7 @@ TEST(ImagePolicy, LearnsFromBytesAndActsAsItsCheckpointAndItsExport) {
   EXPECT_TRUE(std::isfinite(stats.value_loss));
   EXPECT_FALSE(torch::equal(before, ppo.model()->imageEncoder()->linear()->weight));  // it learnt
 
-  CheckpointMeta meta;
-  meta.obs_dim = spec.obs_dim;
-  meta.action_dim = spec.action_dim;
-  meta.config = config;
-  meta.spec = spec;
-  meta.spec.num_envs = 0;
-  const std::string path = imageTempPath("image_policy.pt");
-  saveCheckpoint(path, ppo, meta);
+  const std::string path = saveImageCheckpoint(ppo, spec, config, "image_policy.pt");
   Policy policy(path);
   ASSERT_TRUE(policy.observesImage());
   const StepResult& state = env->state();
@@ -181,14 +189,8 @@ TEST_P(ImageMemoryTest, SequencesRecomputeActingAndTheExportCarriesTheMemory) {
   EXPECT_FALSE(torch::equal(encoder_before, ppo.model()->imageEncoder()->linear()->weight));
   EXPECT_FALSE(torch::equal(rnn_before, ppo.model()->actorMemory()->layers()[0].w_ih));
 
-  CheckpointMeta meta;
-  meta.obs_dim = spec.obs_dim;
-  meta.action_dim = spec.action_dim;
-  meta.config = config;
-  meta.spec = spec;
-  meta.spec.num_envs = 0;
-  const std::string path = imageTempPath("image_memory_" + enumName(GetParam()) + ".pt");
-  saveCheckpoint(path, ppo, meta);
+  const std::string path =
+      saveImageCheckpoint(ppo, spec, config, "image_memory_" + enumName(GetParam()) + ".pt");
   Policy policy(path);
   ASSERT_TRUE(policy.observesImage());
   ASSERT_TRUE(policy.hasMemory());

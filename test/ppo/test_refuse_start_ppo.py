@@ -180,6 +180,15 @@ class TestRefuseStartPpo(unittest.TestCase):
                      {'checkpoint': self.path_checkpoint(), 'footprint_radius': 0.1},
                      "map_topic = ''", 'follows a global path, which is planned on a map')
 
+    def test_deploy_local_planner(self):
+        # The DWA drives towards goals on a scan: a velocity policy's task has neither.
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.checkpoint(), 'local_planner': 'dwa'},
+                     'local_planner = dwa', "task 'velocity' has no goals")
+        self.refuses('jetbot_deploy_node',
+                     {'checkpoint': self.navigation_checkpoint(), 'local_planner': 'teb'},
+                     "local_planner = 'teb'", 'policy', 'dwa')
+
     def test_deploy_without_checkpoint(self):
         self.refuses('jetbot_deploy_node', {}, 'checkpoint')
 

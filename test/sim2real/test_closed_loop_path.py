@@ -5,9 +5,6 @@ env node's lidar Jetbot in the office map through jetbot_deploy_node, which plan
 then one in the room on the other side of the floor are reached through the doors within a time
 bound without touching anything, each with a plan on ~plan that goes round the walls; a goal
 too near a wall for the footprint ends with no path, and the robot stays stopped."""
-import math
-import time
-
 import rostest
 
 from jetbot_rl_test.deployed_navigation import DeployedNavigation, goal_msg
@@ -17,46 +14,11 @@ from jetbot_rl_test.env_client import wait_for
 ABOVE = (0.0, 2.0)       # the room above, behind the wall at y = 0.5; its door is at x in [1, 2]
 OTHER_SIDE = (-3.0, 0.0)  # the left half, behind the wall at x = -1; its door at y in [-1.5, -0.5]
 NEAR_WALL = (-0.87, 2.0)  # a free cell 3 cm from the wall at x = -0.9: within the footprint
-REACH_WITHIN = 90.0       # [s]
-
-
-def length(points):
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
 
 
 class TestClosedLoopPath(DeployedNavigation):
     node_name = 'test_closed_loop_path'
     shipped_policy = 'navigation'  # the task's defaults
-
-    def reach(self, goal):
-        """Sends `goal`, waits for its plan and arrival; returns the plan's points."""
-        start = self.position()
-        first_scan, plans = len(self.scans), len(self.plans)
-        count = self.send(goal_msg(*goal), 'accepted')
-        sent = time.monotonic()
-        # The first plan with poses: an empty one ends the previous goal's.
-        wait_for(lambda: any(p.poses for p in self.plans[plans:]), what='the plan')
-        plan = next(p for p in self.plans[plans:] if p.poses)
-        self.assertEqual(plan.header.frame_id, 'env_0/map')
-        points = [(p.pose.position.x, p.pose.position.y) for p in plan.poses]
-        self.assertGreaterEqual(len(points), 3, points)  # round a wall: it turns
-        self.assertLess(math.hypot(points[0][0] - start[0], points[0][1] - start[1]), 0.3)
-        self.assertAlmostEqual(points[-1][0], goal[0], places=3)
-        self.assertAlmostEqual(points[-1][1], goal[1], places=3)
-        wait_for(lambda: len(self.outcomes) > count + 1, timeout=REACH_WITHIN,
-                 what='the goal (%.1f, %.1f) to be reached' % goal)
-        took = time.monotonic() - sent
-        self.assertEqual(self.outcomes[count + 1], 'reached')
-        x, y = self.position()
-        print('FIGURE: path closed loop: goal (%.1f, %.1f) behind a wall reached in %.1f s at '
-              '(%.2f, %.2f); plan %.2f m (straight line %.2f m), %d points'
-              % (goal[0], goal[1], took, x, y, length(points),
-                 math.hypot(goal[0] - start[0], goal[1] - start[1]), len(points)))
-        self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.3)
-        closest = min(min(r for r in s.ranges) for s in self.scans[first_scan:])
-        print('FIGURE: path closed loop: closest scan reading %.3f m' % closest)
-        self.assertGreater(closest, float('-inf'), 'a scan read below range_min: a touch')
-        return points
 
     def test_1_a_goal_too_near_a_wall_has_no_path(self):
         start = self.position()
@@ -67,7 +29,7 @@ class TestClosedLoopPath(DeployedNavigation):
         self.assert_still(start)
 
     def test_2_a_goal_behind_a_wall_is_reached_through_the_door(self):
-        points = self.reach(ABOVE)
+        points = self.reach(ABOVE, 'path closed loop')
         # The plan goes through the door (x in [1, 2]) where it crosses the wall at y = 0.5.
         for a, b in zip(points, points[1:]):
             if (a[1] - 0.5) * (b[1] - 0.5) <= 0.0 and a[1] != b[1]:
@@ -75,7 +37,7 @@ class TestClosedLoopPath(DeployedNavigation):
                 self.assertTrue(1.0 < x < 2.0, points)
 
     def test_3_a_goal_across_the_floor_is_reached(self):
-        self.reach(OTHER_SIDE)
+        self.reach(OTHER_SIDE, 'path closed loop')
 
 
 if __name__ == '__main__':

@@ -140,6 +140,10 @@ inline const std::vector<std::string>& twistActionNames() {
 }
 /// True when `spec`'s actions are a twist (action_space twist), not wheel targets.
 inline bool actsByTwist(const BatchSpec& spec) { return spec.action_names == twistActionNames(); }
+/// The top speed of the robot a policy of `spec` drives: a twist's linear_x bound, else the
+/// slowest wheel's velocity bound times the wheel radius (the observer's kinematics); 0 when
+/// neither is known [m/s].
+double topSpeed(const BatchSpec& spec);
 
 /// Sizes that fit: num_envs, obs_dim and action_dim >= 1, as many names and bounds as
 /// components, max_episode_length >= 2, control_dt > 0, image kinds among rgb, depth, label in

@@ -13,11 +13,6 @@ namespace jetbot_rl {
 
 class NavigationTask;
 
-/// The top speed of the robot a policy of `spec` drives: a twist's linear_x bound, else the
-/// slowest wheel's velocity bound times the wheel radius (the observer's kinematics); 0 when
-/// neither is known [m/s].
-double topSpeed(const BatchSpec& spec);
-
 /// The metrics of the episodes counted (successes, or all episodes where it says so).
 struct NavigationMetricsResult {
   double time_to_goal = 0.0;  ///< Mean over the successes [s].

@@ -5,6 +5,7 @@
 // sets beside the learnt one (issue 48). Debian has no move_base: this one is ours.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct DwaConfig {
   double inflation_radius = 0.55;     ///< costmap_2d: cells within this of an obstacle cost [m].
   double cost_scaling_factor = 10.0;  ///< costmap_2d: how fast the cost falls off [1/m].
   double local_goal_distance = 2.0;   ///< The local goal: this far along the path [m].
+  double footprint_padding = 0.0;     ///< costmap_2d: added to the footprint's radius [m].
 };
 
 template <typename C, typename V>
@@ -70,6 +72,10 @@ IfConfig<C, DwaConfig> visitFields(C& c, V&& v) {
   v("dwa/local_goal_distance", c.local_goal_distance, Range<double>{0.0, 1000.0, true, false, "m"},
     "The local goal: the global path's point this far along it past the robot (the local "
     "costmap's edge in move_base).");
+  v("dwa/footprint_padding", c.footprint_padding, inRange(0.0, 10.0, "m"),
+    "costmap_2d's footprint_padding: added to the robot's footprint radius, within which of a "
+    "scan return a trajectory is refused (on a robot whose scanner's range_min exceeds the "
+    "footprint, nearer than range_min it sees nothing: pad by the difference).");
 }
 
 /// What the planner sees at a control step, in one frame (the env's, or the map's).
@@ -86,6 +92,11 @@ struct DwaInput {
 };
 
 /// The twist it commands.
+/// `in`'s robot: its position and heading in the plane from its pose, its forward speed and yaw
+/// rate from its velocities (a RootState's fields: both in the pose's frame) [m/s], [rad/s].
+void setRobot(DwaInput& in, const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+              const Eigen::Vector3d& linear_velocity, const Eigen::Vector3d& angular_velocity);
+
 struct DwaCommand {
   double speed = 0.0, yaw_rate = 0.0;  ///< [m/s], [rad/s]
   bool found = false;  ///< A trajectory clear of obstacles was found (else: turning in place).

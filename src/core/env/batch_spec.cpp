@@ -16,6 +16,13 @@ std::string text(const T& value) {
 
 }  // namespace
 
+double topSpeed(const BatchSpec& spec) {
+  if (actsByTwist(spec)) return spec.action_high.empty() ? 0.0 : spec.action_high[0];
+  if (!(spec.observer.wheel_radius > 0.0) || spec.action_high.empty()) return 0.0;
+  const double slowest = *std::min_element(spec.action_high.begin(), spec.action_high.end());
+  return std::max(0.0, slowest * spec.observer.wheel_radius);
+}
+
 void checkFieldRules(const BatchSpec& s) {
   const auto need = [](bool ok, const char* field, const std::string& value,
                        const std::string& why) {

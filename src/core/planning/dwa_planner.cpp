@@ -81,8 +81,17 @@ void checkFieldRules(const DwaConfig& c) {
   }
 }
 
+void setRobot(DwaInput& in, const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+              const Eigen::Vector3d& linear_velocity, const Eigen::Vector3d& angular_velocity) {
+  const Eigen::Vector3d forward = orientation * Eigen::Vector3d::UnitX();
+  in.position = position.head<2>();
+  in.yaw = std::atan2(forward.y(), forward.x());
+  in.speed = (orientation.conjugate() * linear_velocity).x();
+  in.yaw_rate = angular_velocity.z();
+}
+
 DwaPlanner::DwaPlanner(const DwaConfig& config, double robot_radius)
-    : config_(config), robot_radius_(robot_radius) {}
+    : config_(config), robot_radius_(robot_radius + config.footprint_padding) {}
 
 double DwaPlanner::obstacleCost(double distance) const {
   if (distance <= robot_radius_) return kLethal;

@@ -109,6 +109,14 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
         });
     inputs += " and " + pursuit_->describe();
   }
+  if (p.local.planner == LocalPlanner::kDwa) {
+    if (!pursuit_ || !scan_) {
+      throwInvalid("local_planner", "dwa",
+                   "drives towards goals on the robot's scan: the checkpoint's task '" +
+                       policy.meta().spec.task + "' has " + (pursuit_ ? "no scan" : "no goals"));
+    }
+    dwa_ = std::make_unique<DwaLocalPlanner>(p.local.dwa, p.pursuit.footprint_radius);
+  }
   if (observer.takesCommand()) {
     command_sub_ = nh.subscribe(resolvePrivateTopic(pnh, p.driver.command_topic), 10,
                                 &DeployDriver::onCommand, this);
@@ -118,9 +126,12 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
       nh.createWallTimer(ros::WallDuration(1.0 / run.control_rate), &DeployDriver::onTick, this);
   status_timer_ = nh.createWallTimer(ros::WallDuration(1.0), &DeployDriver::onStatus, this);
   std::ostringstream s;
-  s << "deploying " << run.checkpoint << ": " << inputs << " -> policy"
-    << (policy.hasMemory() ? " (with memory)" : "") << " -> " << cmd_vel_pub_.getTopic() << " at "
-    << run.control_rate << " Hz (" << (run.twist ? "twist" : "wheel") << " actions"
+  s << "deploying " << run.checkpoint << ": " << inputs << " -> "
+    << (dwa_ ? "the dynamic window approach (local_planner dwa, max_vel_x " +
+                   std::to_string(p.local.dwa.max_vel_x) + " m/s; the policy does not act)"
+             : std::string("policy") + (policy.hasMemory() ? " (with memory)" : ""))
+    << " -> " << cmd_vel_pub_.getTopic() << " at " << run.control_rate << " Hz ("
+    << (run.twist ? "twist" : "wheel") << " actions"
     << (kinematics_ ? ", " + kinematics_->describe() : std::string()) << "; the checkpoint's)";
   if (scan_) {
     s << "; " << trained_.scan_beam_angles.size() << " beams over ["
@@ -209,7 +220,17 @@ void DeployDriver::onTick(const ros::WallTimerEvent&) {
     }
   }
   standing_.clear();
-  publish(act(state), false);
+  publish(dwa_ ? dwaStep(state) : act(state), false);
+}
+
+geometry_msgs::Twist DeployDriver::dwaStep(const MeasuredState& state) {
+  Eigen::Vector2d local_goal = state.goal;
+  if (!pursuit_->way(dwa_->config().local_goal_distance, way_, local_goal)) way_.clear();
+  const PlanarTwist command = dwa_->step(state, *scan_->latest(), way_, local_goal);
+  geometry_msgs::Twist twist;
+  twist.linear.x = command.linear;
+  twist.angular.z = command.angular;
+  return twist;
 }
 
 geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
@@ -251,6 +272,10 @@ void DeployDriver::onStatus(const ros::WallTimerEvent&) {
   if (image_) add("image age [s]", std::to_string(image_->age()));
   add("dropped input", std::to_string(drops_.count()));
   if (pursuit_) pursuit_->addStatus(add);
+  if (dwa_) {
+    add("local planner", "dwa");
+    add("dwa steps without a clear trajectory", std::to_string(dwa_->blockedSteps()));
+  }
   diagnostic_msgs::DiagnosticArray msg;
   msg.header.stamp = ros::Time::now();
   msg.status.push_back(std::move(status));

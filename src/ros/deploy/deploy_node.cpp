@@ -75,6 +75,12 @@ int runDeploy(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::atomic<bool>
     for (const std::string& line : takeTrainedSettings(p, trained.observer)) {
       ROS_WARN("%s: %s", pnh.getNamespace().c_str(), line.c_str());
     }
+    // The baseline drives at the policy's top speed (as in the navigation benchmark) unless told.
+    if (p.local.planner == LocalPlanner::kDwa && !pnh.hasParam("dwa/max_vel_x") &&
+        topSpeed(trained) > 0.0) {
+      p.local.dwa.max_vel_x = topSpeed(trained);
+      checkFieldRules(p.local.dwa);
+    }
     run = policyRunOf(*policy, checkpoint);
     observer = observerOf(trained, p.pursuit.xy_goal_tolerance, checkpoint);
     if (!run.twist) kinematics = makeKinematics(nh, p.driver, run.action_high);

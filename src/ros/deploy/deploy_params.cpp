@@ -15,6 +15,7 @@ void checkFieldRules(const DeployParams& params) {
   if (p.dof_names.size() != 2) {
     throwInvalid("dof_names", listText(p.dof_names), "must name the two wheel joints");
   }
+  checkFieldRules(params.local.dwa);
 }
 
 std::vector<std::string> takeTrainedSettings(DeployParams& params, const ObserverSpec& trained) {

@@ -110,11 +110,20 @@ std::string PathFollower::follow(const nav_msgs::Odometry& odom, const sensor_ms
     ++replans_;
     tracker_.track(robot);
   }
-  const Eigen::Isometry2d odom_map = map_odom.inverse();
-  state.goal = odom_map * *goal_;
+  odom_map_ = map_odom.inverse();
+  state.goal = odom_map_ * *goal_;
   state.path_remaining = tracker_.remaining(robot);
-  state.lookahead = odom_map * tracker_.lookahead(config_.lookahead);
+  state.lookahead = odom_map_ * tracker_.lookahead(config_.lookahead);
   return "";
+}
+
+bool PathFollower::way(double distance, std::vector<Eigen::Vector2d>& points,
+                       Eigen::Vector2d& ahead) const {
+  if (!goal_) return false;
+  points.clear();
+  for (const Eigen::Vector2d& p : tracker_.points()) points.push_back(odom_map_ * p);
+  ahead = odom_map_ * tracker_.lookahead(distance);
+  return true;
 }
 
 void PathFollower::clear() {

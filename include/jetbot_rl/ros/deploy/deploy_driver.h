@@ -18,6 +18,7 @@
 #include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/drop_counter.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/ros/deploy/dwa_local_planner.h"
 #include "jetbot_rl/ros/deploy/fresh_input.h"
 #include "jetbot_rl/ros/deploy/goal_pursuit.h"
 #include "jetbot_rl/ros/deploy/image_input.h"
@@ -54,7 +55,8 @@ std::unique_ptr<TaskObserver> observerOf(const BatchSpec& trained, double goal_r
  * for the command task; camera images at the policy's size for an image policy), each with its
  * freshness, become the observation through the same
  * TaskObserver the simulated task observes with; the policy's mean action goes out as a Twist at
- * the policy's control rate. The robot stands while an input is stale (zero Twists; with goals
+ * the policy's control rate (with `local_planner: dwa` the DWA's twist on the same inputs and goals
+ * instead). The robot stands while an input is stale (zero Twists; with goals
  * one zero, and the goal pursued on); a task with goals is pursued by GoalPursuit (the move_base
  * action, plans, the goal's heading, recovery) and is quiet without one: one zero Twist when it
  * stops, none while idle. The policy's memory starts over with each goal or command and after
@@ -78,6 +80,8 @@ class DeployDriver {
   void onCommand(const geometry_msgs::Vector3::ConstPtr& msg);
   /// The twist of one policy step on the current inputs (which are fresh).
   geometry_msgs::Twist act(const MeasuredState& state);
+  /// The twist of one DWA step (local_planner dwa) on the same inputs, along the goal's way.
+  geometry_msgs::Twist dwaStep(const MeasuredState& state);
   /// Stops with a zero last action; `fresh_start`: the memory starts over too.
   void stand(const std::string& why, bool fresh_start);
   /// Publishes `twist`; with goals, a stop only once (quiet while idle).
@@ -93,8 +97,10 @@ class DeployDriver {
   std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
   std::unique_ptr<ImageInput> image_;                         // a policy that observes images
   std::unique_ptr<GoalPursuit> pursuit_;                      // a task with goals
-  bool stopped_ = false;                                      // the last Twist published was a stop
-  ros::Subscriber command_sub_;                               // a task with a command
+  std::unique_ptr<DwaLocalPlanner> dwa_;  // local_planner dwa: it drives instead of the policy
+  std::vector<Eigen::Vector2d> way_;      // the DWA's path, reused
+  bool stopped_ = false;                  // the last Twist published was a stop
+  ros::Subscriber command_sub_;           // a task with a command
   ros::Publisher cmd_vel_pub_, status_pub_;
   ros::WallTimer timer_, status_timer_;
   Eigen::Vector2d command_ = Eigen::Vector2d::UnitX();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/planning/dwa_planner.h"
 #include "jetbot_rl/tasks/observer_spec.h"
 
 namespace jetbot_rl {
@@ -65,6 +66,24 @@ struct GoalPursuitParams {
   double path_replan_period = 1.0;     ///< At most one re-plan per this [s, wall].
 };
 
+/// What drives the deploy node's robot towards a goal (move_base's base_local_planner).
+enum class LocalPlanner {
+  kPolicy,  ///< The checkpoint's policy.
+  kDwa,     ///< The dynamic window approach (DwaPlanner), the navigation benchmark's `dwa` rows.
+};
+
+inline const EnumNameList<LocalPlanner>& enumNames(LocalPlanner) {
+  static const EnumNameList<LocalPlanner> names{{LocalPlanner::kPolicy, "policy"},
+                                                {LocalPlanner::kDwa, "dwa"}};
+  return names;
+}
+
+/// What drives a navigation robot towards its goals (DwaLocalPlanner for the baseline).
+struct LocalPlannerParams {
+  LocalPlanner planner = LocalPlanner::kPolicy;  ///< The policy, or the DWA baseline.
+  DwaConfig dwa;  ///< The baseline's; max_vel_x the policy's top speed unless given.
+};
+
 /// Private parameters of jetbot_deploy_node: a trained policy driving a robot (odometry, and a
 /// scan and goals for navigation, in; cmd_vel out). Defaults suit the stock Jetbot's ROS 2 driver
 /// (dusty-nv/jetbot_ros). What the policy was trained with (task, control rate, action bounds,
@@ -77,6 +96,7 @@ struct DeployParams {
   DriverParams driver;          ///< The driver's.
   MoveBaseServerParams server;  ///< The move_base action's (a task with a goal).
   GoalPursuitParams pursuit;    ///< A goal's pursuit's (a task with a goal).
+  LocalPlannerParams local;     ///< What drives towards the goal (a task with a goal).
 };
 
 template <typename C, typename V>
@@ -178,6 +198,13 @@ IfConfig<C, DeployParams> visitFields(C& c, V&& v) {
     "re-plans around what the scan sees.");
   v("path_replan_period", c.pursuit.path_replan_period, positive("s, wall"),
     "Path: at most one re-plan per this.");
+  v("local_planner", c.local.planner, AnyValue{},
+    "Navigation: what drives towards a goal where the policy would: policy (the checkpoint's), "
+    "or dwa, the dynamic window approach as move_base's dwa_local_planner defines it (the "
+    "navigation benchmark's classical rows) on the scan and the way to the goal (the plan, or "
+    "the straight line without a map), with the dwa/... parameters below (dwa/max_vel_x: the "
+    "policy's top speed unless given). The goal's turns, arrival and recoveries are the same.");
+  visitFields(c.local.dwa, v);
 }
 
 /// checkpoint given; dof_names two wheel joints.

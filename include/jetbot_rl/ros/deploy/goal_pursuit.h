@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "jetbot_rl/planning/goal_watch.h"
 #include "jetbot_rl/robot/diff_drive.h"
@@ -79,6 +80,11 @@ class GoalPursuit {
   bool active() const { return server_.goal().has_value(); }
   /// The goal's phase.
   Phase phase() const { return phase_; }
+  /// With a plan: the plan and its point `distance` [m] past the robot, in the odometry frame of
+  /// the last step (PathFollower::way()); false without one (the way is the straight line).
+  bool way(double distance, std::vector<Eigen::Vector2d>& points, Eigen::Vector2d& ahead) const {
+    return path_ && path_->way(distance, points, ahead);
+  }
   /// What the driver's status tells: the goal topic, plans, re-plans and recoveries.
   std::string describe() const;
   void addStatus(const std::function<void(const std::string&, const std::string&)>& add) const;

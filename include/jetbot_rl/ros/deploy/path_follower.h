@@ -60,6 +60,9 @@ class PathFollower {
   int replans() const { return replans_; }
   /// The current plan's points (the map's frame).
   const std::vector<Eigen::Vector2d>& points() const { return tracker_.points(); }
+  /// The plan in the odometry frame of the last follow() step, and its point `distance` [m] past
+  /// the robot (the goal at its end), for a local planner that follows it; false without a plan.
+  bool way(double distance, std::vector<Eigen::Vector2d>& points, Eigen::Vector2d& ahead) const;
 
  private:
   /// The scan's endpoints in the map's frame (none without a scan or its transform).
@@ -75,6 +78,7 @@ class PathFollower {
   std::string map_frame_;
   std::optional<Eigen::Vector2d> goal_;  // the map's frame
   PathTracker tracker_;
+  Eigen::Isometry2d odom_map_ = Eigen::Isometry2d::Identity();  // at the last follow() step
   ros::WallTime last_plan_;
   int plans_ = 0, replans_ = 0;
 };
