@@ -107,7 +107,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
           stand("goal canceled", false);
           publish(geometry_msgs::Twist(), true);
         });
-    inputs += " and " + pursuit_->describe();
+    inputs += " and " + pursuit_->describe(p.local.planner == LocalPlanner::kDwa);
   }
   if (p.local.planner == LocalPlanner::kDwa) {
     if (!pursuit_ || !scan_) {

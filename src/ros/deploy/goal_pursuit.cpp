@@ -83,14 +83,15 @@ GoalPursuit::GoalPursuit(ros::NodeHandle& nh, ros::NodeHandle& pnh, const GoalPu
 
 double GoalPursuit::now() { return ros::WallTime::now().toSec(); }
 
-std::string GoalPursuit::describe() const {
+std::string GoalPursuit::describe(bool dwa) const {
   std::ostringstream s;
   s << "goals on the action " << server_.actionName() << " and on " << server_.topic();
   if (path_) {
     s << ", plans on " << params_.map_topic << " (~plan; "
-      << (path_lookahead_ > 0.0 ? "the policy observes them"
-                                : "the policy's goal a carrot " +
-                                      std::to_string(params_.carrot_distance) + " m along them")
+      << (dwa                     ? std::string("the DWA follows them")
+          : path_lookahead_ > 0.0 ? std::string("the policy observes them")
+                                  : "the policy's goal a carrot " +
+                                        std::to_string(params_.carrot_distance) + " m along them")
       << ")";
   }
   return s.str();

@@ -85,8 +85,9 @@ class GoalPursuit {
   bool way(double distance, std::vector<Eigen::Vector2d>& points, Eigen::Vector2d& ahead) const {
     return path_ && path_->way(distance, points, ahead);
   }
-  /// What the driver's status tells: the goal topic, plans, re-plans and recoveries.
-  std::string describe() const;
+  /// The goal topic and plans (followed by the DWA with `dwa`), for the start-up line.
+  std::string describe(bool dwa = false) const;
+  /// What the driver's status tells: the goal, plans, re-plans and recoveries.
   void addStatus(const std::function<void(const std::string&, const std::string&)>& add) const;
 
  private:
