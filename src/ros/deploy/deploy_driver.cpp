@@ -78,6 +78,15 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
                       " scan beams; " + std::to_string(trained_.scan_beam_angles.size()) +
                       " are known");
   }
+  if (p.local.planner == LocalPlanner::kDwa) {  // checked before the scan, goals and timers
+    if (!observer.hasGoal() || observer.scanBeams() == 0) {
+      throwInvalid("local_planner", "dwa",
+                   "drives towards goals on the robot's scan: the checkpoint's task '" +
+                       policy.meta().spec.task + "' has " +
+                       (observer.hasGoal() ? "no scan" : "no goals"));
+    }
+    dwa_ = std::make_unique<DwaLocalPlanner>(p.local.dwa, p.pursuit.footprint_radius);
+  }
   last_action_.assign(static_cast<std::size_t>(policy.actionDim()), 0.0f);
   cmd_vel_pub_ = nh.advertise<geometry_msgs::Twist>(p.driver.cmd_vel_topic, 10);
   status_pub_ = nh.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
@@ -107,15 +116,7 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
           stand("goal canceled", false);
           publish(geometry_msgs::Twist(), true);
         });
-    inputs += " and " + pursuit_->describe(p.local.planner == LocalPlanner::kDwa);
-  }
-  if (p.local.planner == LocalPlanner::kDwa) {
-    if (!pursuit_ || !scan_) {
-      throwInvalid("local_planner", "dwa",
-                   "drives towards goals on the robot's scan: the checkpoint's task '" +
-                       policy.meta().spec.task + "' has " + (pursuit_ ? "no scan" : "no goals"));
-    }
-    dwa_ = std::make_unique<DwaLocalPlanner>(p.local.dwa, p.pursuit.footprint_radius);
+    inputs += " and " + pursuit_->describe(dwa_ != nullptr);
   }
   if (observer.takesCommand()) {
     command_sub_ = nh.subscribe(resolvePrivateTopic(pnh, p.driver.command_topic), 10,
