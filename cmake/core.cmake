@@ -74,6 +74,7 @@ add_library(jetbot_rl_core
   src/core/tasks/task_factory.cpp
   src/core/tasks/track.cpp
   src/core/tasks/velocity_task.cpp
+  src/core/world/barn_field.cpp
   src/core/world/gazebo/gazebo_world_model.cpp
   src/core/world/gazebo/inertia_free_models.cpp
   src/core/world/gazebo/mesh_loader.cpp

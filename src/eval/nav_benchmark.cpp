@@ -32,7 +32,7 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
   world.random_start = true;
   world.curriculum = false;
   std::vector<BenchmarkWorld> worlds;
-  for (const char* family : {"clutter", "rooms", "maze"}) {
+  for (const char* family : {"clutter", "rooms", "maze", "barn"}) {
     for (const double difficulty : {0.0, 0.5, 1.0}) {
       BenchmarkWorld w{std::string(family) + " " +
                            (difficulty == 0.0   ? "0"
@@ -45,6 +45,24 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
       generated.families = {family};
       generated.family_weights.clear();
       generated.difficulty = difficulty;
+      // A BARN field of 6 x 6 m holds about 1,200 posts at 1: none left out.
+      generated.max_generated_obstacles = std::max(generated.max_generated_obstacles, 4000);
+      worlds.push_back(std::move(w));
+    }
+  }
+  // Tight passages: the densest clutter and rooms with their narrowest gaps and doors 1.3 and
+  // 1.05 robot widths (the BARN benchmark's narrowest for a Jackal), where a family's hardest
+  // keeps 1.5.
+  for (const char* family : {"clutter", "rooms"}) {
+    for (const double widths : {1.3, 1.05}) {
+      BenchmarkWorld w{std::string(family) + (widths == 1.3 ? " 1.3w" : " 1.05w"), common};
+      WorldConfig& generated = w.setup.env.world;
+      generated.arena_size = {6.0, 6.0};
+      generated.start_clearance = 0.3;
+      generated.families = {family};
+      generated.family_weights.clear();
+      generated.difficulty = 1.0;
+      generated.passage_widths = {widths, widths};
       worlds.push_back(std::move(w));
     }
   }
@@ -85,6 +103,7 @@ BenchmarkResult runNavigationBenchmark(EpisodeActor& actor, BatchedEnv& env, int
                       env.task().name() + ")");
   }
   NavigationMetrics metrics(env, *task, top_speed);
+  const std::uint64_t unmade_before = env.layoutsUnmade();
   const EpisodeTotals totals = runEpisodes(actor, env, std::max(episodes, 1), max_steps, &metrics);
   BenchmarkResult result;
   result.episodes = static_cast<int>(totals.episodes);
@@ -94,6 +113,7 @@ BenchmarkResult runNavigationBenchmark(EpisodeActor& actor, BatchedEnv& env, int
   result.success = totals.outcomes[1] / n;
   result.collision = totals.outcomes[2] / n;
   result.metrics = metrics.result();
+  result.layouts_unmade = env.layoutsUnmade() - unmade_before;
   return result;
 }
 

@@ -90,6 +90,12 @@ int main(int argc, char** argv) {
                   world.c_str(), planner, r.episodes, r.success, r.collision, r.timeout,
                   m.time_to_goal, m.path_ratio, m.spl, m.barn_score, m.time_ratio,
                   m.angular_smoothness, r.steps_ran_out ? "  (the steps ran out first)" : "");
+      // An easier row than its name says: never silently.
+      if (r.layouts_unmade > 0) {
+        std::printf(
+            "#   %s: %llu generated layouts could not be made (in the bare arena instead)\n",
+            world.c_str(), static_cast<unsigned long long>(r.layouts_unmade));
+      }
       std::fflush(stdout);
     };
     // The classical baseline at the robot's top speed, its dwa/... parameters from the --config

@@ -63,11 +63,14 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   const std::string room = std::string(JETBOT_RL_SOURCE_DIR) + "/worlds/furnished_room.world";
   const auto worlds = navigationBenchmarkWorlds(
       base, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml", room);
-  ASSERT_EQ(worlds.size(), 11u);
+  ASSERT_EQ(worlds.size(), 18u);
   EXPECT_EQ(worlds[0].name, "clutter 0");
   EXPECT_EQ(worlds[8].name, "maze 1");
-  EXPECT_EQ(worlds[9].name, "map 1-15 m");
-  EXPECT_EQ(worlds[10].name, "gazebo 1-6 m");
+  EXPECT_EQ(worlds[11].name, "barn 1");
+  EXPECT_EQ(worlds[12].name, "clutter 1.3w");
+  EXPECT_EQ(worlds[15].name, "rooms 1.05w");
+  EXPECT_EQ(worlds[16].name, "map 1-15 m");
+  EXPECT_EQ(worlds[17].name, "gazebo 1-6 m");
   for (const BenchmarkWorld& w : worlds) {
     EXPECT_NO_THROW(makeEnv(lidarJetbot(), benchmarkSetup(w, 2))) << w.name;
     // The world's own episode length, over the env's (20 s), and the rest of the env kept.
@@ -82,6 +85,15 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   EXPECT_EQ(worlds[4].setup.env.world.difficulty, 0.5);
   EXPECT_EQ(worlds[4].setup.env.world.arena_size, (std::vector<double>{6.0, 6.0}));
   EXPECT_TRUE(worlds[4].setup.env.world.map.empty());
+  // BARN's fields keep every post; the tight rows are the hardest layouts at narrower passages.
+  EXPECT_GE(worlds[11].setup.env.world.max_generated_obstacles, 4000);
+  EXPECT_EQ(worlds[11].setup.env.world.families, (std::vector<std::string>{"barn"}));
+  EXPECT_EQ(worlds[13].setup.env.world.families, (std::vector<std::string>{"clutter"}));
+  EXPECT_EQ(worlds[13].setup.env.world.difficulty, 1.0);
+  EXPECT_EQ(worlds[13].setup.env.world.passage_widths, (std::vector<double>{1.05, 1.05}));
+  EXPECT_EQ(worlds[14].setup.env.world.families, (std::vector<std::string>{"rooms"}));
+  EXPECT_EQ(worlds[14].setup.env.world.passage_widths, (std::vector<double>{1.3, 1.3}));
+  EXPECT_EQ(worlds[3].setup.env.world.passage_widths, (std::vector<double>{1.5, 4.0}));
   // A slower robot gets the time to drive the longest way at 0.75 of its top speed.
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.6), 60.0);
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.264), 27.0 / (0.75 * 0.264));
@@ -89,18 +101,18 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   EXPECT_DOUBLE_EQ(benchmarkEpisodeS(0.0), 60.0);
   EXPECT_DOUBLE_EQ(
       navigationBenchmarkWorlds(base, "m.yaml", "", 136.0)[4].setup.env.episode_length_s, 136.0);
-  const EnvSetup map = worlds[9].setup;
+  const EnvSetup map = worlds[16].setup;
   EXPECT_TRUE(map.env.world.families.empty());
   EXPECT_TRUE(map.env.world.arena_size.empty());
   EXPECT_EQ(map.env.world.map, std::string(JETBOT_RL_SOURCE_DIR) + "/maps/office.yaml");
   EXPECT_TRUE(map.task.navigation.goal_reachable);
   EXPECT_EQ(map.task.navigation.goal_distance, (std::vector<double>{1.0, 15.0}));
-  const EnvSetup gazebo = worlds[10].setup;
+  const EnvSetup gazebo = worlds[17].setup;
   EXPECT_EQ(gazebo.env.world.gazebo_world, room);
   EXPECT_TRUE(gazebo.env.world.map.empty());
   EXPECT_TRUE(gazebo.env.world.region.empty());  // where the robot can drive from its spawn
   EXPECT_TRUE(gazebo.task.navigation.goal_reachable);
-  EXPECT_EQ(navigationBenchmarkWorlds(base, "m.yaml", "").size(), 10u);
+  EXPECT_EQ(navigationBenchmarkWorlds(base, "m.yaml", "").size(), 17u);
 }
 
 TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPath) {
@@ -118,6 +130,12 @@ TEST(NavBenchmark, EpisodesAreCountedAndSuccessesDriveNoShorterThanTheShortestPa
     EXPECT_LE(r.metrics.spl, r.success);  // each success's share is at most 1
     EXPECT_LE(r.metrics.barn_score, 0.25 * r.success);
   }
+  EXPECT_EQ(r.layouts_unmade, 0u);
+  // Goals that never fit the arena: every layout unmade, and the result counts them.
+  EnvSetup unfit = benchmarkSetup(worlds[3], 2);
+  unfit.task.navigation.goal_distance = {9.0, 10.0};
+  const std::unique_ptr<BatchedEnv> bare = makeEnv(lidarJetbot(), unfit);
+  EXPECT_GE(runNavigationBenchmark(policy, *bare, 4, 5000, 0.6).layouts_unmade, 2u);
   // With a quota the steps cannot meet, the result says so.
   const std::unique_ptr<BatchedEnv> again = makeEnv(lidarJetbot(), benchmarkSetup(worlds[3], 6));
   EXPECT_TRUE(runNavigationBenchmark(policy, *again, 600, 50, 0.6).steps_ran_out);

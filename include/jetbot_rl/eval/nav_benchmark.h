@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct BenchmarkResult {
   int episodes = 0;
   bool steps_ran_out = false;  ///< Not every env finished its quota of episodes.
   double success = 0.0, collision = 0.0, timeout = 0.0;  ///< Shares of the episodes.
+  /// Resets whose generated layout could not be made (run in the bare arena instead).
+  std::uint64_t layouts_unmade = 0;
   /// Time to goal, path over the shortest, SPL, BARN's score, smoothness (NavigationMetrics).
   NavigationMetricsResult metrics;
 };

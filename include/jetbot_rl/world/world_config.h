@@ -38,12 +38,14 @@ struct WorldConfig {
   std::vector<std::string> families;   ///< Families of generated layouts; []: none.
   std::vector<double> family_weights;  ///< How often each family is drawn; []: equally.
   double difficulty = 0.5;             ///< Of generated layouts, in [0, 1] (the start's).
-  int max_generated_obstacles = 400;   ///< Obstacle slots of a generated layout per env.
-  bool curriculum = false;             ///< Each env raises its difficulty with its successes.
-  int curriculum_episodes = 20;        ///< Episodes an env's success rate is counted over.
-  double curriculum_success = 0.8;     ///< The success rate that raises the difficulty.
-  double curriculum_step = 0.1;        ///< By this much.
-  double curriculum_mix = 0.0;         ///< Share of resets drawn at a difficulty below the env's.
+  /// The narrowest passage of generated layouts [robot widths]: [at difficulty 1, at 0].
+  std::vector<double> passage_widths{1.5, 4.0};
+  int max_generated_obstacles = 400;  ///< Obstacle slots of a generated layout per env.
+  bool curriculum = false;            ///< Each env raises its difficulty with its successes.
+  int curriculum_episodes = 20;       ///< Episodes an env's success rate is counted over.
+  double curriculum_success = 0.8;    ///< The success rate that raises the difficulty.
+  double curriculum_step = 0.1;       ///< By this much.
+  double curriculum_mix = 0.0;        ///< Share of resets drawn at a difficulty below the env's.
   /// Not a parameter: a Gazebo world's <visual> elements are read too (a camera draws them).
   bool read_visuals = false;
   /// Not a parameter: false for a program that only reads the world (jetbot_rl_world_map): no
@@ -133,14 +135,19 @@ IfConfig<C, WorldConfig> visitFields(C& c, V&& v) {
     "in all (about 40 ms), and those not placed by then are left out and counted too.");
   v("world/families", c.families, NameList{"", true},
     "Generated layouts, drawn per env at every reset inside the arena: clutter (posts and "
-    "crates), rooms (a floor plan with doors) or maze; several: each reset draws one by "
+    "crates), rooms (a floor plan with doors), maze or barn (posts grown by a cellular "
+    "automaton, as the BARN benchmark's worlds); several: each reset draws one by "
     "family_weights. []: none (the random boxes and cylinders above).");
   v("world/family_weights", c.family_weights, EachValue<double>{atLeast(0.0)},
     "How often each family is drawn (one per family, not all 0); []: equally.");
   v("world/difficulty", c.difficulty, inRange(0.0, 1.0),
-    "Of generated layouts: their density, their narrowest passage (from four robot widths at 0 "
-    "to 1.5 at 1) and their rooms' and maze cells' size; with the curriculum, where every env "
-    "starts.");
+    "Of generated layouts: their density, their narrowest passage (passage_widths) and their "
+    "rooms' and maze cells' size; with the curriculum, where every env starts.");
+  v("world/passage_widths", c.passage_widths,
+    intervalOf(Range<double>{1.0, 20.0, true, false, "robot widths"}),
+    "[at difficulty 1, at 0]: the narrowest passage generated layouts keep, in robot widths "
+    "(twice the footprint radius), from the second at difficulty 0 down to the first at 1 "
+    "(between obstacles, doors, maze corridors).");
   v("world/max_generated_obstacles", c.max_generated_obstacles, inRange(1, 100000),
     "Obstacle slots of a generated layout per env (walls included); more are left out and "
     "counted.");

@@ -22,12 +22,14 @@ enum class WorldFamily {
   kClutter,  ///< Posts and crates on a jittered grid; denser and narrower with difficulty.
   kRooms,    ///< A floor plan: rooms in a grid, a door in each wall between them, furniture.
   kMaze,     ///< A perfect maze (one way between any two cells) of smaller cells with difficulty.
+  kBarn,     ///< BARN's fields: posts grown by a cellular automaton, gaps of 1.05-1.3 widths at 1.
 };
 
 inline const EnumNameList<WorldFamily>& enumNames(WorldFamily) {
   static const EnumNameList<WorldFamily> names{{WorldFamily::kClutter, "clutter"},
                                                {WorldFamily::kRooms, "rooms"},
-                                               {WorldFamily::kMaze, "maze"}};
+                                               {WorldFamily::kMaze, "maze"},
+                                               {WorldFamily::kBarn, "barn"}};
   return names;
 }
 
@@ -37,10 +39,12 @@ struct GenerationArea {
   double robot_radius = 0.1;     ///< The robot's footprint [m]: passages keep it through.
   double height = 0.5;           ///< Of the walls and obstacles [m].
   double wall_thickness = 0.05;  ///< Of generated walls [m].
+  /// The narrowest passage at difficulty 1 and at 0 [robot widths] (world/passage_widths).
+  double passage_widths_hard = 1.5, passage_widths_easy = 4.0;
 };
 
-/// The narrowest passage a family leaves at `difficulty` [m]: from four robot widths at 0 down
-/// to 1.5 at 1 (clutter, doors, maze corridors alike).
+/// The narrowest passage a family leaves at `difficulty` [m]: from passage_widths_easy robot
+/// widths at 0 down to passage_widths_hard at 1 (clutter, doors, maze corridors alike).
 double narrowestPassage(const GenerationArea& a, double difficulty);
 
 /// Appends to `out` the obstacles (boxes, cylinders; walls as thin boxes) of a layout of

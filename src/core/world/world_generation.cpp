@@ -10,6 +10,7 @@
 #include "jetbot_rl/numeric.h"
 #include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
+#include "world/barn_field.h"
 
 namespace jetbot_rl {
 namespace {
@@ -210,6 +211,8 @@ GenerationArea areaOf(const WorldModel& world) {
   a.robot_radius = world.robotRadius();
   a.height = world.config().obstacle_height;
   a.wall_thickness = world.config().wall_thickness;
+  a.passage_widths_hard = world.config().passage_widths[0];
+  a.passage_widths_easy = world.config().passage_widths[1];
   return a;
 }
 
@@ -313,7 +316,8 @@ void checkGeneratedLayouts(const WorldModel& world) {
 
 double narrowestPassage(const GenerationArea& a, double difficulty) {
   const double width = 2.0 * a.robot_radius;
-  return lerp(4.0 * width, 1.5 * width, std::clamp(difficulty, 0.0, 1.0));
+  return lerp(a.passage_widths_easy * width, a.passage_widths_hard * width,
+              std::clamp(difficulty, 0.0, 1.0));
 }
 
 int generateObstacles(WorldFamily family, double difficulty, const GenerationArea& area, Rng& rng,
@@ -329,6 +333,9 @@ int generateObstacles(WorldFamily family, double difficulty, const GenerationAre
       break;
     case WorldFamily::kMaze:
       maze(d, area, rng, max_obstacles, out, left_out);
+      break;
+    case WorldFamily::kBarn:
+      barnField(d, area, rng, max_obstacles, out, left_out);
       break;
   }
   return left_out;
