@@ -54,6 +54,7 @@ catkin_add_gtest(test_core
   test/core/test_notebook_dataset.cpp
   test/core/test_task_observers.cpp
   test/core/test_world_generation.cpp
+  test/core/test_barn_field.cpp
   test/core/test_grid_planner.cpp
   test/core/test_dwa_planner.cpp
   test/core/test_map_planner.cpp

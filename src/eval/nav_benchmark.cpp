@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/eval/episode_loop.h"
@@ -32,38 +33,35 @@ std::vector<BenchmarkWorld> navigationBenchmarkWorlds(const EnvSetup& base, cons
   world.random_start = true;
   world.curriculum = false;
   std::vector<BenchmarkWorld> worlds;
+  // A generated family's layouts in a 6 x 6 m arena, at one difficulty.
+  const auto generated = [&](const std::string& name, const std::string& family,
+                             double difficulty) -> WorldConfig& {
+    worlds.push_back(BenchmarkWorld{name, common});
+    WorldConfig& w = worlds.back().setup.env.world;
+    w.arena_size = {6.0, 6.0};
+    w.start_clearance = 0.3;
+    w.families = {family};
+    w.family_weights.clear();
+    w.difficulty = difficulty;
+    return w;
+  };
   for (const char* family : {"clutter", "rooms", "maze", "barn"}) {
-    for (const double difficulty : {0.0, 0.5, 1.0}) {
-      BenchmarkWorld w{std::string(family) + " " +
-                           (difficulty == 0.0   ? "0"
-                            : difficulty == 0.5 ? "0.5"
-                                                : "1"),
-                       common};
-      WorldConfig& generated = w.setup.env.world;
-      generated.arena_size = {6.0, 6.0};
-      generated.start_clearance = 0.3;
-      generated.families = {family};
-      generated.family_weights.clear();
-      generated.difficulty = difficulty;
+    for (const char* difficulty : {"0", "0.5", "1"}) {
+      WorldConfig& w =
+          generated(std::string(family) + " " + difficulty, family, std::stod(difficulty));
       // A BARN field of 6 x 6 m holds about 1,200 posts at 1: none left out.
-      generated.max_generated_obstacles = std::max(generated.max_generated_obstacles, 4000);
-      worlds.push_back(std::move(w));
+      if (w.families[0] == "barn") {
+        w.max_generated_obstacles = std::max(w.max_generated_obstacles, 4000);
+      }
     }
   }
   // Tight passages: the densest clutter and rooms with their narrowest gaps and doors 1.3 and
   // 1.05 robot widths (the BARN benchmark's narrowest for a Jackal), where a family's hardest
   // keeps 1.5.
   for (const char* family : {"clutter", "rooms"}) {
-    for (const double widths : {1.3, 1.05}) {
-      BenchmarkWorld w{std::string(family) + (widths == 1.3 ? " 1.3w" : " 1.05w"), common};
-      WorldConfig& generated = w.setup.env.world;
-      generated.arena_size = {6.0, 6.0};
-      generated.start_clearance = 0.3;
-      generated.families = {family};
-      generated.family_weights.clear();
-      generated.difficulty = 1.0;
-      generated.passage_widths = {widths, widths};
-      worlds.push_back(std::move(w));
+    for (const char* widths : {"1.3", "1.05"}) {
+      generated(std::string(family) + " " + widths + "w", family, 1.0).passage_widths =
+          std::vector<double>(2, std::stod(widths));
     }
   }
   BenchmarkWorld office{"map 1-15 m", common};

@@ -87,6 +87,8 @@ TEST(NavBenchmark, EveryWorldBuildsAndNamesItself) {
   EXPECT_TRUE(worlds[4].setup.env.world.map.empty());
   // BARN's fields keep every post; the tight rows are the hardest layouts at narrower passages.
   EXPECT_GE(worlds[11].setup.env.world.max_generated_obstacles, 4000);
+  EXPECT_EQ(worlds[2].setup.env.world.max_generated_obstacles,
+            base.env.world.max_generated_obstacles);  // the other families' slots as given
   EXPECT_EQ(worlds[11].setup.env.world.families, (std::vector<std::string>{"barn"}));
   EXPECT_EQ(worlds[13].setup.env.world.families, (std::vector<std::string>{"clutter"}));
   EXPECT_EQ(worlds[13].setup.env.world.difficulty, 1.0);

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "jetbot_rl/numeric.h"
+
 namespace jetbot_rl {
 namespace {
-
-double mix(double a, double b, double t) { return a + (b - a) * t; }
 
 /// Filled cells among the 8 around (x, y); cells outside the grid count as empty.
 int filledAround(const std::vector<std::uint8_t>& cells, int nx, int ny, int x, int y) {
@@ -32,13 +32,13 @@ void barnField(double d, const GenerationArea& a, Rng& rng, int max, std::vector
   // (a cell starts filled with probability 0.15 to 0.3; denser fields leave no start with its
   // clearance and no goal a path reaches).
   const double width = 2.0 * a.robot_radius;
-  const double gap = width * mix(mix(1.5, 1.05, d), mix(1.8, 1.3, d), rng.uniform());
+  const double gap = width * lerp(lerp(1.5, 1.05, d), lerp(1.8, 1.3, d), rng.uniform());
   const double cell = gap / 3.0;
   const int nx = std::max(1, static_cast<int>(a.area.sizes().x() / cell));
   const int ny = std::max(1, static_cast<int>(a.area.sizes().y() / cell));
   const Eigen::Vector2d lo =
       a.area.center() - 0.5 * cell * Eigen::Vector2d(static_cast<double>(nx), ny);
-  const double fill = mix(0.15, 0.3, d);
+  const double fill = lerp(0.15, 0.3, d);
   std::vector<std::uint8_t> cells(static_cast<std::size_t>(nx) * ny), next(cells.size());
   for (auto& c : cells) c = rng.uniform() < fill ? 1 : 0;
   // BARN's smoothing: a cell with 5 or more filled neighbours fills, one with 1 or none empties,
@@ -65,11 +65,7 @@ void barnField(double d, const GenerationArea& a, Rng& rng, int max, std::vector
       post.center = lo + cell * Eigen::Vector2d(x + 0.5, y + 0.5);
       post.radius = 0.5 * cell;
       post.height = a.height;
-      if (static_cast<int>(out.size()) < max) {
-        out.push_back(post);
-      } else {
-        ++left_out;
-      }
+      addObstacle(post, max, out, left_out);
     }
   }
 }

@@ -15,8 +15,6 @@
 namespace jetbot_rl {
 namespace {
 
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
-
 Obstacle box(const Eigen::Vector2d& center, double half_x, double half_y, double yaw,
              double height) {
   Obstacle o;
@@ -43,15 +41,6 @@ Obstacle thing(Rng& rng, const Eigen::Vector2d& center, double max_radius, doubl
              uniform(rng, -kPi, kPi), height);
 }
 
-/// Adds `o` unless `out` already holds `max` obstacles; counts what is left out.
-void add(const Obstacle& o, int max, std::vector<Obstacle>& out, int& left_out) {
-  if (static_cast<int>(out.size()) < max) {
-    out.push_back(o);
-  } else {
-    ++left_out;
-  }
-}
-
 /// Clutter: a grid of cells each a passage plus an obstacle wide, inset by half a passage from
 /// the walls; each cell holds an obstacle with a probability growing with difficulty, anywhere
 /// that keeps half a passage from the cell's edges: obstacles stay a passage apart.
@@ -75,7 +64,7 @@ void clutter(double d, const GenerationArea& a, Rng& rng, int max, std::vector<O
       const Eigen::Vector2d center =
           corner + Eigen::Vector2d(0.5 * passage + r + slack_x * rng.uniform(),
                                    0.5 * passage + r + slack_y * rng.uniform());
-      add(thing(rng, center, r, a.height), max, out, left_out);
+      addObstacle(thing(rng, center, r, a.height), max, out, left_out);
     }
   }
 }
@@ -94,9 +83,9 @@ void wallWithDoor(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double
   for (const auto& [s0, s1] :
        {std::array<double, 2>{0.0, at}, std::array<double, 2>{at + opening, length}}) {
     if (s1 - s0 <= 1e-6) continue;
-    add(box(from + unit * (0.5 * (s0 + s1)), 0.5 * (s1 - s0), 0.5 * a.wall_thickness, yaw,
-            a.height),
-        max, out, left_out);
+    addObstacle(box(from + unit * (0.5 * (s0 + s1)), 0.5 * (s1 - s0), 0.5 * a.wall_thickness, yaw,
+                    a.height),
+                max, out, left_out);
   }
 }
 
@@ -129,7 +118,7 @@ void rooms(double d, const GenerationArea& a, Rng& rng, int max, std::vector<Obs
         if (free_x <= 0.0 || free_y <= 0.0) continue;
         const Eigen::Vector2d c = corner + Eigen::Vector2d(keep + r + free_x * rng.uniform(),
                                                            keep + r + free_y * rng.uniform());
-        add(thing(rng, c, r, a.height), max, out, left_out);
+        addObstacle(thing(rng, c, r, a.height), max, out, left_out);
       }
     }
   }
@@ -175,14 +164,14 @@ void maze(double d, const GenerationArea& a, Rng& rng, int max, std::vector<Obst
     for (int x = 0; x < nx; ++x) {
       const Eigen::Vector2d c0 = lo + Eigen::Vector2d(x * cell.x(), y * cell.y());
       if (x + 1 < nx && !open[y * nx + x][0]) {
-        add(box(c0 + Eigen::Vector2d(cell.x(), 0.5 * cell.y()), 0.5 * t, 0.5 * (cell.y() + t), 0.0,
-                a.height),
-            max, out, left_out);
+        addObstacle(box(c0 + Eigen::Vector2d(cell.x(), 0.5 * cell.y()), 0.5 * t,
+                        0.5 * (cell.y() + t), 0.0, a.height),
+                    max, out, left_out);
       }
       if (y + 1 < ny && !open[y * nx + x][1]) {
-        add(box(c0 + Eigen::Vector2d(0.5 * cell.x(), cell.y()), 0.5 * (cell.x() + t), 0.5 * t, 0.0,
-                a.height),
-            max, out, left_out);
+        addObstacle(box(c0 + Eigen::Vector2d(0.5 * cell.x(), cell.y()), 0.5 * (cell.x() + t),
+                        0.5 * t, 0.0, a.height),
+                    max, out, left_out);
       }
     }
   }
