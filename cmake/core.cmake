@@ -78,6 +78,7 @@ add_library(jetbot_rl_core
   src/core/world/gazebo/gazebo_world_model.cpp
   src/core/world/gazebo/inertia_free_models.cpp
   src/core/world/gazebo/mesh_loader.cpp
+  src/core/world/gazebo/plain_models.cpp
   src/core/world/gazebo/saved_state.cpp
   src/core/world/gazebo/sdf_prepass.cpp
   src/core/world/gazebo/sdf_shapes.cpp

@@ -42,6 +42,7 @@ catkin_add_gtest(test_core
   test/core/test_world.cpp
   test/core/test_spawn_reach.cpp
   test/core/test_gazebo_world.cpp
+  test/core/test_plain_models.cpp
   test/core/test_published_world_quirks.cpp
   test/core/test_saved_state.cpp
   test/core/test_hostile_world_files.cpp

@@ -96,7 +96,7 @@ TEST(SavedState, WithoutAStateTheModelsStandWhereTheirPosesSay) {
 }
 
 TEST(SavedState, RepeatedModelsTheStatePosesAreReadEachAtItsSavedPose) {
-  // Two like posts are folded into one read (foldRepeatedModels) unless the state poses them.
+  // Two like posts are folded into one read (prepassWorld) unless the state poses them.
   const std::string post = boxLink("link", "0 0 0 0 0 0");
   const GazeboWorld w = loadGazeboWorld(test::sdfWorld(
       "posts.world", model("post_a", "0 0 0 0 0 0", post) + model("post_b", "1 0 0 0 0 0", post) +

@@ -410,9 +410,9 @@ std::string describeWorld(const WorldModel& world) {
   std::ostringstream s;
   s << "world:";
   if (const GazeboWorld* g = world.gazebo()) {
-    s << " Gazebo world " << g->path << " ('" << g->name << "': " << g->models << " models, "
-      << g->solids.size() << " collisions; cut at " << world.cutHeight()
-      << " m: " << world.worldObstacles().size()
+    s << " Gazebo world " << g->path << " ('" << g->name << "': " << g->models << " models ("
+      << g->plain_models << " plain, " << g->repeated_models << " repeats), " << g->solids.size()
+      << " collisions; cut at " << world.cutHeight() << " m: " << world.worldObstacles().size()
       << " upright boxes and cylinders, exact, the rest as " << world.mapRectangles().size()
       << " rectangles of a grid of " << world.map()->width << " x " << world.map()->height
       << " cells of " << world.map()->resolution << " m);";

@@ -42,6 +42,10 @@ struct GazeboWorld {
   std::vector<WorldSolid> solids;    ///< Every model's collisions, at the models' initial poses.
   std::vector<WorldVisual> visuals;  ///< Every model's visuals, likewise.
   int models = 0;                    ///< Models read, nested ones included.
+  /// Of the world's top-level models: those read without sdformat (plain ones: links of boxes,
+  /// cylinders and spheres at plain poses), and those that repeat an earlier one but for their
+  /// name and pose (its shapes moved). sdformat copies a model's description per model read.
+  int plain_models = 0, repeated_models = 0;
   /// What was not read, for one INFO line (lights, plugins, planes, ...); "" when nothing.
   std::string skipped;
   /// Links whose inertia sdformat refuses and Gazebo 11 loads (collision shapes need none),

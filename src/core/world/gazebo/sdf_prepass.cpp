@@ -11,6 +11,7 @@
 
 #include "jetbot_rl/config/file_checks.h"
 #include "world/gazebo/inertia_free_models.h"
+#include "world/gazebo/plain_models.h"
 #include "world/gazebo/sdf_names.h"
 
 namespace jetbot_rl {
@@ -30,6 +31,12 @@ std::string shapeKey(const tinyxml2::XMLElement& e) {
   return printer.CStr();
 }
 
+/// True when the state poses a link of model `name`.
+bool linkInState(const SavedState& state, const std::string& name) {
+  const auto it = state.links.lower_bound(name + "::");
+  return it != state.links.end() && it->first.rfind(name + "::", 0) == 0;
+}
+
 bool hasPlacementFrame(const tinyxml2::XMLElement& e) {
   return e.Attribute("placement_frame") || e.FirstChildElement("placement_frame");
 }
@@ -45,6 +52,41 @@ std::string modelFile(const std::filesystem::path& folder) {
     if (sdf && sdf->GetText()) return (folder / sdf->GetText()).string();
   }
   return (folder / "model.sdf").string();
+}
+
+std::string includeUri(const tinyxml2::XMLElement& include) {
+  const tinyxml2::XMLElement* uri = include.FirstChildElement("uri");
+  return uri && uri->GetText() ? uri->GetText() : "";
+}
+
+/// The SDF file an <include> names (relative to `folder`, absolute, or through `find`), as
+/// sdformat follows it; "" when not found.
+std::string includedFile(const tinyxml2::XMLElement& include, const std::filesystem::path& folder,
+                         const IncludeFinder& find) {
+  const std::string text = includeUri(include);
+  std::string found;
+  if (!text.empty() && text.find("://") == std::string::npos && text[0] != '/') {
+    found = (folder / text).lexically_normal().string();
+  } else if (!text.empty()) {
+    found = text[0] == '/' ? text : find(text);
+  }
+  if (found.empty()) return "";
+  return std::filesystem::is_directory(found) ? modelFile(found) : found;
+}
+
+/// False when the include brings no model into the world (a light: Gazebo's model://sun).
+bool includesModel(const tinyxml2::XMLElement& include, const std::filesystem::path& folder,
+                   const IncludeFinder& find, std::map<std::string, bool>& known) {
+  const std::string file = includedFile(include, folder, find);
+  const auto [it, is_new] = known.emplace(file, true);
+  tinyxml2::XMLDocument doc;
+  if (is_new && !file.empty() && fileProblem(file).empty() &&
+      doc.LoadFile(file.c_str()) == tinyxml2::XML_SUCCESS) {
+    const tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
+    const tinyxml2::XMLElement* first = sdf ? sdf->FirstChildElement() : nullptr;
+    it->second = !first || std::string(first->Name()) == "model";
+  }
+  return it->second;
 }
 
 class IncludeWalk {
@@ -87,20 +129,12 @@ class IncludeWalk {
                     const std::filesystem::path& folder) {
     for (; e; e = e->NextSiblingElement()) {
       if (std::string(e->Name()) == "include") {
-        const tinyxml2::XMLElement* uri = e->FirstChildElement("uri");
-        const std::string text = uri && uri->GetText() ? uri->GetText() : "";
-        std::string found;
-        if (!text.empty() && text.find("://") == std::string::npos && text[0] != '/') {
-          found = (folder / text).lexically_normal().string();
-        } else if (!text.empty()) {
-          found = text[0] == '/' ? text : find_(text);
-        }
-        if (found.empty()) continue;  // sdformat names what it cannot find
-        const std::string target = std::filesystem::is_directory(found) ? modelFile(found) : found;
+        const std::string target = includedFile(*e, folder, find_);
+        if (target.empty()) continue;  // sdformat names what it cannot find
         const std::string problem = walk(target);
         if (!problem.empty()) {
-          return file + ":" + std::to_string(e->GetLineNum()) + ": <include> of " + text + ": " +
-                 problem;
+          return file + ":" + std::to_string(e->GetLineNum()) + ": <include> of " + includeUri(*e) +
+                 ": " + problem;
         }
         continue;
       }
@@ -122,52 +156,72 @@ std::string includeProblem(const std::string& path, const IncludeFinder& find) {
   return IncludeWalk(find).walk(path);
 }
 
-std::string foldRepeatedModels(const std::string& path, std::vector<RepeatedModel>& repeats,
-                               std::vector<std::string>* refused_inertias, SavedState* state) {
-  repeats.clear();
+PrepassedWorld prepassWorld(const std::string& path, bool visuals, const IncludeFinder& find,
+                            std::vector<std::string>* refused_inertias, SavedState* state) {
+  PrepassedWorld out;
   tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return out;
   tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
   tinyxml2::XMLElement* world = sdf ? sdf->FirstChildElement("world") : nullptr;
-  if (!world) return "";
+  if (!world) return out;
   if (refused_inertias) stripInertials(*world, path, *refused_inertias);
   bool state_changed = false;
   if (state) *state = takeSavedState(*world, path, state_changed);
   const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+  // A name given twice is left to sdformat, which refuses it.
+  std::map<std::string, int> names;
+  for (const tinyxml2::XMLElement* e = world->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    ++names[std::string(e->Name()) == "include" ? entityName(*e) : nameAttribute(e)];
+  }
   std::map<std::string, std::string> first;  // shape key -> the first model's name
+  std::map<std::string, bool> model_files;   // included file -> whether it holds a model
+  std::size_t sdformat_models = 0;           // models left to sdformat so far
   for (tinyxml2::XMLElement* e = world->FirstChildElement(); e;) {
     tinyxml2::XMLElement* next = e->NextSiblingElement();
     const std::string tag = e->Name();
-    if (tag == "include") {  // the folded text is read from a string: no folder of its own
+    const bool include = tag == "include";
+    if (include) {  // the prepassed text is read from a string: no folder of its own
       tinyxml2::XMLElement* uri = e->FirstChildElement("uri");
-      const std::string text = uri && uri->GetText() ? uri->GetText() : "";
+      const std::string text = includeUri(*e);
       if (!text.empty() && text.find("://") == std::string::npos && text[0] != '/') {
         uri->SetText((folder / text).lexically_normal().c_str());
       }
     }
     const std::string name = entityName(*e);
-    if ((tag != "model" && tag != "include") || name.empty() || hasPlacementFrame(*e) ||
-        (state && state->models.count(name))) {  // a saved pose of its own: read as it is
+    ignition::math::Pose3d pose;
+    // Read by sdformat as it is: not a model, a name sdformat would question, a placement frame,
+    // a pose of the saved state's or one that is more than six numbers, an include that does
+    // not say where (its model's own pose then counts).
+    if ((tag != "model" && !include) || !ordinaryName(name) || names[name] > 1 ||
+        hasPlacementFrame(*e) ||
+        (state && (state->models.count(name) || linkInState(*state, name))) ||
+        !readPlainPose(*e, pose) || (include && !e->FirstChildElement("pose"))) {
+      if (tag == "model" || (include && includesModel(*e, folder, find, model_files))) {
+        ++sdformat_models;
+      }
       e = next;
       continue;
     }
     const auto [it, is_first] = first.emplace(shapeKey(*e), name);
+    PlainModel plain;
     if (!is_first) {
-      tinyxml2::XMLElement* frame = doc.NewElement("frame");
-      frame->SetAttribute("name", name.c_str());
-      if (const tinyxml2::XMLElement* pose = e->FirstChildElement("pose")) {
-        frame->InsertEndChild(pose->DeepClone(&doc));
-      }
-      world->InsertAfterChild(e, frame);
-      world->DeleteChild(e);
-      repeats.push_back({name, it->second});
+      out.repeats.push_back({name, it->second, pose});
+    } else if (!include && readPlainModel(*e, path, visuals, plain)) {
+      plain.place = sdformat_models;
+      out.plain.push_back(std::move(plain));
+    } else {
+      if (!include || includesModel(*e, folder, find, model_files)) ++sdformat_models;
+      e = next;
+      continue;
     }
+    world->DeleteChild(e);
     e = next;
   }
-  if (repeats.empty() && !refused_inertias && !state_changed) return "";
+  if (out.repeats.empty() && out.plain.empty() && !refused_inertias && !state_changed) return out;
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
-  return printer.CStr();
+  out.text = printer.CStr();
+  return out;
 }
 
 std::string sdfFileProblem(const std::string& path, const std::string& newest) {

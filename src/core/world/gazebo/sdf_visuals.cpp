@@ -33,10 +33,11 @@ bool gazeboScriptColour(const std::string& script, Eigen::Vector3f& colour) {
 }
 
 void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const std::string& name,
-                const std::string& world_path, const MeshResolver& resolver,
-                std::vector<WorldVisual>& out, std::vector<std::string>& notes) {
+                const std::string& where, const std::string& world_path,
+                const MeshResolver& resolver, std::vector<WorldVisual>& out,
+                std::vector<std::string>& notes) {
   const auto refuse = [&](const std::string& what) {
-    throw ConfigError(whereIs(visual.Element(), world_path) + ": visual '" + name + "': " + what);
+    throw ConfigError(where + ": visual '" + name + "': " + what);
   };
   const sdf::Geometry& g = *visual.Geom();
   if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own

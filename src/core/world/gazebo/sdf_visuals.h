@@ -14,12 +14,13 @@ namespace jetbot_rl {
 /// one it does not know.
 bool gazeboScriptColour(const std::string& script, Eigen::Vector3f& colour);
 
-/// Appends `visual` (named `name`, at `pose` in the world) to `out`: its surface (sdfSurface())
-/// and colour; a plane is the ground (left out), a material script it does not know is noted in
-/// `notes` (drawn grey). ConfigError naming the file, line and visual for a size or pose beyond
-/// the bounds or a mesh that cannot be read.
+/// Appends `visual` (named `name`, at `pose` in the world; `where`: its file and line) to `out`:
+/// its surface (sdfSurface()) and colour; a plane is the ground (left out), a material script it
+/// does not know is noted in `notes` (drawn grey). ConfigError naming the file, line and visual
+/// for a size or pose beyond the bounds or a mesh that cannot be read.
 void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const std::string& name,
-                const std::string& world_path, const MeshResolver& resolver,
-                std::vector<WorldVisual>& out, std::vector<std::string>& notes);
+                const std::string& where, const std::string& world_path,
+                const MeshResolver& resolver, std::vector<WorldVisual>& out,
+                std::vector<std::string>& notes);
 
 }  // namespace jetbot_rl

@@ -97,7 +97,8 @@ class Reader {
           throw ConfigError(world_.path + ": the pose of collision '" + scoped +
                             "' cannot be resolved: " + errorText(errors, world_.path));
         }
-        shape(collision, frame * toEigen(p), scoped);
+        shape(*collision.Geom(), frame * toEigen(p), scoped,
+              whereIs(collision.Element(), world_.path));
       }
       for (uint64_t v = 0; visuals_ && v < link.VisualCount(); ++v) {
         const sdf::Visual& visual = *link.VisualByIndex(v);
@@ -107,8 +108,8 @@ class Reader {
           skip("visual '" + scoped + "' (its pose cannot be resolved)");
           continue;
         }
-        readVisual(visual, frame * toEigen(p), scoped, world_.path, resolver_, world_.visuals,
-                   skipped_);
+        readVisual(visual, frame * toEigen(p), scoped, whereIs(visual.Element(), world_.path),
+                   world_.path, resolver_, world_.visuals, skipped_);
       }
     }
     for (uint64_t i = 0; i < m.ModelCount(); ++i) {
@@ -121,6 +122,32 @@ class Reader {
       }
       model(child, pose * toEigen(p), name);
     }
+  }
+
+  /// Plain model `m` (plain_models.h), read without sdformat: its shapes posed as sdformat
+  /// poses them (ignition's poses composed link by collision, then in the world).
+  void plainModel(const PlainModel& m) {
+    ++world_.models;
+    ++world_.plain_models;
+    read_.insert(m.name);
+    const Eigen::Isometry3d pose = toEigen(m.pose);
+    const std::string where = world_.path + ":";
+    for (const PlainLink& link : m.links) {
+      read_.insert(m.name + "::" + link.name);
+      for (const PlainShape& c : link.collisions) {
+        shape(c.geometry, pose * toEigen(link.pose * c.pose),
+              m.name + "::" + link.name + "::" + c.name, where + std::to_string(c.line));
+      }
+      for (const PlainShape& v : link.visuals) {
+        sdf::Visual visual;
+        visual.SetName(v.name);
+        visual.SetGeom(v.geometry);
+        readVisual(visual, pose * toEigen(link.pose * v.pose),
+                   m.name + "::" + link.name + "::" + v.name, where + std::to_string(v.line),
+                   world_.path, resolver_, world_.visuals, skipped_);
+      }
+    }
+    world_.warnings.insert(world_.warnings.end(), m.warnings.begin(), m.warnings.end());
   }
 
   void skip(const std::string& what) { skipped_.push_back(what); }
@@ -148,14 +175,13 @@ class Reader {
   }
 
  private:
-  void shape(const sdf::Collision& collision, const Eigen::Isometry3d& pose,
-             const std::string& name) {
-    const sdf::Geometry& g = *collision.Geom();
+  /// Collision `name` of geometry `g` at `pose` in the world; `where`: its file and line.
+  void shape(const sdf::Geometry& g, const Eigen::Isometry3d& pose, const std::string& name,
+             const std::string& where) {
     // Sizes in (0, kMaxShapeSize], the pose within kMaxShapeDistance: refused otherwise, naming
     // the collision, its file and line and the value.
     const auto refuse = [&](const std::string& what) {
-      throw ConfigError(whereIs(collision.Element(), world_.path) + ": collision '" + name +
-                        "': " + what);
+      throw ConfigError(where + ": collision '" + name + "': " + what);
     };
     if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
     const Eigen::Matrix3d& r = pose.linear();
@@ -273,14 +299,14 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
   if (const std::string problem = includeProblem(path, find); !problem.empty()) {
     throw ConfigError(problem);
   }
-  // Repeated models parsed once; on any error the file itself is read again, for sdformat's
-  // report with the file's own lines.
-  std::vector<RepeatedModel> repeats;
+  // Repeated and plain models taken out (prepassWorld()); on any error the file itself is read
+  // again, for sdformat's report with the file's own lines.
   SavedState state;
   auto root = std::make_unique<sdf::Root>();
-  sdf::Errors errors = load(*root, foldRepeatedModels(path, repeats, nullptr, &state));
-  if (!errors.empty() && !repeats.empty()) {
-    repeats.clear();
+  PrepassedWorld prepassed = prepassWorld(path, visuals, find, nullptr, &state);
+  sdf::Errors errors = load(*root, prepassed.text);
+  if (!errors.empty() && (!prepassed.repeats.empty() || !prepassed.plain.empty())) {
+    prepassed = PrepassedWorld();
     root = std::make_unique<sdf::Root>();
     errors = load(*root, "");
   }
@@ -298,7 +324,8 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
     config.SetFindCallback(find_copy);
     sdf::setFindCallback(find_copy);
     root = std::make_unique<sdf::Root>();
-    errors = load(*root, foldRepeatedModels(path, repeats, &world.warnings, &state));
+    prepassed = prepassWorld(path, visuals, find, &world.warnings, &state);
+    errors = load(*root, prepassed.text);
     world.warnings.insert(world.warnings.end(), copies->refused().begin(), copies->refused().end());
   }
   if (!errors.empty()) throw ConfigError(errorText(errors, path));
@@ -317,37 +344,61 @@ GazeboWorld loadGazeboWorld(const std::string& path, const MeshResolver& resolve
     }
     return toEigen(p);
   };
-  std::map<std::string, std::pair<std::size_t, std::size_t>> solids_of;  // model -> [from, to)
-  std::map<std::string, std::pair<std::size_t, std::size_t>> visuals_of;
-  std::map<std::string, int> models_in;
-  for (uint64_t i = 0; i < w.ModelCount(); ++i) {
-    const sdf::Model& m = *w.ModelByIndex(i);
+  // What each model read gave (a repeat copies its like's): solids and visuals [from, to), its
+  // pose in the world, the models it counts.
+  struct Read {
+    std::pair<std::size_t, std::size_t> solids, visuals;
+    Eigen::Isometry3d pose;
+    int models;
+  };
+  std::map<std::string, Read> read;
+  const auto readOne = [&](const std::string& name, const auto& how) {
     const std::size_t from = world.solids.size(), visuals_from = world.visuals.size();
     const int models = world.models;
-    reader.model(m, worldPose(m.SemanticPose(), "model '" + m.Name() + "'"), "");
-    solids_of[m.Name()] = {from, world.solids.size()};
-    visuals_of[m.Name()] = {visuals_from, world.visuals.size()};
-    models_in[m.Name()] = world.models - models;
+    const Eigen::Isometry3d pose = how();
+    read[name] = {{from, world.solids.size()},
+                  {visuals_from, world.visuals.size()},
+                  pose,
+                  world.models - models};
+  };
+  // In the file's order: sdformat's models with the plain ones in their places among them.
+  std::size_t next_plain = 0;
+  const auto plainUpTo = [&](std::size_t place) {
+    for (; next_plain < prepassed.plain.size() && prepassed.plain[next_plain].place <= place;
+         ++next_plain) {
+      const PlainModel& m = prepassed.plain[next_plain];
+      readOne(m.name, [&] {
+        reader.plainModel(m);
+        return toEigen(m.pose);
+      });
+    }
+  };
+  for (uint64_t i = 0; i < w.ModelCount(); ++i) {
+    plainUpTo(i);
+    const sdf::Model& m = *w.ModelByIndex(i);
+    readOne(m.Name(), [&] {
+      const Eigen::Isometry3d pose = worldPose(m.SemanticPose(), "model '" + m.Name() + "'");
+      reader.model(m, pose, "");
+      return pose;
+    });
   }
-  for (const RepeatedModel& r : repeats) {
-    const sdf::Model& like = *w.ModelByName(r.like);
-    const Eigen::Isometry3d move =
-        worldPose(w.FrameByName(r.name)->SemanticPose(), "model '" + r.name + "'") *
-        worldPose(like.SemanticPose(), "model '" + r.like + "'").inverse();
-    const auto [from, to] = solids_of.at(r.like);
-    for (std::size_t k = from; k < to; ++k) {
+  plainUpTo(w.ModelCount());
+  for (const RepeatedModel& r : prepassed.repeats) {
+    const Read& like = read.at(r.like);
+    const Eigen::Isometry3d move = toEigen(r.pose) * like.pose.inverse();
+    for (std::size_t k = like.solids.first; k < like.solids.second; ++k) {
       WorldSolid solid = moved(world.solids[k], move);
       solid.name = r.name + solid.name.substr(r.like.size());
       world.solids.push_back(std::move(solid));
     }
-    const auto [visuals_from, visuals_to] = visuals_of.at(r.like);
-    for (std::size_t k = visuals_from; k < visuals_to; ++k) {
+    for (std::size_t k = like.visuals.first; k < like.visuals.second; ++k) {
       WorldVisual visual = world.visuals[k];
       for (Eigen::Vector3d& c : visual.triangles) c = move * c;
       visual.name = r.name + visual.name.substr(r.like.size());
       world.visuals.push_back(std::move(visual));
     }
-    world.models += models_in.at(r.like);
+    world.models += like.models;
+    ++world.repeated_models;
   }
   // A repeat is moved, not read again: where it lies is checked here, for every solid alike.
   for (const WorldSolid& solid : world.solids) {
