@@ -102,13 +102,16 @@ target_compile_definitions(test_ros_adapter PRIVATE ${_robots})
 # as the simulated task observes, the settings it takes from the checkpoint, camera images ----
 catkin_add_gtest(test_deploy test/ros/test_main.cpp test/deploy/test_scan_beams.cpp
   test/deploy/test_observer_agreement.cpp test/deploy/test_trained_settings.cpp
-  test/deploy/test_image_input.cpp test/deploy/test_dwa_local_planner.cpp)
+  test/deploy/test_image_input.cpp test/deploy/test_dwa_local_planner.cpp
+  test/deploy/test_depth_scan_converter.cpp)
 target_link_libraries(test_deploy jetbot_rl_deploy jetbot_rl_env_node)
 target_compile_definitions(test_deploy PRIVATE ${_robots})
 
 # ---- the deploy node's goals and paths through tf, with a master ----
 add_rostest_gtest(test_goal_frames test/deploy/goal_frames.test test/deploy/test_goal_frames.cpp)
 target_link_libraries(test_goal_frames jetbot_rl_deploy)
+# ---- jetbot_depth_scan against the env's own scan from the camera's depth ----
+add_rostest(test/deploy/depth_scan.test)
 
 # ---- the env node (rostest) ----
 foreach(_scenario interface lockstep step_service reset rejection realtime_hz realtime_brake clock

@@ -18,6 +18,7 @@
 #include "jetbot_rl/ppo/ros/policy_params.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
 #include "jetbot_rl/ros/deploy/deploy_params.h"
+#include "jetbot_rl/ros/deploy/depth_scan_params.h"
 #include "jetbot_rl/ros/env_node/node_params.h"
 #include "lockstep_bench.h"
 
@@ -107,6 +108,7 @@ const std::map<std::string, std::function<std::vector<Row>()>>& tables() {
       {"ppo", [] { return rowsOf(ppo::PpoConfig{}); }},
       {"policy_node", [] { return rowsOf(ppo::PolicyParams{}); }},
       {"deploy_node", [] { return rowsOf(DeployParams{}); }},
+      {"depth_scan", [] { return rowsOf(DepthScanParams{}); }},
       {"lockstep_bench_nodelet", [] { return rowsOf(LockstepBenchParams{}); }},
   };
   return t;
@@ -120,6 +122,7 @@ const std::map<std::string, std::function<std::string()>>& nodes() {
       {"jetbot_ppo_trainer", [] { return fieldsToYaml(ppo::TrainerConfig{}); }},
       {"jetbot_policy_node", [] { return fieldsToYaml(ppo::PolicyParams{}); }},
       {"jetbot_deploy_node", [] { return fieldsToYaml(DeployParams{}); }},
+      {"jetbot_depth_scan", [] { return fieldsToYaml(DepthScanParams{}); }},
       {"lockstep_bench_nodelet", [] { return fieldsToYaml(LockstepBenchParams{}); }},
   };
   return n;

@@ -145,5 +145,47 @@ TEST(DepthScan, RefusesWhatItCannotMakeNamingTheField) {
   refused(no_camera, {"scan/source", "needs a camera"});
 }
 
+TEST(DepthScan, ARobotCamerasRaysFromItsCameraInfoAreTheSimulatedOnesBitForBit) {
+  // The simulated camera's CameraInfo (K: f, f, (w - 1) / 2, (h - 1) / 2; plumb_bob D) gives its
+  // pixel rays back exactly, distorted or not: jetbot_depth_scan on a robot reads as training.
+  for (const bool distorted : {false, true}) {
+    CameraIntrinsics c = cameraIntrinsics(24, 10, 1.9);
+    if (distorted) {
+      c.k1 = -0.2;
+      c.k2 = 0.05;
+      c.p1 = 0.002;
+      c.p2 = -0.001;
+      c.k3 = -0.004;
+    }
+    const CameraModel model(c);
+    const std::vector<Eigen::Vector3f> rays =
+        pinholeRays(c.width, c.height, model.fx(), model.fy(), model.cx(), model.cy(),
+                    {c.k1, c.k2, c.p1, c.p2, c.k3});
+    ASSERT_EQ(rays.size(), model.pixelRays().size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      ASSERT_EQ(rays[i], model.pixelRays()[i]) << "pixel " << i << (distorted ? ", distorted" : "");
+    }
+  }
+  // Another camera's K: the ray through (cx, cy) is the axis, fx and fy scale x and y apart.
+  const std::vector<Eigen::Vector3f> rays = pinholeRays(5, 3, 100.0, 50.0, 2.0, 1.0, {});
+  EXPECT_EQ(rays[1 * 5 + 2], Eigen::Vector3f(0.0f, 0.0f, 1.0f));
+  EXPECT_FLOAT_EQ(rays[0].x(), -0.02f);
+  EXPECT_FLOAT_EQ(rays[0].y(), -0.02f);
+  const auto error = [](auto&& make) {
+    try {
+      make();
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string e = error([] { pinholeRays(5, 3, 0.0, 50.0, 2.0, 1.0, {}); });
+  EXPECT_NE(e.find("invalid K = [fx 0, fy 50"), std::string::npos) << e;
+  e = error([] { pinholeRays(5, 3, 100.0, 50.0, 2.0, 1.0, {0.1, 0.0, 0.0}); });
+  EXPECT_NE(e.find("invalid D = [0.1, 0, 0]"), std::string::npos) << e;
+  e = error([] { pinholeRays(0, 3, 100.0, 50.0, 2.0, 1.0, {}); });
+  EXPECT_NE(e.find("camera_info/width"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace jetbot_rl

@@ -27,8 +27,8 @@ LAUNCH_NODES = {
     'play.launch': ['jetbot_policy_node', 'jetbot_env_node'],
     'bench_nodelets.launch': ['lockstep_bench_nodelet', 'jetbot_env_node'],
     'world_view.launch': ['jetbot_env_node'],
-    'navigate.launch': ['jetbot_deploy_node'],
-    'deploy.launch': ['jetbot_deploy_node'],
+    'navigate.launch': ['jetbot_deploy_node', 'jetbot_depth_scan'],
+    'deploy.launch': ['jetbot_deploy_node', 'jetbot_depth_scan'],
 }
 # Parameter files that hold a node's defaults (every value set or commented out must be it).
 DEFAULTS_FILES = {'config/jetbot_env.yaml': 'jetbot_env_node', 'config/ppo.yaml': 'jetbot_ppo_trainer'}

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""jetbot_ppo_trainer and jetbot_policy_node refuse bad parameters at start-up: non-zero exit and
-a FATAL line naming the parameter and its value.
+"""jetbot_ppo_trainer, jetbot_policy_node, jetbot_deploy_node and jetbot_depth_scan refuse bad
+parameters at start-up: non-zero exit and a FATAL line naming the parameter and its value.
 
 Each refused start loads libtorch (about a second): the class first runs every test's starts
 three at a time (each test once, collecting what it would start), then each test checks its own
@@ -191,6 +191,19 @@ class TestRefuseStartPpo(unittest.TestCase):
 
     def test_deploy_without_checkpoint(self):
         self.refuses('jetbot_deploy_node', {}, 'checkpoint')
+
+    # --- jetbot_depth_scan: its scan's settings, and the checkpoint it takes them from ---
+    def test_depth_scan_heights_out_of_order(self):
+        self.refuses('jetbot_depth_scan', {'min_height': 0.6}, 'min_height = 0.6',
+                     'below max_height 0.5')
+
+    def test_depth_scan_checkpoint_of_a_laser(self):
+        # The laser navigator's scan is not a depth camera's: its settings do not apply.
+        self.refuses('jetbot_depth_scan', {'checkpoint': self.path_checkpoint()}, 'checkpoint',
+                     "its scan_source is ''", 'camera_depth')
+
+    def test_depth_scan_angles_out_of_order(self):
+        self.refuses('jetbot_depth_scan', {}, 'angles = [1, -1]', lists={'angles': [1.0, -1.0]})
 
     def test_player_robot_mode_is_the_deploy_node(self):
         self.refuses('jetbot_policy_node', {'checkpoint': '/x.pt', 'robot': True},

@@ -42,5 +42,17 @@ std::optional<ScannerSpec> resolveScan(const ScannerConfig& config, const RobotM
  */
 void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float* depth,
                  const Eigen::Isometry3d& optical, const Eigen::Isometry3d& origin, float* ranges);
+/// depthToScan() through the given pixel rays (row by row, z = 1): a robot's depth camera as its
+/// CameraInfo describes it (pinholeRays()).
+void depthToScan(const ScannerSpec& spec, const std::vector<Eigen::Vector3f>& rays,
+                 const float* depth, const Eigen::Isometry3d& optical,
+                 const Eigen::Isometry3d& origin, float* ranges);
+
+/// The ray (z = 1) through each pixel centre, row by row, of a `width` x `height` camera as a ROS
+/// CameraInfo describes it: K's fx, fy, cx, cy [px] and plumb_bob's D (k1, k2, p1, p2, k3; empty:
+/// none), undone as CameraModel undoes it. For the simulated camera's own CameraInfo, its
+/// CameraModel::pixelRays() bit for bit. ConfigError naming K, D or camera_info/... otherwise.
+std::vector<Eigen::Vector3f> pinholeRays(int width, int height, double fx, double fy, double cx,
+                                         double cy, const std::vector<double>& plumb_bob);
 
 }  // namespace jetbot_rl

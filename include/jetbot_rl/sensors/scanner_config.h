@@ -44,7 +44,8 @@ IfConfig<C, ScannerConfig> visitFields(C& c, V&& v) {
     "false: no scanner, even when the robot description declares one.");
   v("scan/source", c.source, AnyValue{},
     "laser: a planar laser scanner's rays (a Gazebo ray sensor or scan/link); camera_depth: the "
-    "batch camera's depth image reduced to a scan as pointcloud_to_laserscan does: every pixel's "
+    "batch camera's depth image reduced to a scan (as jetbot_depth_scan does on a robot): every "
+    "pixel's "
     "point between scan/min_height and scan/max_height above the ground counts for the sample "
     "nearest its bearing from the robot's origin, the nearest one wins (the forward field of "
     "view only; defaults: a sample per image column over the camera's horizontal field of view, "

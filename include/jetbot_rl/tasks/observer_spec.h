@@ -53,8 +53,8 @@ IfConfig<C, ObserverSpec> visitObservationFields(C& c, V&& v) {
   v("scan_source", c.scan_source, AnyValue{},
     "Where the scan beams came from in training: empty, a planar laser scanner (a LaserScan); "
     "camera_depth, the camera's depth image reduced to a scan (scan/source; on a robot: a "
-    "LaserScan from its depth camera's points between scan_heights, e.g. by "
-    "pointcloud_to_laserscan).");
+    "LaserScan from its depth camera's points between scan_heights, as jetbot_depth_scan makes "
+    "it).");
   v("scan_heights", c.scan_heights, AnyValue{"m"},
     "camera_depth: [min, max] height above the ground of the points the scan was made of; "
     "empty for a laser.");

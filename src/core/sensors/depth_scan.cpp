@@ -83,6 +83,12 @@ std::optional<ScannerSpec> resolveScan(const ScannerConfig& config, const RobotM
 
 void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float* depth,
                  const Eigen::Isometry3d& optical, const Eigen::Isometry3d& origin, float* ranges) {
+  depthToScan(spec, model.pixelRays(), depth, optical, origin, ranges);
+}
+
+void depthToScan(const ScannerSpec& spec, const std::vector<Eigen::Vector3f>& rays,
+                 const float* depth, const Eigen::Isometry3d& optical,
+                 const Eigen::Isometry3d& origin, float* ranges) {
   const double min_height = spec.min_height, max_height = spec.max_height;
   std::fill(ranges, ranges + spec.samples, kNoReturn);
   const Eigen::Matrix3d r = origin.linear();
@@ -90,7 +96,6 @@ void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float*
   const Eigen::Vector2d centre = origin.translation().head<2>();
   const double c = std::cos(heading), s = std::sin(heading);
   const double increment = spec.angleIncrement();
-  const std::vector<Eigen::Vector3f>& rays = model.pixelRays();
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const double d = depth[i];
     if (!std::isfinite(d)) continue;  // nothing within the clip (REP 118's +-inf)
@@ -107,6 +112,42 @@ void depthToScan(const ScannerSpec& spec, const CameraModel& model, const float*
     const float value = range < spec.range_min ? kTooClose : static_cast<float>(range);
     if (value == kTooClose || (sample != kTooClose && value < sample)) sample = value;
   }
+}
+
+std::vector<Eigen::Vector3f> pinholeRays(int width, int height, double fx, double fy, double cx,
+                                         double cy, const std::vector<double>& plumb_bob) {
+  if (!(fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) &&
+        std::isfinite(cy))) {
+    std::ostringstream value;
+    value << "[fx " << fx << ", fy " << fy << ", cx " << cx << ", cy " << cy << "]";
+    throwInvalid("K", value.str(), "must hold a pinhole camera: fx, fy > 0, all finite");
+  }
+  if (!plumb_bob.empty() && plumb_bob.size() != 5) {
+    throwInvalid("D", listText(plumb_bob), "must be plumb_bob's 5 coefficients (or none)");
+  }
+  // The distortion undone as CameraModel undoes it (Gazebo's Brown-Conrady model is plumb_bob);
+  // the model's own focal length and centre are not used.
+  CameraIntrinsics c;
+  c.width = width;
+  c.height = height;
+  c.horizontal_fov = 2.0 * std::atan(width / 2.0 / fx);
+  if (plumb_bob.size() == 5) {
+    c.k1 = plumb_bob[0];
+    c.k2 = plumb_bob[1];
+    c.p1 = plumb_bob[2];
+    c.p2 = plumb_bob[3];
+    c.k3 = plumb_bob[4];
+  }
+  const CameraModel model(c, "camera_info/");
+  std::vector<Eigen::Vector3f> rays;
+  rays.reserve(static_cast<std::size_t>(width) * height);
+  for (int v = 0; v < height; ++v) {
+    for (int u = 0; u < width; ++u) {
+      const Eigen::Vector2d p = model.undistort(Eigen::Vector2d((u - cx) / fx, (v - cy) / fy));
+      rays.push_back(Eigen::Vector3d(p.x(), p.y(), 1.0).cast<float>());
+    }
+  }
+  return rays;
 }
 
 }  // namespace jetbot_rl

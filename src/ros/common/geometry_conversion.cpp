@@ -67,6 +67,15 @@ Eigen::Quaterniond yawQuaternion(double yaw) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
 }
 
+Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(t.translation.x, t.translation.y, t.translation.z);
+  pose.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
+                      .normalized()
+                      .toRotationMatrix();
+  return pose;
+}
+
 void toTransform(const Eigen::Isometry3d& pose, geometry_msgs::Transform& t) {
   const Eigen::Vector3d p = pose.translation();
   const Eigen::Quaterniond q = Eigen::Quaterniond(pose.rotation()).normalized();

@@ -141,8 +141,8 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
     if (trained_.scan_source == "camera_depth" && trained_.scan_heights.size() == 2) {
       s << " (trained on scans made from a depth camera's points " << trained_.scan_heights.at(0)
         << " to " << trained_.scan_heights.at(1)
-        << " m above the ground: give it such a LaserScan, e.g. from pointcloud_to_laserscan with "
-           "those min_height and max_height in the ground's frame)";
+        << " m above the ground: give it such a LaserScan, e.g. jetbot_depth_scan's from the "
+           "robot's depth camera, deploy.launch depth_image:=TOPIC)";
     }
   }
   ROS_INFO("%s", s.str().c_str());

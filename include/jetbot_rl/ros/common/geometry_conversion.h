@@ -34,5 +34,7 @@ Eigen::Quaterniond yawQuaternion(double yaw);
 /// Writes `pose` into `t`, its rotation normalised (Bullet's single-precision rotations are
 /// orthonormal to 1e-7 only).
 void toTransform(const Eigen::Isometry3d& pose, geometry_msgs::Transform& t);
+/// A tf transform as an Eigen isometry (its quaternion normalised): toTransform()'s inverse.
+Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t);
 
 }  // namespace jetbot_rl
