@@ -200,6 +200,19 @@ TEST(PlainModels, WhatSdformatRefusesIsStillRefusedNamingTheLine) {
       [&] { loadGazeboWorld(sdfWorld("twice.world", box("a", "1 1 1") + box("a", "1 2 1"))); });
   EXPECT_NE(e.find("twice.world"), std::string::npos) << e;
   EXPECT_NE(e.find("model with name[a] already exists"), std::string::npos) << e;
+  // A plain model named as an included model (an include without <name>: its model's name).
+  std::filesystem::create_directories(::testing::TempDir() + "dup_post");
+  std::ofstream(::testing::TempDir() + "dup_post/model.config")
+      << "<?xml version=\"1.0\"?><model><name>post</name><sdf version=\"1.6\">model.sdf</sdf>"
+         "</model>\n";
+  std::ofstream(::testing::TempDir() + "dup_post/model.sdf")
+      << "<?xml version=\"1.0\"?><sdf version=\"1.6\">" << box("a", "1 1 1") << "</sdf>\n";
+  e = errorOf([&] {
+    loadGazeboWorld(sdfWorld(
+        "twice_included.world",
+        "<include><uri>dup_post</uri><pose>3 0 0 0 0 0</pose></include>\n" + box("a", "1 2 1")));
+  });
+  EXPECT_NE(e.find("model with name[a] already exists"), std::string::npos) << e;
   // A size that is not three numbers: sdformat reads it and names the line.
   e = errorOf(
       [&] { loadGazeboWorld(sdfWorld("words.world", box("a", "1 1 1") + box("b", "1 one 1"))); });

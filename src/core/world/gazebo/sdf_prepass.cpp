@@ -74,17 +74,25 @@ std::string includedFile(const tinyxml2::XMLElement& include, const std::filesys
   return std::filesystem::is_directory(found) ? modelFile(found) : found;
 }
 
-/// False when the include brings no model into the world (a light: Gazebo's model://sun).
-bool includesModel(const tinyxml2::XMLElement& include, const std::filesystem::path& folder,
-                   const IncludeFinder& find, std::map<std::string, bool>& known) {
+/// What an included file brings into the world: a model (and its name), or not (a light:
+/// Gazebo's model://sun). A file that cannot be read counts as a model (sdformat says why).
+struct Included {
+  bool model = true;
+  std::string name;
+};
+
+/// The include's Included, each file read once (`known`: file -> what it holds).
+const Included& included(const tinyxml2::XMLElement& include, const std::filesystem::path& folder,
+                         const IncludeFinder& find, std::map<std::string, Included>& known) {
   const std::string file = includedFile(include, folder, find);
-  const auto [it, is_new] = known.emplace(file, true);
+  const auto [it, is_new] = known.emplace(file, Included());
   tinyxml2::XMLDocument doc;
   if (is_new && !file.empty() && fileProblem(file).empty() &&
       doc.LoadFile(file.c_str()) == tinyxml2::XML_SUCCESS) {
     const tinyxml2::XMLElement* sdf = doc.FirstChildElement("sdf");
     const tinyxml2::XMLElement* first = sdf ? sdf->FirstChildElement() : nullptr;
-    it->second = !first || std::string(first->Name()) == "model";
+    it->second.model = !first || std::string(first->Name()) == "model";
+    it->second.name = it->second.model ? nameAttribute(first) : "";
   }
   return it->second;
 }
@@ -168,13 +176,17 @@ PrepassedWorld prepassWorld(const std::string& path, bool visuals, const Include
   bool state_changed = false;
   if (state) *state = takeSavedState(*world, path, state_changed);
   const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-  // A name given twice is left to sdformat, which refuses it.
+  // A name given twice (an include's own, else its model's) is left to sdformat, which refuses
+  // it.
+  std::map<std::string, Included> included_files;
   std::map<std::string, int> names;
   for (const tinyxml2::XMLElement* e = world->FirstChildElement(); e; e = e->NextSiblingElement()) {
-    ++names[std::string(e->Name()) == "include" ? entityName(*e) : nameAttribute(e)];
+    const bool include = std::string(e->Name()) == "include";
+    std::string name = include ? entityName(*e) : nameAttribute(e);
+    if (include && name.empty()) name = included(*e, folder, find, included_files).name;
+    ++names[name];
   }
   std::map<std::string, std::string> first;  // shape key -> the first model's name
-  std::map<std::string, bool> model_files;   // included file -> whether it holds a model
   std::size_t sdformat_models = 0;           // models left to sdformat so far
   for (tinyxml2::XMLElement* e = world->FirstChildElement(); e;) {
     tinyxml2::XMLElement* next = e->NextSiblingElement();
@@ -196,7 +208,7 @@ PrepassedWorld prepassWorld(const std::string& path, bool visuals, const Include
         hasPlacementFrame(*e) ||
         (state && (state->models.count(name) || linkInState(*state, name))) ||
         !readPlainPose(*e, pose) || (include && !e->FirstChildElement("pose"))) {
-      if (tag == "model" || (include && includesModel(*e, folder, find, model_files))) {
+      if (tag == "model" || (include && included(*e, folder, find, included_files).model)) {
         ++sdformat_models;
       }
       e = next;
@@ -210,7 +222,7 @@ PrepassedWorld prepassWorld(const std::string& path, bool visuals, const Include
       plain.place = sdformat_models;
       out.plain.push_back(std::move(plain));
     } else {
-      if (!include || includesModel(*e, folder, find, model_files)) ++sdformat_models;
+      if (!include || included(*e, folder, find, included_files).model) ++sdformat_models;
       e = next;
       continue;
     }
