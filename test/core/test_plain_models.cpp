@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -36,7 +37,8 @@ std::string errorOf(const F& load) {
 }
 
 /// Models of random boxes, cylinders and spheres in one or two links, at random poses (turned
-/// about every axis), with visuals; `extra` goes into every model (a <self_collide> there makes
+/// about every axis), with visuals of colours, Gazebo scripts or neither; `extra` goes into every
+/// model (a <self_collide> there makes
 /// each one sdformat's).
 std::string randomModels(int count, const std::string& extra) {
   std::mt19937 rng(11);
@@ -74,7 +76,16 @@ std::string randomModels(int count, const std::string& extra) {
         out += "<collision name=\"c" + std::to_string(c) + "\">" + pose() + geometry() +
                "</collision>";
       }
-      out += "<visual name=\"v\">" + pose() + geometry() + "</visual></link>";
+      const char* materials[] = {"", "<material><diffuse>0.25 0.5 0.75 1</diffuse></material>",
+                                 "<material><ambient>0.1 0.1 0.1</ambient><diffuse>0.9 0.3 0.1"
+                                 "</diffuse></material>",
+                                 "<material><script><uri>file://media/materials/scripts/"
+                                 "gazebo.material</uri><name>Gazebo/Wood</name></script>"
+                                 "</material>",
+                                 "<material><script><uri>x.material</uri><name>Gazebo/Unknown"
+                                 "</name></script></material>"};
+      out +=
+          "<visual name=\"v\">" + pose() + geometry() + materials[(m + l) % 5] + "</visual></link>";
     }
     out += "</model>\n";
   }
@@ -118,6 +129,11 @@ TEST(PlainModels, GiveBitForBitTheSolidsAndVisualsSdformatGives) {
   EXPECT_EQ(a.plain_models, 40);  // each read here ...
   EXPECT_EQ(b.plain_models, 0);   // ... and there by sdformat
   EXPECT_EQ(a.visuals.size(), 60u);
+  // The materials made colours: a diffuse one, a script's, the grey of an unknown script.
+  std::set<std::vector<float>> colours;
+  for (const WorldVisual& v : a.visuals) colours.insert({v.colour.x(), v.colour.y(), v.colour.z()});
+  EXPECT_EQ(colours.size(), 4u);
+  EXPECT_NE(a.skipped.find("material 'Gazebo/Unknown'"), std::string::npos) << a.skipped;
   expectSame(a, b);
   // Without visuals, the same solids.
   const GazeboWorld c = loadGazeboWorld(plain);
@@ -163,8 +179,16 @@ TEST(PlainModels, KeepTheirPlaceAmongSdformatsModels) {
 }
 
 TEST(PlainModels, WhatIsMoreThanPlainIsLeftToSdformat) {
-  // A pose in degrees or relative to a frame, a mesh, a material with visuals, a plugin: read
-  // by sdformat, with its meaning (a plain reader taking them would turn 90 radians).
+  // A script without a file is sdformat's to refuse.
+  const std::string no_uri =
+      sdfWorld("no_uri.world",
+               "<model name=\"m\"><link name=\"l\"><visual name=\"v\"><geometry><box><size>"
+               "1 1 1</size></box></geometry><material><script><name>Gazebo/Wood</name>"
+               "</script></material></visual></link></model>\n");
+  const std::string e = errorOf([&] { loadGazeboWorld(no_uri, nullptr, true); });
+  EXPECT_NE(e.find("missing a child <uri>"), std::string::npos) << e;
+  // A pose in degrees or relative to a frame, a material with more than colours: read by
+  // sdformat, with its meaning (a plain reader taking them would turn 90 radians).
   const std::string body =
       "<frame name=\"f\"><pose>5 0 0 0 0 0</pose></frame>\n"
       "<model name=\"deg\"><pose degrees=\"true\">0 0 0.5 0 0 90</pose><link name=\"l\">"
@@ -175,8 +199,8 @@ TEST(PlainModels, WhatIsMoreThanPlainIsLeftToSdformat) {
       "</link></model>\n"
       "<model name=\"red\"><pose>0 4 0.5 0 0 0</pose><link name=\"l\"><collision name=\"c\">"
       "<geometry><box><size>1 1 2</size></box></geometry></collision><visual name=\"v\">"
-      "<geometry><box><size>1 1 2</size></box></geometry><material><diffuse>1 0 0 1</diffuse>"
-      "</material></visual></link></model>\n";
+      "<geometry><box><size>1 1 2</size></box></geometry><material><lighting>true</lighting>"
+      "<diffuse>1 0 0 1</diffuse></material></visual></link></model>\n";
   const GazeboWorld w = loadGazeboWorld(sdfWorld("more.world", body, "1.9"), nullptr, true);
   EXPECT_EQ(w.plain_models, 0);
   ASSERT_EQ(w.solids.size(), 3u);
@@ -184,8 +208,7 @@ TEST(PlainModels, WhatIsMoreThanPlainIsLeftToSdformat) {
   EXPECT_NEAR(w.solids[1].upright->center.x(), 6.0, 1e-12);
   ASSERT_EQ(w.visuals.size(), 1u);
   EXPECT_EQ(w.visuals[0].colour, Eigen::Vector3f(1.0f, 0.0f, 0.0f));
-  // Without visuals the red model is plain (its colour is not drawn).
-  EXPECT_EQ(loadGazeboWorld(sdfWorld("more.world", body, "1.9")).plain_models, 1);
+  EXPECT_EQ(loadGazeboWorld(sdfWorld("more.world", body, "1.9")).plain_models, 0);
 }
 
 TEST(PlainModels, WhatSdformatRefusesIsStillRefusedNamingTheLine) {

@@ -98,22 +98,53 @@ bool readGeometry(const tinyxml2::XMLElement& e, sdf::Geometry& out) {
   return false;
 }
 
-/// A <material> of colours only (what scripts write), which sdformat would read and nothing here
-/// draws without visuals.
-bool colourMaterial(const tinyxml2::XMLElement& e) {
-  std::vector<double> v;
-  if (!onlyAttributes(e, {}) || !onlyChildren(e, {"ambient", "diffuse", "specular", "emissive"})) {
+/// The colour in `e` (3 or 4 numbers in [0, 1]) read as sdformat reads a colour (floats).
+bool colour(const tinyxml2::XMLElement& e, Eigen::Vector3f& rgb) {
+  if (!onlyAttributes(e, {}) || e.FirstChildElement()) return false;
+  std::istringstream s(e.GetText() ? e.GetText() : "");
+  std::vector<float> v;
+  for (float x; s >> x;) {
+    if (!(x >= 0.0f && x <= 1.0f)) return false;
+    v.push_back(x);
+  }
+  if (!s.eof() || (v.size() != 3 && v.size() != 4)) return false;
+  rgb = Eigen::Vector3f(v[0], v[1], v[2]);
+  return true;
+}
+
+/// A <material> of colours and a Gazebo <script> (a <name> and <uri>s), as scripts write them.
+bool readMaterial(const tinyxml2::XMLElement& e, VisualMaterial& out) {
+  if (!onlyAttributes(e, {}) ||
+      !onlyChildren(e, {"ambient", "diffuse", "specular", "emissive", "script"})) {
     return false;
   }
   for (const tinyxml2::XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (!numbers(c, {3, 4}, v)) return false;
+    if (c->NextSiblingElement(c->Name())) return false;  // each once
+    Eigen::Vector3f rgb;
+    if (std::string(c->Name()) != "script") {
+      if (!colour(*c, rgb)) return false;
+      if (std::string(c->Name()) == "diffuse") out.diffuse = rgb;
+      continue;
+    }
+    const tinyxml2::XMLElement* name = only(*c, "name");
+    if (!onlyAttributes(*c, {}) || !onlyChildren(*c, {"name", "uri"}) || !name ||
+        name->FirstChildElement() || !onlyAttributes(*name, {}) || !name->GetText()) {
+      return false;
+    }
+    // sdformat wants a <uri> (a script's file) that is not empty.
+    if (!c->FirstChildElement("uri")) return false;
+    for (const tinyxml2::XMLElement* u = c->FirstChildElement("uri"); u;
+         u = u->NextSiblingElement("uri")) {
+      if (u->FirstChildElement() || !onlyAttributes(*u, {}) || !u->GetText()) return false;
+    }
+    out.script = name->GetText();
   }
   return true;
 }
 
-/// A <collision> or <visual> with a name, a plain pose and geometry (a visual may have a colour
-/// material when `material_ok`).
-bool readShape(const tinyxml2::XMLElement& e, bool visual, bool material_ok, PlainShape& out) {
+/// A <collision> or <visual> with a name, a plain pose and geometry (a visual may have a
+/// material of colours and a script).
+bool readShape(const tinyxml2::XMLElement& e, bool visual, PlainShape& out) {
   const char* name = e.Attribute("name");
   const tinyxml2::XMLElement* geometry = only(e, "geometry");
   const tinyxml2::XMLElement* material = e.FirstChildElement("material");
@@ -121,7 +152,7 @@ bool readShape(const tinyxml2::XMLElement& e, bool visual, bool material_ok, Pla
       !onlyChildren(e, visual ? std::initializer_list<const char*>{"pose", "geometry", "material"}
                               : std::initializer_list<const char*>{"pose", "geometry"}) ||
       (material &&
-       (!material_ok || material->NextSiblingElement("material") || !colourMaterial(*material)))) {
+       (material->NextSiblingElement("material") || !readMaterial(*material, out.material)))) {
     return false;
   }
   out.name = name;
@@ -219,8 +250,7 @@ bool readPlainModel(tinyxml2::XMLElement& model, const std::string& file, bool v
       if (tag != "collision" && tag != "visual") continue;
       const bool visual = tag == "visual";
       PlainShape shape;
-      if (!readShape(*c, visual, !visuals, shape) ||
-          !shape_names[visual].insert(shape.name).second) {
+      if (!readShape(*c, visual, shape) || !shape_names[visual].insert(shape.name).second) {
         return false;
       }
       if (!visual) {

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "world/gazebo/sdf_visuals.h"
+
 namespace jetbot_rl {
 
 /// A <collision> or <visual> of a plain link.
@@ -22,6 +24,7 @@ struct PlainShape {
   int line = 0;                 ///< Its line in the world file.
   ignition::math::Pose3d pose;  ///< In its link's frame.
   sdf::Geometry geometry;       ///< A box, cylinder or sphere.
+  VisualMaterial material;      ///< A visual's colour (its <diffuse> or Gazebo script).
 };
 
 /// A <link> of a plain model.
@@ -49,10 +52,11 @@ struct PlainModel {
 bool readPlainPose(const tinyxml2::XMLElement& parent, ignition::math::Pose3d& pose);
 
 /// `model` (a world's <model>, from file `file`) as a plain model; false, leaving it to sdformat,
-/// when it is anything more (see above). `visuals`: its <visual>s too (those with a <material>
-/// are sdformat's); without, they are passed over. A link's <inertial> is judged as sdformat
-/// judges it and removed from `model` (refused ones in PlainModel::warnings, as Gazebo 11 reads
-/// them: without).
+/// when it is anything more (see above). `visuals`: its <visual>s too, whose <material> may hold
+/// colours (ambient, diffuse, specular, emissive: 3 or 4 numbers in [0, 1]) and a Gazebo
+/// <script> (its <uri>s and <name>); without, they are checked and passed over. A link's <inertial>
+/// is judged as sdformat judges it and removed from `model` (refused ones in PlainModel::warnings,
+/// as Gazebo 11 reads them: without).
 bool readPlainModel(tinyxml2::XMLElement& model, const std::string& file, bool visuals,
                     PlainModel& out);
 

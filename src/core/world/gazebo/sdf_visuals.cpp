@@ -32,14 +32,26 @@ bool gazeboScriptColour(const std::string& script, Eigen::Vector3f& colour) {
   return false;
 }
 
-void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const std::string& name,
-                const std::string& where, const std::string& world_path,
-                const MeshResolver& resolver, std::vector<WorldVisual>& out,
-                std::vector<std::string>& notes) {
+VisualMaterial materialOf(const sdf::Visual& visual) {
+  VisualMaterial m;
+  if (const sdf::Material* material = visual.Material()) {
+    const sdf::ElementPtr element = material->Element();
+    if (element && element->HasElement("diffuse")) {
+      const ignition::math::Color d = material->Diffuse();
+      m.diffuse = Eigen::Vector3f(d.R(), d.G(), d.B());
+    }
+    m.script = material->ScriptName();
+  }
+  return m;
+}
+
+void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
+                const Eigen::Isometry3d& pose, const std::string& name, const std::string& where,
+                const std::string& world_path, const MeshResolver& resolver,
+                std::vector<WorldVisual>& out, std::vector<std::string>& notes) {
   const auto refuse = [&](const std::string& what) {
     throw ConfigError(where + ": visual '" + name + "': " + what);
   };
-  const sdf::Geometry& g = *visual.Geom();
   if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own
   if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
   WorldVisual v;
@@ -54,16 +66,10 @@ void readVisual(const sdf::Visual& visual, const Eigen::Isometry3d& pose, const 
     return;
   }
   for (Eigen::Vector3d& c : v.triangles) c = pose * c;
-  if (const sdf::Material* material = visual.Material()) {
-    const sdf::ElementPtr element = material->Element();
-    if (element && element->HasElement("diffuse")) {
-      const ignition::math::Color d = material->Diffuse();
-      v.colour = Eigen::Vector3f(d.R(), d.G(), d.B()).cwiseMax(0.0f).cwiseMin(1.0f);
-    } else if (!material->ScriptName().empty() &&
-               !gazeboScriptColour(material->ScriptName(), v.colour)) {
-      notes.push_back("material '" + material->ScriptName() + "' of visual '" + name +
-                      "' (drawn grey)");
-    }
+  if (material.diffuse) {
+    v.colour = material.diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
+  } else if (!material.script.empty() && !gazeboScriptColour(material.script, v.colour)) {
+    notes.push_back("material '" + material.script + "' of visual '" + name + "' (drawn grey)");
   }
   out.push_back(std::move(v));
 }

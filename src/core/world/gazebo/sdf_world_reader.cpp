@@ -108,8 +108,9 @@ class Reader {
           skip("visual '" + scoped + "' (its pose cannot be resolved)");
           continue;
         }
-        readVisual(visual, frame * toEigen(p), scoped, whereIs(visual.Element(), world_.path),
-                   world_.path, resolver_, world_.visuals, skipped_);
+        readVisual(*visual.Geom(), materialOf(visual), frame * toEigen(p), scoped,
+                   whereIs(visual.Element(), world_.path), world_.path, resolver_, world_.visuals,
+                   skipped_);
       }
     }
     for (uint64_t i = 0; i < m.ModelCount(); ++i) {
@@ -139,10 +140,7 @@ class Reader {
               m.name + "::" + link.name + "::" + c.name, where + std::to_string(c.line));
       }
       for (const PlainShape& v : link.visuals) {
-        sdf::Visual visual;
-        visual.SetName(v.name);
-        visual.SetGeom(v.geometry);
-        readVisual(visual, pose * toEigen(link.pose * v.pose),
+        readVisual(v.geometry, v.material, pose * toEigen(link.pose * v.pose),
                    m.name + "::" + link.name + "::" + v.name, where + std::to_string(v.line),
                    world_.path, resolver_, world_.visuals, skipped_);
       }
