@@ -1,4 +1,5 @@
-// InlineCallbackQueue without a master: callbacks run at once, one at a time, nested ones after.
+// InlineCallbackQueue without a master: callbacks run at once, one at a time, nested ones after;
+// PublicationPacer never waits inside them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "jetbot_rl/ros/common/inline_callback_queue.h"
+#include "jetbot_rl/ros/common/publication_pacer.h"
 
 namespace jetbot_rl {
 namespace {
@@ -109,6 +111,26 @@ TEST(InlineCallbackQueue, CallbacksFromSeveralThreadsNeverOverlap) {
   for (auto& t : threads) t.join();
   EXPECT_EQ(calls.load(), 8000);
   EXPECT_EQ(most.load(), 1);
+}
+
+TEST(PublicationPacer, NeverWaitsInsideAnInlineCallback) {
+  // No network thread runs here (no ros::start()): outside a callback, the state after `limit`
+  // waits for a pass that never comes and times out; inside one (a nodelet's in-process
+  // publisher, whose topic lock the network thread waits for), it goes out at once.
+  PublicationPacer pacer(1, 0.05);
+  EXPECT_TRUE(pacer.wait());
+  EXPECT_FALSE(pacer.wait());
+  EXPECT_EQ(pacer.timeouts(), 1u);
+  InlineCallbackQueue queue;
+  bool inside = false;
+  queue.addCallback(callback([&] {
+    inside = InlineCallbackQueue::insideCallback();
+    for (int k = 0; k < 5; ++k) EXPECT_TRUE(pacer.wait());
+  }));
+  EXPECT_TRUE(inside);
+  EXPECT_FALSE(InlineCallbackQueue::insideCallback());
+  EXPECT_EQ(pacer.timeouts(), 1u);  // none inside
+  EXPECT_EQ(pacer.waits(), 1u);
 }
 
 }  // namespace

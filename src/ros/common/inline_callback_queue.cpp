@@ -15,6 +15,8 @@ thread_local std::vector<const InlineCallbackQueue*> running_queues;
 
 }  // namespace
 
+bool InlineCallbackQueue::insideCallback() { return !running_queues.empty(); }
+
 void InlineCallbackQueue::addCallback(const ros::CallbackInterfacePtr& callback,
                                       std::uint64_t /*owner_id*/) {
   if (std::find(running_queues.begin(), running_queues.end(), this) != running_queues.end()) {

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ros/common/inline_callback_queue.h"
 
 namespace jetbot_rl {
 
@@ -41,7 +42,10 @@ PublicationPacer::~PublicationPacer() {
 bool PublicationPacer::wait() {
   std::unique_lock<std::mutex> lock(shared_->mutex);
   bool on_time = true;
-  if (shared_->since_pass >= limit_) {
+  // Inside an inline callback no pass can come while this thread waits: it is the network
+  // thread itself, or (nodelets) an in-process publisher's that holds the topic lock the network
+  // thread's pass needs (each wait ran into the time-out: 1 s every `limit` states).
+  if (shared_->since_pass >= limit_ && !InlineCallbackQueue::insideCallback()) {
     ++shared_->waits;
     const std::uint64_t pass = shared_->passes;
     ros::PollManager::instance()->getPollSet().signal();  // an idle thread sleeps up to 100 ms

@@ -26,6 +26,9 @@ class InlineCallbackQueue : public ros::CallbackQueueInterface {
   void removeByID(std::uint64_t /*owner_id*/) override {}
   /// Held while a callback of this queue runs.
   std::mutex& mutex() { return mutex_; }
+  /// True in a thread that runs a callback of some InlineCallbackQueue: roscpp's network thread,
+  /// or (nodelets) an in-process publisher's, which holds roscpp's topic lock meanwhile.
+  static bool insideCallback();
 
  private:
   std::mutex mutex_;

@@ -30,8 +30,9 @@ class PublicationPacer {
 
   /// Call before publishing a state: returns at once while fewer than `limit` states went out
   /// since the network thread's last pass, else when it has made one (true) or after the time-out
-  /// (false: this state may push older messages out of subscriber queues). Never from a callback
-  /// that runs in the network thread.
+  /// (false: this state may push older messages out of subscriber queues). Inside an
+  /// InlineCallbackQueue's callback it never waits (no pass can come meanwhile: the thread is the
+  /// network thread, or an in-process publisher's holding the lock a pass needs).
   bool wait();
   /// States that waited for a pass, and waits that timed out, so far.
   std::uint64_t waits() const;
