@@ -173,7 +173,6 @@ void DepthScanPublisher::onDepth(const sensor_msgs::ImageConstPtr& depth,
     return;
   }
   publisher_.publish(scan);
-  ++published_;
 }
 
 namespace {

@@ -48,9 +48,6 @@ class DepthScanConverter {
 class DepthScanPublisher {
  public:
   DepthScanPublisher(ros::NodeHandle& nh, const DepthScanParams& params);
-  /// Images turned into scans, and refused ones per reason (the WARN's text).
-  std::uint64_t published() const { return published_; }
-  const std::map<std::string, std::uint64_t>& refused() const { return refused_; }
 
  private:
   void onDepth(const sensor_msgs::ImageConstPtr& depth,
@@ -65,7 +62,6 @@ class DepthScanPublisher {
   image_transport::ImageTransport transport_;
   image_transport::CameraSubscriber subscriber_;
   ros::Publisher publisher_;
-  std::uint64_t published_ = 0;
   std::map<std::string, std::uint64_t> refused_;
 };
 
