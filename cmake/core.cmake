@@ -86,6 +86,7 @@ add_library(jetbot_rl_core
   src/core/world/gazebo/sdf_world_reader.cpp
   src/core/world/gazebo/world_cut.cpp
   src/core/world/map_yaml.cpp
+  src/core/world/texture_image.cpp
   src/core/world/occupancy_map.cpp
   src/core/world/solid_surfaces.cpp
   src/core/world/world_generation.cpp

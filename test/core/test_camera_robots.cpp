@@ -14,6 +14,7 @@
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/sensors/camera_scene.h"
+#include "sensors/camera_robot.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -184,11 +185,20 @@ TEST(CameraRobots, TheOtherRobotsOfAWorldAreSeenByTheirVisuals) {
   EXPECT_EQ(plain.view(0).images().label[centre], static_cast<std::uint8_t>(SurfaceClass::kMover));
 }
 
+TEST(CameraRobots, CamerasOnOneLinkShareTheRobotsShapes) {
+  const RobotModelConstPtr robot = RobotModel::fromUrdfString(cameraJetbotText());
+  CameraWorld world(nullptr);
+  const CameraRobot* left = world.addRobot(*robot, "camera_link");
+  EXPECT_EQ(world.addRobot(*robot, "camera_link"), left);  // a stereo pair's second camera
+  const CameraRobot* other = world.addRobot(*robot, "base_link");
+  EXPECT_NE(other, left);  // another link hides another housing
+  EXPECT_EQ(other->numBodies(), left->numBodies());
+}
+
 TEST(CameraRobots, BodiesNoRayMeetsAreLeftOutAndTheImagesStayTheSame) {
   const RobotModelConstPtr robot = RobotModel::fromUrdfString(cameraJetbotText());
   CameraWorld world(nullptr);
-  world.setRobot(*robot, "camera_link");
-  CameraEnvScene scene(world);
+  CameraEnvScene scene(world, world.addRobot(*robot, "camera_link"));
   // Eight robots on a circle of 0.5 m around a camera 5 cm up, each body at its link's rest pose.
   std::vector<RobotPose> robots(8);
   for (int k = 0; k < 8; ++k) {

@@ -35,6 +35,8 @@ struct VisualGeometry {
   /// Diffuse RGB in [0, 1]: its material's colour (inline or named at the robot's top level),
   /// else grey.
   Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
+  /// Its URDF material gave `colour`; without, a mesh shows its file's own materials.
+  bool coloured = false;
   std::string mesh_path;   ///< Mesh: the file, resolved; empty when it could not be (mesh_error).
   std::string mesh_error;  ///< Mesh: why mesh_path is empty, naming the link and the URI.
 };

@@ -8,12 +8,14 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/sensors/camera_model.h"
+#include "jetbot_rl/sensors/surface_material.h"
 #include "jetbot_rl/sensors/upright_shapes.h"
 
 struct RTCDeviceTy;
@@ -102,28 +104,32 @@ class CameraWorld {
   RTCSceneTy* emptyShape() const { return empty_; }
   /// The class of the static scene's geometry `id`.
   SurfaceClass surfaceClass(unsigned id) const { return classes_.at(id); }
-  /// The material colour of the static scene's geometry `id` (a Gazebo world's visuals), or none
+  /// The material colour of the static scene's geometry `id` (a Gazebo world's visuals) at its
+  /// triangle `triangle` and Embree's barycentric `u`, `v` there (a texture's texel), or none
   /// (its class's colour).
-  std::optional<Eigen::Vector3f> colourOf(unsigned id) const {
-    return id < colours_.size() ? colours_[id] : std::nullopt;
+  std::optional<Eigen::Vector3f> colourOf(unsigned id, unsigned triangle, float u, float v) const {
+    if (id >= materials_.size() || !materials_[id]) return std::nullopt;
+    return materials_[id]->at(triangle, u, v);
   }
+  /// The scene may hold surfaces at the ground's height (a Gazebo world's visuals).
+  bool hasFloorSurfaces() const { return !materials_.empty(); }
   /// The floor image on the ground, or nullptr.
   const FloorImage* floor() const { return floor_.get(); }
-  /// Makes `robot`'s URDF visuals what the env scenes draw their robots with; `hidden_link`: the
-  /// camera's own link, left out of a robot's view of itself. ModelError naming the link of a
-  /// visual mesh that cannot be read.
-  void setRobot(const RobotModel& robot, const std::string& hidden_link);
-  /// The robot of setRobot(), or nullptr.
-  const CameraRobot* robot() const { return robot_.get(); }
+  /// `robot`'s URDF visuals as env scenes draw robots for a camera on `hidden_link` (its own
+  /// link, left out of a robot's view of itself): made once per link, shared by the cameras on
+  /// it. Not thread-safe (called while the cameras are made). ModelError naming the link of a
+  /// visual mesh or texture that cannot be read.
+  const CameraRobot* addRobot(const RobotModel& robot, const std::string& hidden_link);
 
  private:
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
   RTCSceneTy* empty_ = nullptr;
-  std::vector<SurfaceClass> classes_;                    // per geometry id of scene_
-  std::vector<std::optional<Eigen::Vector3f>> colours_;  // per geometry id of scene_
+  std::vector<SurfaceClass> classes_;  // per geometry id of scene_
+  // A Gazebo world's visuals of one colour, or of one texture, per geometry id of scene_.
+  std::vector<std::optional<SurfaceMaterial>> materials_;
   std::shared_ptr<const FloorImage> floor_;
-  std::unique_ptr<CameraRobot> robot_;
+  std::map<std::string, std::unique_ptr<CameraRobot>> robots_;  // by hidden link
 };
 
 /// One robot of an env's world where it stands: its bodies' link frames in the env frame.
@@ -136,7 +142,9 @@ struct RobotPose {
 /// camera's images.
 class CameraEnvScene {
  public:
-  explicit CameraEnvScene(const CameraWorld& world);
+  /// The env's scene of `world`, its robots drawn as `robot` (CameraWorld::addRobot(); nullptr:
+  /// setRobots() is not used).
+  explicit CameraEnvScene(const CameraWorld& world, const CameraRobot* robot = nullptr);
   ~CameraEnvScene();
   CameraEnvScene(const CameraEnvScene&) = delete;
   CameraEnvScene& operator=(const CameraEnvScene&) = delete;
@@ -158,8 +166,8 @@ class CameraEnvScene {
   /// are kept (none: all).
   void setMovers(const std::vector<Obstacle>& movers, const ViewCone* view = nullptr);
   /// Places the robots of the env's world (none before the first call), each body an instance of
-  /// CameraWorld's robot at its pose; robots beyond `robots.size()` are hidden. Needs
-  /// CameraWorld::setRobot(). `view`: only the bodies its rays may meet are placed.
+  /// the scene's robot at its pose; robots beyond `robots.size()` are hidden. Needs a robot.
+  /// `view`: only the bodies its rays may meet are placed.
   void setRobots(const std::vector<RobotPose>& robots, bool commit = true,
                  const ViewCone* view = nullptr);
   /// Renders what `model` sees from `pose` (its optical frame in the env frame: z forward, x
@@ -199,6 +207,7 @@ class CameraEnvScene {
                    float* lit) const;
 
   const CameraWorld& world_;
+  const CameraRobot* robot_;  // how its robots look, or nullptr
   RTCSceneTy* scene_ = nullptr;
   unsigned obstacles_id_;  // the obstacles' geometry in scene_, or RTC_INVALID_GEOMETRY_ID
   std::vector<UprightShape> movers_;            // those placed (and maybe seen)

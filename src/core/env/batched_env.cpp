@@ -67,10 +67,13 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
   if (!config_.world.floor.empty()) {
     floor = std::make_shared<const FloorImage>(FloorImage::fromYamlFile(config_.world.floor));
   }
+  // One scene of the world (its visuals, textures and robot shapes) for all the cameras.
+  std::shared_ptr<CameraWorld> camera_world;
+  if (!cameras.empty()) camera_world = std::make_shared<CameraWorld>(scene_->world(), floor);
   for (std::size_t k = 0; k < cameras.size(); ++k) {
     const bool batch = k == 0;  // resolveCameras() puts the batch's camera first
     cameras_.push_back(std::make_unique<CameraSensor>(
-        cameras[k], static_cast<int>(k), *robot_, scene_->world(), floor, n, config_.seed,
+        cameras[k], static_cast<int>(k), *robot_, camera_world, n, config_.seed,
         batch ? &result_.images : nullptr, batch && config_.camera.batch_images,
         config_.camera.robot_visuals));
     sensors_.push_back(cameras_.back().get());

@@ -63,7 +63,10 @@ VisualGeometry visualGeometry(const urdf::Link& link, const urdf::Visual& visual
     const urdf::Color& c = visual.material->color;
     const Eigen::Vector3f rgb(c.r, c.g, c.b);
     // urdfdom leaves a material without <color> (a texture only) at 0 0 0 0: keep the grey.
-    if (rgb.allFinite() && c.a > 0.0f) v.colour = rgb.cwiseMax(0.0f).cwiseMin(1.0f);
+    if (rgb.allFinite() && c.a > 0.0f) {
+      v.colour = rgb.cwiseMax(0.0f).cwiseMin(1.0f);
+      v.coloured = true;
+    }
   }
   return v;
 }

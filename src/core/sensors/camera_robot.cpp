@@ -10,10 +10,11 @@
 namespace jetbot_rl {
 namespace {
 
-/// A scene of `visuals` (each a geometry, its colour in `colours`), or nullptr for none;
-/// `sphere`: (centre, radius) of a sphere holding them all.
+/// A scene of `visuals` (each surface a geometry, its material in `materials`), or nullptr for
+/// none; `sphere`: (centre, radius) of a sphere holding them all.
 RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>& visuals,
-                     std::vector<Eigen::Vector3f>& colours, Eigen::Vector4d& sphere) {
+                     TextureCache& textures, std::vector<SurfaceMaterial>& materials,
+                     Eigen::Vector4d& sphere) {
   if (visuals.empty()) return nullptr;
   Eigen::AlignedBox3d box;
   RTCScene scene = rtcNewScene(device);
@@ -21,12 +22,13 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   try {
     for (const VisualGeometry* v : visuals) {
-      const std::vector<Eigen::Vector3d> corners = visualTriangles(*v);
-      if (corners.empty()) continue;
-      for (const Eigen::Vector3d& c : corners) box.extend(c);
-      const unsigned id = attachTriangles(device, scene, corners);
-      if (colours.size() <= id) colours.resize(id + 1, v->colour);
-      colours[id] = v->colour;
+      for (auto& [material, corners] : visualSurfaces(*v, textures)) {
+        if (corners.empty()) continue;
+        for (const Eigen::Vector3d& c : corners) box.extend(c);
+        const unsigned id = attachTriangles(device, scene, corners);
+        if (materials.size() <= id) materials.resize(id + 1);
+        materials[id] = std::move(material);
+      }
     }
   } catch (...) {
     rtcReleaseScene(scene);
@@ -42,10 +44,13 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> visualTriangles(const VisualGeometry& v) {
+std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurfaces(
+    const VisualGeometry& v, TextureCache& textures) {
   const CollisionGeometry& g = v.shape;
   if (g.type != CollisionGeometry::Type::kMesh && g.size.maxCoeff() <= 0.0) return {};  // size 0
-  std::vector<Eigen::Vector3d> local;
+  std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> out(1);
+  out[0].first.colour = v.colour;
+  std::vector<Eigen::Vector3d>& local = out[0].second;
   switch (g.type) {
     case CollisionGeometry::Type::kBox:
       local = boxSurface(g.size);
@@ -56,23 +61,47 @@ std::vector<Eigen::Vector3d> visualTriangles(const VisualGeometry& v) {
     case CollisionGeometry::Type::kSphere:
       local = ellipsoidSurface(Eigen::Vector3d::Constant(g.size.x()));
       break;
-    case CollisionGeometry::Type::kMesh:
+    case CollisionGeometry::Type::kMesh: {
       if (v.mesh_path.empty()) throw ModelError(v.mesh_error);
       try {
-        local = loadMeshTriangles(v.mesh_path);
+        if (v.coloured) {
+          local = loadMeshTriangles(v.mesh_path);
+          break;
+        }
+        out.clear();
+        for (MeshPart& part : loadMeshParts(v.mesh_path)) {
+          SurfaceMaterial m;
+          if (part.colour) m.colour = part.colour->cwiseMax(0.0f).cwiseMin(1.0f);
+          if (!part.texture_as_given.empty() && part.texture.empty()) {
+            throw ModelError("texture '" + part.texture_as_given + "' not found");
+          }
+          if (!part.texture.empty()) {
+            auto [at, first] = textures.try_emplace(part.texture);
+            if (first) at->second = loadTextureImage(part.texture);
+            m.texture = at->second;
+            m.uv = std::move(part.uv);
+          }
+          out.emplace_back(std::move(m), std::move(part.triangles));
+        }
       } catch (const ModelError& e) {
         throw ModelError("link '" + v.link + "': visual mesh '" + g.mesh_uri + "': " + e.what());
       }
-      for (Eigen::Vector3d& c : local) c = c.cwiseProduct(g.size);
       break;
+    }
   }
-  for (Eigen::Vector3d& c : local) c = g.origin * c;
-  return local;
+  for (auto& [material, corners] : out) {
+    for (Eigen::Vector3d& c : corners) {
+      if (g.type == CollisionGeometry::Type::kMesh) c = c.cwiseProduct(g.size);
+      c = g.origin * c;
+    }
+  }
+  return out;
 }
 
 CameraRobot::CameraRobot(RTCDeviceTy* device, const RobotModel& robot,
                          const std::string& hidden_link) {
   bodies_.resize(robot.bodies().size());
+  TextureCache textures;
   try {
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       std::vector<const VisualGeometry*> all, own;
@@ -81,13 +110,13 @@ CameraRobot::CameraRobot(RTCDeviceTy* device, const RobotModel& robot,
         if (v.link != hidden_link) own.push_back(&v);
       }
       Body& body = bodies_[b];
-      body.all = visualScene(device, all, body.colours, body.sphere);
+      body.all = visualScene(device, all, textures, body.materials, body.sphere);
       if (own.size() == all.size()) {
         body.own = body.all;
-        body.own_colours = body.colours;
+        body.own_materials = body.materials;
         body.own_sphere = body.sphere;
       } else {
-        body.own = visualScene(device, own, body.own_colours, body.own_sphere);
+        body.own = visualScene(device, own, textures, body.own_materials, body.own_sphere);
       }
     }
   } catch (...) {

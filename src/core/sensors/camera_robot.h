@@ -1,21 +1,31 @@
 #pragma once
 // A robot as cameras see it: per body, one Embree scene of its URDF visuals (boxes, cylinders,
-// spheres and meshes as triangles) in the body's link frame, with each geometry's colour; every
+// spheres and meshes as triangles) in the body's link frame, with each geometry's material; every
 // env scene instances the bodies of its robots at their poses (the model/data split again).
 #include <Eigen/Core>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "jetbot_rl/robot/robot_model.h"
+#include "jetbot_rl/sensors/surface_material.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
 
 namespace jetbot_rl {
 
-/// The triangles (three corners each) of visual `v` in its body's link frame [m]; ModelError
-/// naming the link for a mesh that cannot be resolved or read.
-std::vector<Eigen::Vector3d> visualTriangles(const VisualGeometry& v);
+/// Textures read so far, one image per file.
+using TextureCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
+
+/// The surfaces of visual `v` in its body's link frame [m], each with its material: one, in its
+/// colour, or, for a mesh without a URDF colour, one per material of its file (its diffuse
+/// colour or texture, as RViz draws it). ModelError naming the link for a mesh that cannot be
+/// resolved or read, or a texture that cannot be read.
+std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurfaces(
+    const VisualGeometry& v, TextureCache& textures);
 
 class CameraRobot {
  public:
@@ -34,16 +44,18 @@ class CameraRobot {
   const Eigen::Vector4d& boundingSphere(int b, bool own) const {
     return own ? bodies_[b].own_sphere : bodies_[b].sphere;
   }
-  /// The colour of geometry `geometry` of that scene.
-  const Eigen::Vector3f& colour(int b, bool own, unsigned geometry) const {
-    return (own ? bodies_[b].own_colours : bodies_[b].colours).at(geometry);
+  /// The colour of geometry `geometry` of that scene at its triangle `triangle`, where Embree's
+  /// barycentric coordinates are `u`, `v`.
+  Eigen::Vector3f colour(int b, bool own, unsigned geometry, unsigned triangle, float u,
+                         float v) const {
+    return (own ? bodies_[b].own_materials : bodies_[b].materials).at(geometry).at(triangle, u, v);
   }
 
  private:
   struct Body {
     RTCSceneTy* all = nullptr;
     RTCSceneTy* own = nullptr;  // == all when the hidden link is not among its visuals
-    std::vector<Eigen::Vector3f> colours, own_colours;  // per geometry id
+    std::vector<SurfaceMaterial> materials, own_materials;  // per geometry id
     Eigen::Vector4d sphere = Eigen::Vector4d::Zero(), own_sphere = Eigen::Vector4d::Zero();
   };
   void release();

@@ -28,6 +28,8 @@ static_assert(kTileWidth * kTileHeight == kLanes && TileRays::kLanes == kLanes,
               "a packet is a tile of the camera model");
 // [m]: how far a shadow ray starts off its surface, so that it does not hit the surface itself.
 constexpr float kShadowOffset = 1e-4f;
+/// How far below the ground a world's surface is still drawn over it [m].
+constexpr float kFloorDepth = 1e-3f;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
                       Packet* packet) {
@@ -48,8 +50,8 @@ bool mayBeSeen(const Obstacle& o, const ViewCone& view) {
 
 }  // namespace
 
-CameraEnvScene::CameraEnvScene(const CameraWorld& world)
-    : world_(world), obstacles_id_(RTC_INVALID_GEOMETRY_ID) {
+CameraEnvScene::CameraEnvScene(const CameraWorld& world, const CameraRobot* robot)
+    : world_(world), robot_(robot), obstacles_id_(RTC_INVALID_GEOMETRY_ID) {
   // The env's own bodies only; the world's are traced first, in their own scene (render()).
   scene_ = rtcNewScene(world_.device());
   if (!scene_) throwEmbree(world_.device(), "rtcNewScene");
@@ -102,8 +104,8 @@ void CameraEnvScene::setMovers(const std::vector<Obstacle>& movers, const ViewCo
 
 void CameraEnvScene::setRobots(const std::vector<RobotPose>& robots, bool commit,
                                const ViewCone* view) {
-  const CameraRobot* robot = world_.robot();
-  if (!robot) throw Error("CameraEnvScene::setRobots: the world has no robot (setRobot())");
+  const CameraRobot* robot = robot_;
+  if (!robot) throw Error("CameraEnvScene::setRobots: the scene has no robot (addRobot())");
   const auto bodies = static_cast<std::size_t>(robot->numBodies());
   for (std::size_t r = 0; r < robots.size(); ++r) {
     if (robots[r].bodies.size() != bodies) {
@@ -307,7 +309,15 @@ void CameraEnvScene::renderTile(const Frame& frame, int x0, int y0) const {
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // neighbouring pixels: neighbouring rays
   std::copy_n(people.t, kLanes, packet.ray.tfar);
+  // A Gazebo world's own floor (a floor mesh at z = 0, or just below) is drawn over the ground:
+  // its rays reach kFloorDepth below it (not the others': blocks' bottoms lie at z = 0).
+  for (int k = 0; world_.hasFloorSurfaces() && k < kLanes; ++k) {
+    const float dz = lanes.dir_z[k];
+    const float below = dz < 0.0f ? (origin.z() + kFloorDepth) / -dz : kInfinity;
+    if (people.shape[k] < 0) packet.ray.tfar[k] = std::min(far, below);
+  }
   intersect(valid, world_.scene(), &context, &packet);
+  // The world's hits; those the env's bodies do not cover keep their triangle and u, v.
   unsigned world_geometry[kLanes];
   for (int k = 0; k < kLanes; ++k) {
     world_geometry[k] = packet.hit.geomID[k];
@@ -364,10 +374,14 @@ void CameraEnvScene::renderTile(const Frame& frame, int x0, int y0) const {
                                  ? &robots_[static_cast<std::size_t>(robot_of_id_[instance])]
                                  : nullptr;
     const std::optional<Eigen::Vector3f> material =
-        instance == kWorldHit && a.material_colours ? world_.colourOf(geometry) : std::nullopt;
-    Eigen::Vector3f albedo = robot      ? world_.robot()->colour(robot->body, robot->own, geometry)
-                             : material ? *material
-                                        : a.colour(surface);
+        instance == kWorldHit && a.material_colours
+            ? world_.colourOf(geometry, packet.hit.primID[k], packet.hit.u[k], packet.hit.v[k])
+            : std::nullopt;
+    Eigen::Vector3f albedo =
+        robot      ? robot_->colour(robot->body, robot->own, geometry, packet.hit.primID[k],
+                                    packet.hit.u[k], packet.hit.v[k])
+        : material ? *material
+                   : a.colour(surface);
     const FloorImage* floor = this->floor();
     if (on_ground && floor &&
         floor->colourAt(origin.x() + t * lanes.dir_x[k], origin.y() + t * lanes.dir_y[k], albedo)) {

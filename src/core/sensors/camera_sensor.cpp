@@ -23,13 +23,12 @@ constexpr std::uint64_t kAppearanceStream = streams::kAppearance;
 }  // namespace
 
 CameraSensor::CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot,
-                           const WorldModel* world, std::shared_ptr<const FloorImage> floor,
-                           int num_envs, std::uint64_t seed, BatchImages* out, bool keep_finals,
-                           bool robot_visuals)
+                           std::shared_ptr<CameraWorld> world, int num_envs, std::uint64_t seed,
+                           BatchImages* out, bool keep_finals, bool robot_visuals)
     : spec_(spec),
       noise_stream_(kCameraStream + static_cast<std::uint64_t>(index) * kCameraStride),
       model_(spec.intrinsics),
-      world_(world, std::move(floor)),
+      world_(std::move(world)),
       out_(out ? *out : own_),
       pixels_(static_cast<std::size_t>(spec.intrinsics.width) * spec.intrinsics.height),
       poses_(num_envs, Eigen::Isometry3d::Identity()),
@@ -38,7 +37,7 @@ CameraSensor::CameraSensor(const CameraSpec& spec, int index, const RobotModel& 
       robots_(num_envs) {
   if (robot_visuals) {
     try {
-      world_.setRobot(robot, spec.link);
+      robot_ = world_->addRobot(robot, spec.link);
     } catch (const ModelError& e) {
       throw ModelError(std::string(e.what()) +
                        " (the camera draws the robots by their visuals; camera/robot_visuals: "
@@ -58,7 +57,7 @@ CameraSensor::CameraSensor(const CameraSpec& spec, int index, const RobotModel& 
     finals_.label.assign(out_.label.size(), 0);
   }
   for (int e = 0; e < num_envs; ++e) {
-    scenes_.push_back(std::make_unique<CameraEnvScene>(world_));
+    scenes_.push_back(std::make_unique<CameraEnvScene>(*world_, robot_));
     scenes_.back()->setShadows(spec.shadows);
     noise_.emplace_back(seed, e + noise_stream_);
     appearance_rng_.emplace_back(seed, e + kAppearanceStream);
@@ -171,7 +170,7 @@ void CameraSensor::render(int env, const SensedEnv& sensed) {
   // Movers no ray can meet are left out of the scene (a shadow ray could meet them: not then).
   const ViewCone cone_of_view(model_, poses_[env]);
   const ViewCone* cone = spec_.shadows ? nullptr : &cone_of_view;
-  if (world_.robot()) {
+  if (robot_) {
     if (sensed.people) scene.setMovers(*sensed.people, cone);
     scene.setRobots(robotPoses(env, sensed), /*commit=*/true, cone);
   } else if (sensed.movers) {  // people and the other robots as cylinders

@@ -21,15 +21,15 @@ class WorldModel;
 /// BatchImages, their cadence, and a noise stream per env.
 class CameraSensor : public EnvSensor {
  public:
-  /// `world` (or none) is what the camera sees besides the ground (`floor` on it, or none), each
-  /// env's bodies and its robots (`robot`'s URDF visuals; ModelError for a visual mesh that
+  /// `world` (the world's scene, shared by the robot's cameras) is what the camera sees besides
+  /// each env's bodies and its robots (`robot`'s URDF visuals; ModelError for a visual mesh that
   /// cannot be read); images go to `out` (sized here), which must outlive the sensor, or (nullptr)
   /// into the sensor's own. `index`: the robot's camera index (its noise stream; 0 draws what a
   /// robot with one camera draws). `keep_finals`: keepFinal() is used (memory for a second image
   /// of every env); `robot_visuals`: the robots are drawn by `robot`'s visuals (else the others as
   /// cylinders).
-  CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot, const WorldModel* world,
-               std::shared_ptr<const FloorImage> floor, int num_envs, std::uint64_t seed,
+  CameraSensor(const CameraSpec& spec, int index, const RobotModel& robot,
+               std::shared_ptr<CameraWorld> world, int num_envs, std::uint64_t seed,
                BatchImages* out, bool keep_finals, bool robot_visuals);
 
   void reseed(int env, std::uint64_t seed) override;
@@ -64,7 +64,8 @@ class CameraSensor : public EnvSensor {
   CameraSpec spec_;
   std::uint64_t noise_stream_;  // env e's noise: stream e + noise_stream_
   CameraModel model_;
-  CameraWorld world_;
+  std::shared_ptr<CameraWorld> world_;
+  const CameraRobot* robot_ = nullptr;  // the robots as this camera draws them (world_'s)
   std::vector<std::unique_ptr<CameraEnvScene>> scenes_;  // per env
   BatchImages own_;                                      // the images when none are given
   BatchImages& out_;

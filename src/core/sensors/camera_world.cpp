@@ -54,31 +54,36 @@ CameraWorld::CameraWorld(const WorldModel* world, std::shared_ptr<const FloorIma
     classes_.push_back(SurfaceClass::kMap);
     attachTriangles(device_, scene_, blocks);
   }
-  if (visuals) {  // one geometry per colour
-    std::vector<std::pair<Eigen::Vector3f, std::vector<Eigen::Vector3d>>> by_colour;
+  if (visuals) {  // one geometry per colour, and one per texture
+    std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> groups;
     for (const WorldVisual& v : gazebo->visuals) {
-      auto at = std::find_if(by_colour.begin(), by_colour.end(),
-                             [&](const auto& c) { return c.first == v.colour; });
-      if (at == by_colour.end()) at = by_colour.insert(by_colour.end(), {v.colour, {}});
+      auto at = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+        return v.texture ? g.first.texture == v.texture
+                         : !g.first.texture && g.first.colour == v.colour;
+      });
+      if (at == groups.end()) at = groups.insert(groups.end(), {{v.colour, v.texture, {}}, {}});
       at->second.insert(at->second.end(), v.triangles.begin(), v.triangles.end());
+      at->first.uv.insert(at->first.uv.end(), v.uv.begin(), v.uv.end());
     }
-    for (const auto& [colour, corners] : by_colour) {
+    for (auto& [material, corners] : groups) {
       const unsigned id = attachTriangles(device_, scene_, corners);
       if (classes_.size() <= id) classes_.resize(id + 1, SurfaceClass::kMap);
-      if (colours_.size() <= id) colours_.resize(id + 1);
+      if (materials_.size() <= id) materials_.resize(id + 1);
       classes_[id] = SurfaceClass::kMap;
-      colours_[id] = colour;
+      materials_[id] = std::move(material);
     }
   }
   rtcCommitScene(scene_);
 }
 
-void CameraWorld::setRobot(const RobotModel& robot, const std::string& hidden_link) {
-  robot_ = std::make_unique<CameraRobot>(device_, robot, hidden_link);
+const CameraRobot* CameraWorld::addRobot(const RobotModel& robot, const std::string& hidden_link) {
+  std::unique_ptr<CameraRobot>& made = robots_[hidden_link];
+  if (!made) made = std::make_unique<CameraRobot>(device_, robot, hidden_link);
+  return made.get();
 }
 
 CameraWorld::~CameraWorld() {
-  robot_.reset();  // its scenes belong to device_
+  robots_.clear();  // their scenes belong to device_
   if (scene_) rtcReleaseScene(scene_);
   if (empty_) rtcReleaseScene(empty_);
   if (device_) rtcReleaseDevice(device_);

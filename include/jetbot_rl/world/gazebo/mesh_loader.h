@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,20 @@ std::vector<Eigen::Vector3d> loadMeshHull(const std::string& path);
 /// The triangles of every mesh in the file (polygons triangulated), three corners each, read as
 /// loadMeshHull() reads the file [m]. Throws ModelError naming the path.
 std::vector<Eigen::Vector3d> loadMeshTriangles(const std::string& path);
+
+/// The triangles of a mesh file that share one material, with what the material says of them.
+struct MeshPart {
+  std::vector<Eigen::Vector3d> triangles;  ///< Three corners per triangle [m].
+  std::optional<Eigen::Vector3f> colour;   ///< Its diffuse RGB; none: the file gives none.
+  /// Its diffuse texture file, resolved against the mesh's folder (else its base name in the
+  /// model's `materials/textures/`, where Gazebo also looks); "" without one. `texture_as_given`:
+  /// the name in the file (also when it is not found).
+  std::string texture, texture_as_given;
+  std::vector<Eigen::Vector2f> uv;  ///< Texture coordinates per corner (with a texture found).
+};
+
+/// loadMeshTriangles(), the triangles grouped by their material (assimp's default material, of a
+/// file that names none, gives no colour). ModelError naming the path.
+std::vector<MeshPart> loadMeshParts(const std::string& path);
 
 }  // namespace jetbot_rl

@@ -4,12 +4,14 @@
 // and visual geometry of every model, read with sdformat, placed in the world frame.
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "jetbot_rl/world/gazebo/mesh_loader.h"
 #include "jetbot_rl/world/occupancy_map.h"
+#include "jetbot_rl/world/texture_image.h"
 #include "jetbot_rl/world/world_model.h"
 
 namespace jetbot_rl {
@@ -31,8 +33,12 @@ struct WorldVisual {
   std::string name;  ///< Scoped as Gazebo scopes it: model::nested::link::visual.
   std::vector<Eigen::Vector3d> triangles;  ///< Three corners per triangle [m].
   /// Diffuse RGB in [0, 1]: its `<material>`'s `<diffuse>`, else its Gazebo script's colour
-  /// (Gazebo/Grey, Gazebo/Wood, ...), else grey.
+  /// (Gazebo/Grey, Gazebo/Wood, ...), else its mesh's own material's, else grey.
   Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
+  /// Without a `<material>`, its mesh material's diffuse texture (drawn instead of `colour`), or
+  /// nullptr. One image per file, shared.
+  std::shared_ptr<const TextureImage> texture;
+  std::vector<Eigen::Vector2f> uv;  ///< With `texture`: texture coordinates per corner.
 };
 
 /// A Gazebo world's collision geometry and what was not read of it.

@@ -101,45 +101,77 @@ std::string sdfPlacementProblem(const sdf::Geometry& g, const Eigen::Isometry3d&
   }
 }
 
+namespace {
+
+/// The file of mesh `m` (a URI resolved as Gazebo 11 resolves it, a relative path against the
+/// SDF file that names it); throws Error.
+std::string sdfMeshPath(const sdf::Mesh& m, const std::string& world_path,
+                        const MeshResolver& resolver) {
+  std::string path = resolveMeshUri(m.Uri(), [&](const std::string& u) {
+    if (u.rfind("model://", 0) == 0) {
+      const std::string found = findGazeboModel(u);
+      if (found.empty()) throw ConfigError("no model folder of that name");
+      return found;
+    }
+    if (resolver) return resolver(u);
+    const std::string found = findPackageUri(u);
+    if (found.empty()) throw ConfigError("no such package on ROS_PACKAGE_PATH");
+    return found;
+  });
+  if (!path.empty() && path[0] != '/') {  // relative to the SDF file that names it
+    // Read from a string (sdf_prepass.h), the world's own models have no file path.
+    const std::string& from = m.FilePath().rfind('/', 0) == 0 ? m.FilePath() : world_path;
+    const auto slash = from.rfind('/');
+    if (slash != std::string::npos) path = from.substr(0, slash + 1) + path;
+  }
+  return path;
+}
+
+/// Applies mesh `m`'s `<scale>` to `triangles`; ConfigError for a vertex beyond the bounds.
+void scaleMesh(const sdf::Mesh& m, std::vector<Eigen::Vector3d>& triangles) {
+  const auto s = m.Scale();
+  const Eigen::Vector3d scale(s.X(), s.Y(), s.Z());
+  for (Eigen::Vector3d& p : triangles) {
+    p = p.cwiseProduct(scale);
+    if (!(p.cwiseAbs().maxCoeff() <= kMaxShapeSize)) {
+      std::ostringstream s;
+      s << "a vertex of mesh '" << m.Uri() << "' at scale " << scale.transpose() << " lies at ("
+        << p.transpose() << "), beyond " << kMaxShapeSize << " m of its origin";
+      throw ConfigError(s.str());
+    }
+  }
+}
+
+void noteSubmesh(const sdf::Mesh& m, const std::string& name, std::vector<std::string>& notes) {
+  if (!m.Submesh().empty()) {
+    notes.push_back("submesh choice of '" + name + "' (the whole mesh is used)");
+  }
+}
+
+}  // namespace
+
 std::vector<Eigen::Vector3d> sdfMeshTriangles(const sdf::Mesh& m, const std::string& world_path,
                                               const MeshResolver& resolver, const std::string& name,
                                               std::vector<std::string>& notes) {
-  std::string path;
-  const std::string& uri = m.Uri();
   try {
-    path = resolveMeshUri(uri, [&](const std::string& u) {
-      if (u.rfind("model://", 0) == 0) {
-        const std::string found = findGazeboModel(u);
-        if (found.empty()) throw ConfigError("no model folder of that name");
-        return found;
-      }
-      if (resolver) return resolver(u);
-      const std::string found = findPackageUri(u);
-      if (found.empty()) throw ConfigError("no such package on ROS_PACKAGE_PATH");
-      return found;
-    });
-    if (!path.empty() && path[0] != '/') {  // relative to the SDF file that names it
-      // Read from a string (sdf_prepass.h), the world's own models have no file path.
-      const std::string& from = m.FilePath().rfind('/', 0) == 0 ? m.FilePath() : world_path;
-      const auto slash = from.rfind('/');
-      if (slash != std::string::npos) path = from.substr(0, slash + 1) + path;
-    }
-    std::vector<Eigen::Vector3d> triangles = loadMeshTriangles(path);
-    const auto s = m.Scale();
-    const Eigen::Vector3d scale(s.X(), s.Y(), s.Z());
-    for (Eigen::Vector3d& p : triangles) {
-      p = p.cwiseProduct(scale);
-      if (!(p.cwiseAbs().maxCoeff() <= kMaxShapeSize)) {
-        std::ostringstream s;
-        s << "a vertex of mesh '" << uri << "' at scale " << scale.transpose() << " lies at ("
-          << p.transpose() << "), beyond " << kMaxShapeSize << " m of its origin";
-        throw ConfigError(s.str());
-      }
-    }
-    if (!m.Submesh().empty()) {
-      notes.push_back("submesh choice of '" + name + "' (the whole mesh is used)");
-    }
+    std::vector<Eigen::Vector3d> triangles =
+        loadMeshTriangles(sdfMeshPath(m, world_path, resolver));
+    scaleMesh(m, triangles);
+    noteSubmesh(m, name, notes);
     return triangles;
+  } catch (const Error& e) {
+    throw ConfigError(e.what());
+  }
+}
+
+std::vector<MeshPart> sdfMeshParts(const sdf::Mesh& m, const std::string& world_path,
+                                   const MeshResolver& resolver, const std::string& name,
+                                   std::vector<std::string>& notes) {
+  try {
+    std::vector<MeshPart> parts = loadMeshParts(sdfMeshPath(m, world_path, resolver));
+    for (MeshPart& part : parts) scaleMesh(m, part.triangles);
+    noteSubmesh(m, name, notes);
+    return parts;
   } catch (const Error& e) {
     throw ConfigError(e.what());
   }

@@ -33,6 +33,11 @@ std::vector<Eigen::Vector3d> sdfMeshTriangles(const sdf::Mesh& m, const std::str
                                               const MeshResolver& resolver, const std::string& name,
                                               std::vector<std::string>& notes);
 
+/// sdfMeshTriangles() grouped by the mesh file's own materials (loadMeshParts()).
+std::vector<MeshPart> sdfMeshParts(const sdf::Mesh& m, const std::string& world_path,
+                                   const MeshResolver& resolver, const std::string& name,
+                                   std::vector<std::string>& notes);
+
 /// The surface of `g` in its own frame: boxes, cylinders, spheres, ellipsoids, capsules,
 /// meshes and <polyline> extrusions; empty for planes, heightmaps and empty geometry.
 /// ConfigError for a polyline or mesh beyond the bounds, or a mesh that cannot be read.

@@ -45,33 +45,80 @@ VisualMaterial materialOf(const sdf::Visual& visual) {
   return m;
 }
 
+namespace {
+
+/// The texture at `path` through `sink`'s cache (nullptr, noted once naming `name`, when it
+/// cannot be read).
+std::shared_ptr<const TextureImage> texture(const std::string& path, const std::string& name,
+                                            VisualSink& sink) {
+  const auto [at, first] = sink.textures.try_emplace(path);
+  if (!first) return at->second;
+  try {
+    at->second = loadTextureImage(path);
+  } catch (const Error& e) {
+    sink.notes->push_back(std::string(e.what()) + " of visual '" + name + "' (its colour drawn)");
+  }
+  return at->second;
+}
+
+/// A visual of mesh `m` without a <material>: one per material of its file.
+void readMeshParts(const sdf::Mesh& m, const Eigen::Isometry3d& pose, const std::string& name,
+                   VisualSink& sink) {
+  for (MeshPart& part : sdfMeshParts(m, sink.world_path, sink.resolver, name, *sink.notes)) {
+    WorldVisual v;
+    v.name = name;
+    v.triangles = std::move(part.triangles);
+    for (Eigen::Vector3d& c : v.triangles) c = pose * c;
+    if (part.colour) v.colour = part.colour->cwiseMax(0.0f).cwiseMin(1.0f);
+    if (!part.texture.empty()) {
+      v.texture = texture(part.texture, name, sink);
+      if (v.texture) v.uv = std::move(part.uv);
+    } else if (!part.texture_as_given.empty() &&
+               sink.textures.try_emplace("?" + part.texture_as_given).second) {
+      sink.notes->push_back("texture '" + part.texture_as_given + "' of visual '" + name +
+                            "' (not found; its colour drawn)");
+    }
+    sink.out->push_back(std::move(v));
+  }
+}
+
+}  // namespace
+
 void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
                 const Eigen::Isometry3d& pose, const std::string& name, const std::string& where,
-                const std::string& world_path, const MeshResolver& resolver,
-                std::vector<WorldVisual>& out, std::vector<std::string>& notes) {
+                VisualSink& sink) {
   const auto refuse = [&](const std::string& what) {
     throw ConfigError(where + ": visual '" + name + "': " + what);
   };
   if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own
   if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
+  if (g.Type() == sdf::GeometryType::MESH && !material.diffuse && material.script.empty()) {
+    try {
+      readMeshParts(*g.MeshShape(), pose, name, sink);
+    } catch (const Error& e) {
+      refuse(e.what());
+    }
+    return;
+  }
   WorldVisual v;
   v.name = name;
   try {
-    v.triangles = sdfSurface(g, world_path, resolver, name, notes);
+    v.triangles = sdfSurface(g, sink.world_path, sink.resolver, name, *sink.notes);
   } catch (const Error& e) {
     refuse(e.what());
   }
   if (v.triangles.empty()) {
-    notes.push_back("empty visual '" + name + "'");
+    sink.notes->push_back("empty visual '" + name + "'");
     return;
   }
   for (Eigen::Vector3d& c : v.triangles) c = pose * c;
   if (material.diffuse) {
     v.colour = material.diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
   } else if (!material.script.empty() && !gazeboScriptColour(material.script, v.colour)) {
-    notes.push_back("material '" + material.script + "' of visual '" + name + "' (drawn grey)");
+    sink.notes->push_back("material '" + material.script + "' of visual '" + name +
+                          "' (drawn grey)");
   }
-  out.push_back(std::move(v));
+  sink.out->push_back(std::move(v));
 }
 
 }  // namespace jetbot_rl

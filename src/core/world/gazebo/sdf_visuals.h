@@ -2,6 +2,8 @@
 // A Gazebo world's <visual> elements as a camera draws them: triangles in the world frame with
 // their material's diffuse colour (loadGazeboWorld() reads them when asked to).
 #include <Eigen/Geometry>
+#include <map>
+#include <memory>
 #include <optional>
 #include <sdf/sdf.hh>
 #include <string>
@@ -25,14 +27,26 @@ struct VisualMaterial {
 /// The material of an sdformat visual.
 VisualMaterial materialOf(const sdf::Visual& visual);
 
+/// What readVisual() reads with and into: the world's file, the mesh resolver, the visuals and
+/// notes it appends to, and the textures read so far (one image per file; nullptr: not readable,
+/// noted once).
+struct VisualSink {
+  std::string world_path;
+  MeshResolver resolver;
+  std::vector<WorldVisual>* out = nullptr;
+  std::vector<std::string>* notes = nullptr;
+  std::map<std::string, std::shared_ptr<const TextureImage>> textures;
+};
+
 /// Appends a visual of geometry `g` and `material` (named `name`, at `pose` in the world;
-/// `where`: its file and line) to `out`: its surface (sdfSurface()) and colour; a plane is the
-/// ground (left out), a material script it does not know is noted in `notes` (drawn grey).
+/// `where`: its file and line) to `sink`: its surface (sdfSurface()) and colour; a plane is the
+/// ground (left out), a material script it does not know is noted (drawn grey). A mesh without a
+/// `<material>` shows its file's own materials, as Gazebo draws it: one visual per material, its
+/// diffuse colour or texture (a texture that cannot be read is noted, its colour drawn).
 /// ConfigError naming the file, line and visual for a size or pose beyond the bounds or a mesh
 /// that cannot be read.
 void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
                 const Eigen::Isometry3d& pose, const std::string& name, const std::string& where,
-                const std::string& world_path, const MeshResolver& resolver,
-                std::vector<WorldVisual>& out, std::vector<std::string>& notes);
+                VisualSink& sink);
 
 }  // namespace jetbot_rl

@@ -64,7 +64,12 @@ bool deprecationOnly(const sdf::Error& e) {
 class Reader {
  public:
   Reader(GazeboWorld& world, const MeshResolver& resolver, bool visuals, const SavedState& state)
-      : world_(world), resolver_(resolver), visuals_(visuals), state_(state) {}
+      : world_(world), resolver_(resolver), visuals_(visuals), state_(state) {
+    sink_.world_path = world.path;
+    sink_.resolver = resolver;
+    sink_.out = &world.visuals;
+    sink_.notes = &skipped_;
+  }
 
   /// Model `m` at `pose` in the world (its parent's), unless the saved state poses it.
   void model(const sdf::Model& m, const Eigen::Isometry3d& parent_pose, const std::string& scope) {
@@ -109,8 +114,7 @@ class Reader {
           continue;
         }
         readVisual(*visual.Geom(), materialOf(visual), frame * toEigen(p), scoped,
-                   whereIs(visual.Element(), world_.path), world_.path, resolver_, world_.visuals,
-                   skipped_);
+                   whereIs(visual.Element(), world_.path), sink_);
       }
     }
     for (uint64_t i = 0; i < m.ModelCount(); ++i) {
@@ -142,7 +146,7 @@ class Reader {
       for (const PlainShape& v : link.visuals) {
         readVisual(v.geometry, v.material, pose * toEigen(link.pose * v.pose),
                    m.name + "::" + link.name + "::" + v.name, where + std::to_string(v.line),
-                   world_.path, resolver_, world_.visuals, skipped_);
+                   sink_);
       }
     }
     world_.warnings.insert(world_.warnings.end(), m.warnings.begin(), m.warnings.end());
@@ -258,6 +262,7 @@ class Reader {
   const SavedState& state_;
   std::set<std::string> read_;  // the scoped names of the models and links read
   std::vector<std::string> skipped_;
+  VisualSink sink_;  // after skipped_, which it appends to
 };
 
 }  // namespace
