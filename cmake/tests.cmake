@@ -33,6 +33,7 @@ catkin_add_gtest(test_core
   test/core/test_camera_blocks.cpp
   test/core/test_camera_gazebo.cpp
   test/core/test_camera_textures.cpp
+  test/core/test_material_scripts.cpp
   test/core/test_camera_robots.cpp
   test/core/test_camera_sensor.cpp
   test/core/test_camera_tiles.cpp

@@ -64,7 +64,7 @@ TEST(MeshMaterials, EachPartHasItsColourAndTexture) {
   ASSERT_TRUE(parts[1].colour);
   EXPECT_TRUE(parts[1].colour->isApprox(Eigen::Vector3f(0.0f, 1.0f, 0.0f)));
   EXPECT_TRUE(parts[1].texture.empty());
-  EXPECT_TRUE(parts[1].uv.empty());
+  EXPECT_EQ(parts[1].uv.size(), 3u);  // for a script's texture
   // A file naming no material: one part, no colour (grey is the reader's).
   const std::string plain = test::writeTempFile(
       "plain_mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n");

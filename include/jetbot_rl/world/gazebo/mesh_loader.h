@@ -39,7 +39,9 @@ struct MeshPart {
   /// model's `materials/textures/`, where Gazebo also looks); "" without one. `texture_as_given`:
   /// the name in the file (also when it is not found).
   std::string texture, texture_as_given;
-  std::vector<Eigen::Vector2f> uv;  ///< Texture coordinates per corner (with a texture found).
+  /// Texture coordinates per corner (0, 0 where the file has none), for its texture or one a
+  /// material script gives.
+  std::vector<Eigen::Vector2f> uv;
 };
 
 /// loadMeshTriangles(), the triangles grouped by their material (assimp's default material, of a

@@ -80,14 +80,13 @@ std::vector<Eigen::Vector3d> readMesh(const std::string& path, bool faces) {
 }
 
 /// Appends every triangle under `node` to the part of its mesh's material, with its corners'
-/// texture coordinates where the part has a texture.
+/// texture coordinates.
 void collectParts(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
                   std::vector<MeshPart>& parts) {
   const aiMatrix4x4 transform = parent * node.mTransformation;
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
     MeshPart& part = parts[std::min<std::size_t>(mesh.mMaterialIndex, parts.size() - 1)];
-    const bool textured = !part.texture.empty();
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines
@@ -95,8 +94,7 @@ void collectParts(const aiScene& scene, const aiNode& node, const aiMatrix4x4& p
         const unsigned i = face.mIndices[k];
         const aiVector3D p = transform * mesh.mVertices[i];
         part.triangles.emplace_back(p.x, p.y, p.z);
-        if (!textured) continue;
-        // A mesh without coordinates shows its texture's first texel.
+        // A mesh without coordinates shows a texture's first texel.
         const aiVector3D uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0][i] : aiVector3D();
         part.uv.emplace_back(uv.x, uv.y);
       }

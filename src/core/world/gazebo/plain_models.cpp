@@ -136,6 +136,10 @@ bool readMaterial(const tinyxml2::XMLElement& e, VisualMaterial& out) {
     for (const tinyxml2::XMLElement* u = c->FirstChildElement("uri"); u;
          u = u->NextSiblingElement("uri")) {
       if (u->FirstChildElement() || !onlyAttributes(*u, {}) || !u->GetText()) return false;
+      std::string uri = u->GetText();  // as sdformat reads it: without surrounding spaces
+      uri.erase(0, uri.find_first_not_of(" \t\r\n"));
+      uri.erase(uri.find_last_not_of(" \t\r\n") + 1);
+      out.script_uris.push_back(uri);
     }
     out.script = name->GetText();
   }

@@ -1,9 +1,12 @@
 #include "world/gazebo/sdf_visuals.h"
 
+#include <filesystem>
 #include <sstream>
 #include <utility>
 
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/robot/package_path.h"
+#include "world/gazebo/primitive_uv.h"
 #include "world/gazebo/sdf_shapes.h"
 
 namespace jetbot_rl {
@@ -41,6 +44,13 @@ VisualMaterial materialOf(const sdf::Visual& visual) {
       m.diffuse = Eigen::Vector3f(d.R(), d.G(), d.B());
     }
     m.script = material->ScriptName();
+    if (element && element->HasElement("script")) {
+      const sdf::ElementPtr script = element->GetElement("script");
+      for (sdf::ElementPtr u = script->HasElement("uri") ? script->GetElement("uri") : nullptr; u;
+           u = u->GetNextElement("uri")) {
+        m.script_uris.push_back(u->Get<std::string>());
+      }
+    }
   }
   return m;
 }
@@ -82,6 +92,85 @@ void readMeshParts(const sdf::Mesh& m, const Eigen::Isometry3d& pose, const std:
   }
 }
 
+/// The folders (or files) of a script's <uri>s: `model://` as Gazebo finds it, `file://` and
+/// other paths as given, relative ones against the world file's folder; those not found left out.
+std::vector<std::string> scriptFolders(const VisualMaterial& material,
+                                       const std::string& world_path) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> folders;
+  for (std::string uri : material.script_uris) {
+    if (uri.rfind("model://", 0) == 0) {
+      uri = findGazeboModel(uri);
+      if (uri.empty()) continue;
+    } else if (uri.rfind("file://", 0) == 0) {
+      uri = uri.substr(7);
+    }
+    if (!fs::path(uri).is_absolute()) uri = (fs::path(world_path).parent_path() / uri).string();
+    folders.push_back(uri);
+  }
+  return folders;
+}
+
+/// A script texture's file: in one of the script's folders, or a `textures` folder beside one
+/// (Gazebo finds it through its resource paths, which hold the model's `materials/textures`).
+std::string scriptTexture(const std::string& name, const std::vector<std::string>& folders) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  for (const std::string& folder : folders) {
+    const fs::path dir =
+        fs::is_directory(folder, error) ? fs::path(folder) : fs::path(folder).parent_path();
+    for (const fs::path& candidate : {dir / name, dir.parent_path() / "textures" / name}) {
+      if (fs::exists(candidate, error)) return candidate.lexically_normal().string();
+    }
+  }
+  return "";
+}
+
+/// Visual `v` (its triangles in its own frame) in the colour and texture of its material script,
+/// found in the script's folders; what cannot be drawn as the script says is noted.
+void applyScript(const sdf::Geometry& g, const VisualMaterial& material, const std::string& name,
+                 VisualSink& sink, WorldVisual& v) {
+  const std::vector<std::string> folders = scriptFolders(material, sink.world_path);
+  const std::optional<ScriptMaterial> m = sink.scripts.find(material.script, folders, *sink.notes);
+  if (!m) {
+    sink.notes->push_back("material '" + material.script + "' of visual '" + name +
+                          "' (drawn grey)");
+    return;
+  }
+  if (m->diffuse) v.colour = m->diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
+  if (m->texture.empty()) return;
+  const std::string file = scriptTexture(m->texture, folders);
+  if (file.empty()) {
+    if (sink.textures.try_emplace("?" + m->texture).second) {
+      sink.notes->push_back("texture '" + m->texture + "' of material '" + material.script +
+                            "' of visual '" + name + "' (not found; its colour drawn)");
+    }
+    return;
+  }
+  std::shared_ptr<const TextureImage> image = texture(file, name, sink);
+  if (!image) return;
+  std::vector<Eigen::Vector2f> uv;
+  if (g.Type() == sdf::GeometryType::MESH) {  // the script's texture on the whole mesh
+    std::vector<Eigen::Vector3d> corners;
+    for (MeshPart& part :
+         sdfMeshParts(*g.MeshShape(), sink.world_path, sink.resolver, name, *sink.notes)) {
+      corners.insert(corners.end(), part.triangles.begin(), part.triangles.end());
+      uv.insert(uv.end(), part.uv.begin(), part.uv.end());
+    }
+    v.triangles = std::move(corners);
+  } else {
+    uv = primitiveUv(g, v.triangles);
+  }
+  if (uv.empty()) {
+    sink.notes->push_back("texture '" + m->texture + "' of visual '" + name +
+                          "' (not drawn on this shape; its colour is)");
+    return;
+  }
+  for (Eigen::Vector2f& c : uv) c = c.cwiseQuotient(m->scale);
+  v.texture = std::move(image);
+  v.uv = std::move(uv);
+}
+
 }  // namespace
 
 void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
@@ -111,13 +200,16 @@ void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
     sink.notes->push_back("empty visual '" + name + "'");
     return;
   }
-  for (Eigen::Vector3d& c : v.triangles) c = pose * c;
   if (material.diffuse) {
     v.colour = material.diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
   } else if (!material.script.empty() && !gazeboScriptColour(material.script, v.colour)) {
-    sink.notes->push_back("material '" + material.script + "' of visual '" + name +
-                          "' (drawn grey)");
+    try {
+      applyScript(g, material, name, sink, v);
+    } catch (const Error& e) {
+      refuse(e.what());
+    }
   }
+  for (Eigen::Vector3d& c : v.triangles) c = pose * c;
   sink.out->push_back(std::move(v));
 }
 

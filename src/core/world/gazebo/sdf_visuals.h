@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
+#include "world/gazebo/ogre_materials.h"
 
 namespace jetbot_rl {
 
@@ -22,6 +23,7 @@ bool gazeboScriptColour(const std::string& script, Eigen::Vector3f& colour);
 struct VisualMaterial {
   std::optional<Eigen::Vector3f> diffuse;  ///< RGB as given (clamped to [0, 1] when drawn).
   std::string script;
+  std::vector<std::string> script_uris;  ///< Its script's <uri>s: folders or files of scripts.
 };
 
 /// The material of an sdformat visual.
@@ -36,6 +38,7 @@ struct VisualSink {
   std::vector<WorldVisual>* out = nullptr;
   std::vector<std::string>* notes = nullptr;
   std::map<std::string, std::shared_ptr<const TextureImage>> textures;
+  ScriptMaterials scripts;  ///< The material scripts read so far.
 };
 
 /// Appends a visual of geometry `g` and `material` (named `name`, at `pose` in the world;
