@@ -11,6 +11,7 @@ add_library(jetbot_rl_policy
   src/ppo/actor_critic.cpp
   src/ppo/checkpoint.cpp
   src/ppo/image_encoder.cpp
+  src/ppo/image_frames.cpp
   src/ppo/input_history.cpp
   src/ppo/network_config.cpp
   src/ppo/obs_normalizer.cpp

@@ -66,6 +66,10 @@ ActorCriticImpl::ActorCriticImpl(int input_dim, int action_dim, const NetworkCon
                       std::to_string(action_dim));
   }
   int features = input_dim;
+  if (image.empty() && c.image_frames > 1) {
+    throwInvalid("image_frames", c.image_frames,
+                 "stacks camera images: the env's observation contract names no camera_image");
+  }
   if (!image.empty()) {
     encoder_ = register_module("image_encoder", ImageEncoder(c, image));
     features += encoder_->features();

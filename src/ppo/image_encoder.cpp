@@ -21,14 +21,15 @@ ImageShape imageShapeOf(const BatchSpec& spec) {
 
 torch::Tensor imageInput(const std::vector<std::uint8_t>& bytes, int rows, ImageShape shape,
                          const std::string& what) {
-  const auto expected = static_cast<std::size_t>(rows) * static_cast<std::size_t>(shape.values());
+  const auto expected =
+      static_cast<std::size_t>(rows) * static_cast<std::size_t>(shape.frameValues());
   if (bytes.size() != expected) {
     throw InputError("expected " + std::to_string(expected) + " bytes of " + what + " (" +
                      std::to_string(rows) + " rgb8 images of " + std::to_string(shape.width) +
                      " x " + std::to_string(shape.height) + "), got " +
                      std::to_string(bytes.size()));
   }
-  return torch::from_blob(const_cast<std::uint8_t*>(bytes.data()), {rows, shape.values()},
+  return torch::from_blob(const_cast<std::uint8_t*>(bytes.data()), {rows, shape.frameValues()},
                           torch::kUInt8)
       .to(torch::kFloat);
 }
@@ -45,8 +46,9 @@ ImageEncoderImpl::ImageEncoderImpl(const NetworkConfig& c, ImageShape shape)
                      std::to_string(layers) + " convolutions in conv_channels, " +
                      std::to_string(c.conv_strides.size()) + " strides)");
   }
+  shape_.frames = c.image_frames;
   convs_ = register_module("convolutions", torch::nn::Sequential());
-  int channels = grayscale_ ? 1 : 3, height = shape.height, width = shape.width;
+  int channels = (grayscale_ ? 1 : 3) * shape_.frames, height = shape.height, width = shape.width;
   for (std::size_t i = 0; i < layers; ++i) {
     const int k = c.conv_kernels[i], s = c.conv_strides[i];
     if (height < k || width < k) {
@@ -68,11 +70,22 @@ ImageEncoderImpl::ImageEncoderImpl(const NetworkConfig& c, ImageShape shape)
 }
 
 torch::Tensor ImageEncoderImpl::forward(const torch::Tensor& pixels) {
-  torch::Tensor x =
-      pixels.view({-1, shape_.height, shape_.width, 3}).permute({0, 3, 1, 2}) * (1.0 / 255.0);
-  if (grayscale_) {
-    const torch::Tensor luma = torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 3, 1, 1});
-    x = (x * luma).sum(1, /*keepdim=*/true);
+  torch::Tensor x;
+  if (shape_.frames == 1) {
+    x = pixels.view({-1, shape_.height, shape_.width, 3}).permute({0, 3, 1, 2}) * (1.0 / 255.0);
+    if (grayscale_) {
+      const torch::Tensor luma = torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 3, 1, 1});
+      x = (x * luma).sum(1, /*keepdim=*/true);
+    }
+  } else {  // the frames' channels one after another: [B, frames x channels, H, W]
+    x = pixels.view({-1, shape_.frames, shape_.height, shape_.width, 3}).permute({0, 1, 4, 2, 3}) *
+        (1.0 / 255.0);
+    if (grayscale_) {
+      const torch::Tensor luma = torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 1, 3, 1, 1});
+      x = (x * luma).sum(2);
+    } else {
+      x = x.reshape({-1, shape_.frames * 3, shape_.height, shape_.width});
+    }
   }
   x = convs_->forward(x.contiguous());
   return torch::relu(linear_->forward(x.flatten(1)));

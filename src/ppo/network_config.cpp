@@ -15,7 +15,9 @@ bool hasHistory(const NetworkConfig& c) {
   return c.obs_history_length > 1 || c.action_history_length > 0;
 }
 
-bool hasMemory(const NetworkConfig& c) { return hasHistory(c) || c.rnn_type != RnnType::kNone; }
+bool hasMemory(const NetworkConfig& c) {
+  return hasHistory(c) || c.rnn_type != RnnType::kNone || c.image_frames > 1;
+}
 
 }  // namespace ppo
 }  // namespace jetbot_rl

@@ -109,9 +109,8 @@ void Policy::act(const std::vector<float>& observations, const std::vector<std::
                                             actionDim(), /*with_critic=*/false);
   }
   const ObsNormalizer& normalizer = model_->normalizer;
-  torch::Tensor input = memory->begin(
-      obs, [&normalizer](const torch::Tensor& o) { return normalizer->normalize(o); });
-  if (pixels.defined()) input = torch::cat({input, pixels}, -1);
+  const torch::Tensor input = memory->begin(
+      obs, [&normalizer](const torch::Tensor& o) { return normalizer->normalize(o); }, pixels);
   const torch::Tensor mean =
       model_->net->actionMean(input, memory->recurrent() ? &memory->state().actor : nullptr);
   memory->end(model_->scaler->squash(mean));

@@ -55,14 +55,33 @@ std::string metaYaml(const BatchSpec& spec, const CheckpointMeta& meta,
 
 /// Lines of forward() that append the image encoder's features of `image` to `x`, as
 /// ImageEncoder::forward computes them; its weights registered as buffers of `module`.
-std::string imageScript(const ImageEncoderImpl& encoder, torch::jit::Module& module) {
+std::string imageScript(const ImageEncoderImpl& encoder, const MemoryScript& memory,
+                        torch::jit::Module& module) {
   const ImageShape shape = encoder.shape();
   std::ostringstream code;
-  code << "    p = image.reshape([-1, " << shape.height << ", " << shape.width
-       << ", 3]).float().permute([0, 3, 1, 2]) * (1.0 / 255.0)\n";
-  if (encoder.grayscale()) {
-    module.register_buffer("luma", torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 3, 1, 1}));
-    code << "    p = (p * self.luma).sum(1, True)\n";
+  if (shape.frames == 1) {
+    code << "    p = image.reshape([-1, " << shape.height << ", " << shape.width
+         << ", 3]).float().permute([0, 3, 1, 2]) * (1.0 / 255.0)\n";
+    if (encoder.grayscale()) {
+      module.register_buffer("luma", torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 3, 1, 1}));
+      code << "    p = (p * self.luma).sum(1, True)\n";
+    }
+  } else {  // the frame stack, as ImageFrames::push and ImageEncoder::forward make it
+    const int64_t f = shape.frames, v = shape.frameValues(), at = memory.frames_at;
+    code << "    newest = image.reshape([-1, 1, " << v << "]).float()\n"
+         << "    fs = torch.cat([newest, hidden[:, " << at << ":" << at + (f - 1) * v
+         << "].reshape([-1, " << f - 1 << ", " << v << "])], 1)\n"
+         << "    fs = torch.where(fresh.unsqueeze(2), newest.expand_as(fs), fs)\n"
+         << "    frames_kept = fs[:, 0:" << f - 1 << "].reshape([-1, " << (f - 1) * v << "])\n"
+         << "    p = fs.reshape([-1, " << f << ", " << shape.height << ", " << shape.width
+         << ", 3]).permute([0, 1, 4, 2, 3]) * (1.0 / 255.0)\n";
+    if (encoder.grayscale()) {
+      module.register_buffer("luma", torch::tensor({0.299f, 0.587f, 0.114f}).view({1, 1, 3, 1, 1}));
+      code << "    p = (p * self.luma).sum(2)\n";
+    } else {
+      code << "    p = p.reshape([-1, " << f * 3 << ", " << shape.height << ", " << shape.width
+           << "])\n";
+    }
   }
   int layer = 0;
   for (const auto& child : encoder.convolutions()->children()) {
@@ -116,7 +135,7 @@ void Policy::exportTorchScript(const std::string& path, const BatchSpec& spec) c
          << ", hidden: Tensor) -> Tuple[Tensor, Tensor]:\n";
   }
   code << memory.code;
-  if (observesImage()) code << imageScript(*model_->net->imageEncoder(), module);
+  if (observesImage()) code << imageScript(*model_->net->imageEncoder(), memory, module);
   code << memory.rnn_code;
   int layer = 0;
   for (const auto& child : model_->net->actor()->children()) {

@@ -13,6 +13,10 @@ PolicyMemory::PolicyMemory(const NetworkConfig& config, const ActorCritic& model
       recurrent_(model->recurrent()),
       history_(InputHistory::forConfig(config, num_envs, obs_dim, action_dim)),
       fresh_(torch::ones({num_envs}, torch::kBool)) {
+  if (config.image_frames > 1 && model->imageValues() > 0) {
+    frames_ = std::make_unique<ImageFrames>(num_envs, model->imageValues() / config.image_frames,
+                                            config.image_frames);
+  }
   if (recurrent_) {
     state_ = model->initialState(num_envs);
     if (!with_critic) state_.critic = torch::Tensor();
@@ -31,8 +35,12 @@ void PolicyMemory::reset(const std::vector<std::uint32_t>& envs) {
 
 void PolicyMemory::resetAll() { fresh_.fill_(true); }
 
-torch::Tensor PolicyMemory::begin(const torch::Tensor& obs, const Normalize& normalize) {
-  const torch::Tensor input = history_ ? history_->push(obs, fresh_, normalize) : normalize(obs);
+torch::Tensor PolicyMemory::begin(const torch::Tensor& obs, const Normalize& normalize,
+                                  const torch::Tensor& pixels) {
+  torch::Tensor input = history_ ? history_->push(obs, fresh_, normalize) : normalize(obs);
+  if (pixels.defined()) {
+    input = torch::cat({input, frames_ ? frames_->push(pixels, fresh_) : pixels}, -1);
+  }
   if (recurrent_) {
     starts_ = fresh_.to(torch::kFloat);
     state_.actor = startOver(state_.actor, starts_);
@@ -47,9 +55,12 @@ void PolicyMemory::end(const torch::Tensor& actions) {
 }
 
 torch::Tensor PolicyMemory::peekInput(const torch::Tensor& rows, const torch::Tensor& obs,
-                                      const torch::Tensor& fresh,
-                                      const Normalize& normalize) const {
-  return history_ ? history_->peek(rows, obs, fresh, normalize) : normalize(obs);
+                                      const torch::Tensor& fresh, const Normalize& normalize,
+                                      const torch::Tensor& pixels) const {
+  const torch::Tensor input =
+      history_ ? history_->peek(rows, obs, fresh, normalize) : normalize(obs);
+  if (!pixels.defined()) return input;
+  return torch::cat({input, frames_ ? frames_->peek(rows, pixels, fresh) : pixels}, -1);
 }
 
 torch::Tensor PolicyMemory::peekCriticState(const torch::Tensor& rows,

@@ -20,10 +20,15 @@ MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int 
                           int action_dim, torch::jit::Module& module) {
   MemoryScript script;
   // The hidden row: [started flag, observation slots, action slots] with a history (as
-  // InputHistory::push computes them), then the RNN's state (as RecurrentMemory::step).
+  // InputHistory::push computes them), the frame stack's earlier images (as ImageFrames::push;
+  // after the flag), then the RNN's state (as RecurrentMemory::step).
   const bool history = hasHistory(c);
+  const bool frames = c.image_frames > 1 && model->imageValues() > 0;
   const int64_t k = c.obs_history_length, o = obs_dim, m = c.action_history_length, a = action_dim;
-  const int64_t obs_at = 1, actions_at = obs_at + k * o, rnn_at = history ? actions_at + m * a : 0;
+  const int64_t f = c.image_frames, v = frames ? model->imageValues() / f : 0;
+  const int64_t obs_at = 1, actions_at = obs_at + k * o;
+  const int64_t frames_at = history ? actions_at + m * a : frames ? 1 : 0;
+  const int64_t rnn_at = frames_at + (frames ? (f - 1) * v : 0);
   const RecurrentMemory& rnn = model->actorMemory();
   script.hidden_size = rnn_at + (rnn.is_empty() ? 0 : rnn->stateSize());
   if (history) {
@@ -31,9 +36,16 @@ MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int 
                     std::to_string(o) + " raw observations (newest first), " + std::to_string(m) +
                     " x " + std::to_string(a) + " actions in [-1, 1] (newest first)";
   }
+  if (frames) {
+    script.layout += std::string(history ? ", " : "1 started flag (0: start over), ") +
+                     std::to_string(f - 1) + " x " + std::to_string(v) +
+                     " image bytes (the frame stack's earlier images, newest first)";
+    script.frames_at = frames_at;
+  }
   if (!rnn.is_empty()) {
-    script.layout += std::string(history ? ", " : "") + std::to_string(rnn->layers().size()) +
-                     " x " + (rnn->type() == RnnType::kLstm ? "(h, c)" : "h") + " of " +
+    script.layout += std::string(history || frames ? ", " : "") +
+                     std::to_string(rnn->layers().size()) + " x " +
+                     (rnn->type() == RnnType::kLstm ? "(h, c)" : "h") + " of " +
                      std::to_string(rnn->hiddenSize()) + " (" + enumName(rnn->type()) + ")";
   }
   if (script.hidden_size == 0) {
@@ -59,9 +71,14 @@ MemoryScript memoryScript(const NetworkConfig& c, const ActorCritic& model, int 
       script.new_hidden.push_back("a");  // the action of this step, once the MLP gave it
       script.new_hidden.push_back("acts" + columns(0, (m - 1) * a));
     }
+  } else if (frames) {
+    code << "    fresh = hidden" << columns(0, 1) << " == 0.0\n"
+         << "    x = self.normalize(obs)\n";
+    script.new_hidden = {"torch.ones_like(hidden" + columns(0, 1) + ")"};
   } else {
     code << "    x = self.normalize(obs)\n";
   }
+  if (frames) script.new_hidden.push_back("frames_kept");  // imageScript() makes them
   script.code = code.str();
   if (!rnn.is_empty()) {
     std::ostringstream rnn_code;  // after the image's features join x (policy_export.cpp)

@@ -35,7 +35,7 @@ Ppo::Ppo(const BatchSpec& spec, const PpoConfig& config)
       model_(input_dim_, spec.action_dim, config, image_),
       normalizer_(spec.obs_dim, config.normalize_observations),
       storage_(config.num_steps_per_env, spec.num_envs, input_dim_, spec.action_dim,
-               image_.empty() ? 0 : image_.values()),
+               model_->imageValues()),
       scaler_(spec.action_low, spec.action_high, config.action_squash),
       learning_rate_(config.learning_rate) {
   optimizer_ = std::make_unique<torch::optim::Adam>(model_->parameters(),
@@ -61,9 +61,8 @@ double Ppo::actionStd() { return model_->actionStd().mean().item<double>(); }
 torch::Tensor Ppo::peekValues(const torch::Tensor& rows, const torch::Tensor& obs,
                               const torch::Tensor& fresh, const torch::Tensor& images) {
   torch::NoGradGuard no_grad;
-  torch::Tensor input =
-      memory_->peekInput(rows, obs, fresh, [this](const torch::Tensor& o) { return normalize(o); });
-  if (images.defined()) input = torch::cat({input, images}, -1);
+  const torch::Tensor input = memory_->peekInput(
+      rows, obs, fresh, [this](const torch::Tensor& o) { return normalize(o); }, images);
   if (!model_->recurrent()) return model_->value(input);
   const torch::Tensor critic = memory_->peekCriticState(rows, fresh);
   return model_->value(input, &critic);
@@ -83,10 +82,10 @@ const std::vector<float>& Ppo::act(const StepResult& state) {
   // The rollout keeps the recurrent states before step 0 and where episodes start, so that the
   // update recomputes every step's state (RecurrentMemory::sequence) as acting did here.
   if (model_->recurrent() && step_ == 0) storage_.setInitialState(memory_->state());
-  obs_ = memory_->begin(obs, [this](const torch::Tensor& o) { return normalize(o); });
-  if (!image_.empty()) {
-    obs_ = torch::cat({obs_, imageInput(state.images.rgb, num_envs_, image_, "images_rgb")}, -1);
-  }
+  obs_ = memory_->begin(
+      obs, [this](const torch::Tensor& o) { return normalize(o); },
+      image_.empty() ? torch::Tensor()
+                     : imageInput(state.images.rgb, num_envs_, image_, "images_rgb"));
   if (model_->recurrent()) storage_.addStarts(step_, memory_->starts());
   sample_ = model_->act(obs_, &memory_->state());
   memory_->end(scaler_.squash(sample_.actions));

@@ -10,6 +10,7 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/errors.h"
+#include "jetbot_rl/ppo/image_frames.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
@@ -229,6 +230,132 @@ TEST_P(ImageMemoryTest, SequencesRecomputeActingAndTheExportCarriesTheMemory) {
 
 INSTANTIATE_TEST_SUITE_P(GruAndLstm, ImageMemoryTest,
                          testing::Values(RnnType::kGru, RnnType::kLstm),
+                         [](const testing::TestParamInfo<RnnType>& info) {
+                           return enumName(info.param);
+                         });
+
+TEST(ImageFrames, StackNewestFirstAndStartOverWithTheFirstImage) {
+  ImageFrames frames(2, 2, 3);
+  const auto pixels = [](std::vector<float> v) { return torch::tensor(v).view({2, 2}); };
+  const auto fresh = [](int a, int b) { return torch::tensor({a, b}).to(torch::kBool); };
+  const auto row = [](const torch::Tensor& t, int r) {
+    const torch::Tensor c = t[r].contiguous();
+    return std::vector<float>(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
+  };
+  torch::Tensor s = frames.push(pixels({1, 2, 3, 4}), fresh(true, true));
+  EXPECT_EQ(row(s, 0), (std::vector<float>{1, 2, 1, 2, 1, 2}));
+  s = frames.push(pixels({5, 6, 7, 8}), fresh(false, true));
+  EXPECT_EQ(row(s, 0), (std::vector<float>{5, 6, 1, 2, 1, 2}));  // newest first
+  EXPECT_EQ(row(s, 1), (std::vector<float>{7, 8, 7, 8, 7, 8}));  // started over
+  const torch::Tensor peeked =
+      frames.peek(torch::tensor(std::vector<int64_t>{0}), torch::tensor({9.0f, 10.0f}).view({1, 2}),
+                  torch::zeros({1}, torch::kBool));
+  EXPECT_EQ(row(peeked, 0), (std::vector<float>{9, 10, 5, 6, 1, 2}));
+  s = frames.push(pixels({255, 0, 0, 255}), fresh(false, false));  // peek changed nothing
+  EXPECT_EQ(row(s, 0), (std::vector<float>{255, 0, 5, 6, 1, 2}));
+  EXPECT_EQ(row(s, 1), (std::vector<float>{0, 255, 7, 8, 7, 8}));
+}
+
+TEST(ImageFrames, AreRefusedWithoutAnImage) {
+  NetworkConfig c;
+  c.image_frames = 2;
+  try {
+    ActorCritic model(4, 2, c);
+    ADD_FAILURE() << "image_frames 2 accepted without an image";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("image_frames = 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no camera_image"), std::string::npos) << e.what();
+  }
+}
+
+/// A frame stack of 3 images, alone (grey) or with a history and a GRU (colour).
+class FrameStackTest : public testing::TestWithParam<RnnType> {};
+
+TEST_P(FrameStackTest, LearnsKeepsItsFramesInTheRolloutAndTheExportStacksThemAsActing) {
+  torch::manual_seed(5);
+  std::unique_ptr<BatchedEnv> env = cameraBatch();
+  const BatchSpec spec = env->spec();
+  PpoConfig config = imageConfig();
+  config.image_frames = 3;
+  config.rnn_type = GetParam();
+  if (GetParam() != RnnType::kNone) {
+    config.rnn_hidden_size = 8;
+    config.obs_history_length = 2;
+    config.image_grayscale = false;
+  }
+  Ppo ppo(spec, config);
+  const int v = 24 * 24 * 3;
+  ASSERT_EQ(ppo.model()->imageValues(), 3 * v);
+  const std::vector<std::uint8_t> first = env->state().images.rgb;
+  std::vector<std::uint8_t> second;
+  for (int t = 0; t < config.num_steps_per_env; ++t) {
+    const std::vector<float> actions = ppo.act(env->state());
+    ppo.processEnvStep(env->step(actions));
+    if (t == 0) second = env->state().images.rgb;
+  }
+  // Step 0 stacks env 0's first image three times; step 1 its second image, then the first.
+  const torch::Tensor stored = ppo.storage().images();
+  ASSERT_EQ(stored.size(2), 3 * v);
+  const auto bytes = [&](int step, int frame) {
+    const torch::Tensor t = stored[step][0].narrow(0, frame * v, v).contiguous();
+    return std::vector<std::uint8_t>(t.data_ptr<std::uint8_t>(), t.data_ptr<std::uint8_t>() + v);
+  };
+  const std::vector<std::uint8_t> first0(first.begin(), first.begin() + v);
+  const std::vector<std::uint8_t> second0(second.begin(), second.begin() + v);
+  ASSERT_NE(first0, second0);
+  for (int f = 0; f < 3; ++f) EXPECT_EQ(bytes(0, f), first0) << f;
+  EXPECT_EQ(bytes(1, 0), second0);
+  EXPECT_EQ(bytes(1, 1), first0);
+  EXPECT_EQ(bytes(1, 2), first0);
+  ppo.computeReturns(env->state());
+  const torch::Tensor before = ppo.model()->imageEncoder()->linear()->weight.clone();
+  EXPECT_TRUE(std::isfinite(ppo.update().value_loss));
+  EXPECT_FALSE(torch::equal(before, ppo.model()->imageEncoder()->linear()->weight));
+
+  const std::string path =
+      saveImageCheckpoint(ppo, spec, config, "frame_stack_" + enumName(GetParam()) + ".pt");
+  Policy policy(path);
+  ASSERT_TRUE(policy.hasMemory());
+  const std::string exported = imageTempPath("frame_stack_export.pt");
+  policy.exportTorchScript(exported, spec);
+  torch::jit::Module module = torch::jit::load(exported);
+  const int n = spec.num_envs;
+  torch::Tensor hidden = module.run_method("initial_hidden", n).toTensor();
+  std::vector<std::vector<float>> played;
+  int resets = 0;
+  for (int t = 0; t < 12; ++t) {
+    const StepResult& state = env->state();
+    std::vector<float> expected;
+    policy.act(state.observations, state.images.rgb, n, expected);
+    const auto out =
+        module
+            .forward({torch::from_blob(const_cast<float*>(state.observations.data()),
+                                       {n, spec.obs_dim}, torch::kFloat),
+                      torch::from_blob(const_cast<std::uint8_t*>(state.images.rgb.data()),
+                                       {n, 24, 24, 3}, torch::kUInt8),
+                      hidden})
+            .toTuple();
+    const torch::Tensor actions = out->elements()[0].toTensor().contiguous();
+    hidden = out->elements()[1].toTensor();
+    ASSERT_EQ(actions.numel(), n * 2);
+    for (int i = 0; i < n * 2; ++i) {
+      EXPECT_NEAR(actions.data_ptr<float>()[i], expected[i], 1e-5) << "step " << t << ", " << i;
+    }
+    played.push_back(expected);
+    // Env 1 starts over every fourth step in both, whether or not its episode ended.
+    const StepResult& next = env->step(expected);
+    std::vector<std::uint32_t> ended(next.reset_env_ids.begin(), next.reset_env_ids.end());
+    if (t % 4 == 3 && std::find(ended.begin(), ended.end(), 1u) == ended.end()) ended.push_back(1);
+    resets += static_cast<int>(ended.size());
+    policy.resetMemory(ended);
+    for (std::uint32_t e : ended) hidden[e].zero_();
+  }
+  EXPECT_GT(resets, 0);
+  EXPECT_NE(played.front(), played.back());
+}
+
+INSTANTIATE_TEST_SUITE_P(AloneAndWithMemory, FrameStackTest,
+                         testing::Values(RnnType::kNone, RnnType::kGru),
                          [](const testing::TestParamInfo<RnnType>& info) {
                            return enumName(info.param);
                          });

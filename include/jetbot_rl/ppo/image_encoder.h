@@ -17,17 +17,20 @@ namespace ppo {
 /// The camera image a policy observes: rgb8, height x width, as the batch carries it.
 struct ImageShape {
   int height = 0, width = 0;  ///< [px]; 0: no image.
+  int frames = 1;             ///< Images in a network input (a frame stack, newest first).
   bool empty() const { return height == 0 || width == 0; }
-  /// Its values in a network input: height x width x 3 bytes, row-major from the top left.
-  int values() const { return height * width * 3; }
+  /// One image's values: height x width x 3 bytes, row-major from the top left.
+  int frameValues() const { return height * width * 3; }
+  /// Its values in a network input: `frames` images, one after another.
+  int values() const { return frames * frameValues(); }
 };
 
 /// The image `spec`'s observation contract names (camera_image), or none.
 ImageShape imageShapeOf(const BatchSpec& spec);
 
-/// `rows` rgb8 images of `shape` in `bytes` (one after another) as the image part of a network
-/// input: [rows, values()] floats 0-255. InputError naming `what` and both sizes when `bytes`
-/// holds another number of values.
+/// `rows` rgb8 images of `shape` in `bytes` (one after another), one per row: [rows,
+/// frameValues()] floats 0-255. InputError naming `what` and both sizes when `bytes` holds
+/// another number of values.
 torch::Tensor imageInput(const std::vector<std::uint8_t>& bytes, int rows, ImageShape shape,
                          const std::string& what);
 
@@ -41,7 +44,8 @@ torch::Tensor imageInput(const std::vector<std::uint8_t>& bytes, int rows, Image
 class ImageEncoderImpl : public torch::nn::Module {
  public:
   /// ConfigError naming the field when the layer lists differ in length or a layer gets an image
-  /// smaller than its kernel (naming the layer and the size it gets).
+  /// smaller than its kernel (naming the layer and the size it gets). Its input holds
+  /// config.image_frames images of `shape` (shape().frames).
   ImageEncoderImpl(const NetworkConfig& config, ImageShape shape);
   /// [B, values()] pixel bytes as floats -> [B, features()].
   torch::Tensor forward(const torch::Tensor& pixels);

@@ -36,6 +36,7 @@ struct NetworkConfig {
   std::vector<int> conv_strides{2, 2};     ///< Their strides [px].
   int image_features = 64;                 ///< The encoder's output width.
   bool image_grayscale = false;            ///< The image is turned grey before the encoder.
+  int image_frames = 1;  ///< Camera images the encoder sees: the current one and k-1 before.
 };
 
 /// Enables the visitors below for NetworkConfig and the configs that extend it (PpoConfig).
@@ -73,6 +74,10 @@ void visitNetworkFields(C& c, V&& v) {
     "The image encoder's output width: a Linear and a ReLU after the convolutions.");
   v("image_grayscale", c.image_grayscale, AnyValue{},
     "The image is turned grey (ITU-R BT.601 luma) before the encoder: one channel, not three.");
+  v("image_frames", c.image_frames, inRange(1, 16, "control steps"),
+    "A frame stack: the encoder sees the last this many camera images (the current one first), "
+    "as channels of one input; an episode starts with all of them its first image. Each is kept "
+    "in the rollout (its memory times this many).");
 }
 
 /// Every field of NetworkConfig in PpoConfig's order (the network's, then the initial noise, the

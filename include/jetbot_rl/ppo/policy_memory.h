@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "jetbot_rl/ppo/actor_critic.h"
+#include "jetbot_rl/ppo/image_frames.h"
 #include "jetbot_rl/ppo/input_history.h"
 #include "jetbot_rl/ppo/network_config.h"
 
@@ -22,7 +23,8 @@ namespace ppo {
 
 /**
  * A policy's memory of every env of a batch (rsl_rl's Memory): its observation and action
- * history (InputHistory) and its recurrent states, and which envs start over at their next step.
+ * history (InputHistory), its frame stack (ImageFrames) and its recurrent states, and which envs
+ * start over at their next step.
  * The one place they are stepped, for learning (Ppo: the actor's and the critic's states) and
  * acting (Policy: the actor's); the TorchScript export writes the same steps
  * (memoryScript()). Without memory (hasMemory false) a step is the normalised
@@ -46,8 +48,11 @@ class PolicyMemory {
 
   /// Begins a step of every env with its raw observation `obs` [N, obs_dim]: the history pushed
   /// (an env that starts over holds its first observation in every slot and zero actions), the
-  /// recurrent states zeroed for the envs that start over. Returns the network input.
-  torch::Tensor begin(const torch::Tensor& obs, const Normalize& normalize);
+  /// recurrent states zeroed for the envs that start over. An image policy's camera images
+  /// `pixels` [N, one image's values] (floats 0-255) follow, stacked with a frame stack. Returns
+  /// the network input.
+  torch::Tensor begin(const torch::Tensor& obs, const Normalize& normalize,
+                      const torch::Tensor& pixels = {});
   /// [N] float, 1 for the envs that start over at the step begin() began.
   const torch::Tensor& starts() const { return starts_; }
   /// The recurrent states (undefined tensors without an RNN), which the model advances.
@@ -59,10 +64,12 @@ class PolicyMemory {
   /// [N] bool: the envs that start over at their next step.
   const torch::Tensor& fresh() const { return fresh_; }
   /// For values of states not acted on (a time-out's final observation, the observation after a
-  /// rollout): the input envs `rows` [R] would get with `obs` [R, obs_dim], starting over where
-  /// `fresh` [R] (bool) is set. Nothing changes.
+  /// rollout): the input envs `rows` [R] would get with `obs` [R, obs_dim] (and an image
+  /// policy's `pixels` [R, one image's values]), starting over where `fresh` [R] (bool) is set.
+  /// Nothing changes.
   torch::Tensor peekInput(const torch::Tensor& rows, const torch::Tensor& obs,
-                          const torch::Tensor& fresh, const Normalize& normalize) const;
+                          const torch::Tensor& fresh, const Normalize& normalize,
+                          const torch::Tensor& pixels = {}) const;
   /// The critic's recurrent state of envs `rows` for such a value (zeroed where `fresh`).
   torch::Tensor peekCriticState(const torch::Tensor& rows, const torch::Tensor& fresh) const;
 
@@ -70,6 +77,7 @@ class PolicyMemory {
   int num_envs_;
   bool recurrent_;
   std::unique_ptr<InputHistory> history_;  // with a history
+  std::unique_ptr<ImageFrames> frames_;    // with a frame stack
   MemoryState state_;                      // with an RNN
   torch::Tensor fresh_;                    // [N] bool
   torch::Tensor starts_;                   // [N] float, of the current step
@@ -84,6 +92,9 @@ struct MemoryScript {
   std::string code;                     ///< Lines of forward() that make the input x.
   std::string rnn_code;                 ///< Then (after an image's features) the RNN's lines.
   std::vector<std::string> new_hidden;  ///< torch.cat() of these is the new hidden row.
+  /// With a frame stack: its slots' first column in the hidden row (the images before the
+  /// current one), else -1; imageScript() stacks them with the image.
+  int64_t frames_at = -1;
 };
 
 /// The memory steps of PolicyMemory::begin() and end() for one policy, as TorchScript.
