@@ -123,6 +123,21 @@ TEST(TextureImage, FilesItCannotUseAreNamed) {
   refused(test::writePng("wide_texture.png", kMaxTextureSide + 1, 1,
                          std::vector<unsigned char>(4 * (kMaxTextureSide + 1), 255)),
           "is 8193 x 1 px: at most 8192 px a side");
+  // The textures of a world or robot, counted: one more past the budget is refused.
+  const std::string small = redBlueTexture("budget_texture.png");
+  std::size_t bytes = kMaxTextureBytes - 6;
+  ASSERT_TRUE(loadTextureImage(small, &bytes));
+  EXPECT_EQ(bytes, kMaxTextureBytes);
+  try {
+    loadTextureImage(small, &bytes);
+    ADD_FAILURE() << "a texture past the budget accepted";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("would make 1025 MiB of textures, more than the 1024 MiB "
+                                         "allowed"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(bytes, kMaxTextureBytes);  // nothing counted
 }
 
 /// The camera Jetbot at the origin facing +x, 33 x 33 px over 0.6 rad, seeing `world`'s model.
@@ -214,7 +229,8 @@ TEST(CameraTextures, ARobotsMeshWithoutAURDFColourShowsItsOwnMaterials) {
   EXPECT_TRUE(surfaces[0].first.at(0, 0.9f, 0.0f).isApprox(Eigen::Vector3f(0, 0, 1)));  // u 0.9
   EXPECT_TRUE(surfaces[1].first.colour.isApprox(Eigen::Vector3f(0, 1, 0)));
   EXPECT_NEAR(surfaces[1].second[0].x(), 0.2, 1e-6);  // scaled
-  EXPECT_EQ(textures.size(), 1u);
+  EXPECT_EQ(textures.images.size(), 1u);
+  EXPECT_EQ(textures.bytes, 6u);
   // A URDF colour colours the whole mesh.
   v.coloured = true;
   v.colour = Eigen::Vector3f(0.0f, 0.0f, 1.0f);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cstdio>
 #include <string>
 
 #include "jetbot_rl/env/batched_env.h"
@@ -59,6 +60,28 @@ TEST(MaterialScripts, FoldersAreReadOnceAndBounded) {
   EXPECT_EQ(problems[0], "material script '" + folder + "/big.material' (over 1048576 bytes)");
   EXPECT_FALSE(scripts.find("A/One", {folder + "/none.material"}, problems));
   EXPECT_NE(problems.back().find("does not exist"), std::string::npos) << problems.back();
+  // In all, at most kMaxScriptTotalBytes are read: after a.material, 63 files of 1 MiB fit.
+  const std::string many = ::testing::TempDir() + "script_many";
+  ::mkdir(many.c_str(), 0755);
+  std::vector<std::string> written;
+  for (int i = 0; i < 64; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/%02d.material", i);
+    // Each exactly kMaxScriptBytes: the last one passes the total by a.material's bytes.
+    const std::string text =
+        "material M/" + std::to_string(i) + " { technique { pass { diffuse 0 0 1 } } }\n";
+    written.push_back(test::writeTempFile(
+        "script_many" + std::string(name),
+        text + std::string(ScriptMaterials::kMaxScriptBytes - text.size(), ' ')));
+  }
+  problems.clear();
+  EXPECT_TRUE(scripts.find("M/62", {many}, problems));
+  EXPECT_FALSE(scripts.find("M/63", {many}, problems));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0], "material script '" + many +
+                             "/63.material' (beyond the 67108864 bytes "
+                             "of scripts read)");
+  for (const std::string& w : written) std::remove(w.c_str());
 }
 
 /// A model with a 0.1 x 0.4 x 0.5 m box 0.35 m ahead whose visual's material is `script`, found

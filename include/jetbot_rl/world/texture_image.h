@@ -10,6 +10,9 @@ namespace jetbot_rl {
 
 /// The largest side of a texture read [px]: 8192 x 8192 RGB is 192 MiB.
 constexpr int kMaxTextureSide = 8192;
+/// The decoded bytes of all the textures of one world, or of one robot's visuals: 1 GiB (AWS's
+/// small house takes 287 MiB).
+constexpr std::size_t kMaxTextureBytes = std::size_t{1} << 30;
 
 /// A decoded texture, RGB row by row from the top left.
 struct TextureImage {
@@ -23,8 +26,10 @@ struct TextureImage {
 };
 
 /// Reads the image file at `path` (PNG, JPEG, TGA, BMP, ...: stb_image) as RGB, its alpha left
-/// out. ModelError naming the path and why: not a regular file, not an image, or a side over
-/// kMaxTextureSide (refused from its header, before it is decoded).
-std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path);
+/// out, and adds its bytes to `*bytes` (with `bytes`). ModelError naming the path and why: not a
+/// regular file, not an image, a side over kMaxTextureSide, or (with `bytes`) more than
+/// kMaxTextureBytes with those counted before (refused from its header, before it is decoded).
+std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path,
+                                                     std::size_t* bytes = nullptr);
 
 }  // namespace jetbot_rl

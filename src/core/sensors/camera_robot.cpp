@@ -76,8 +76,8 @@ std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurf
             throw ModelError("texture '" + part.texture_as_given + "' not found");
           }
           if (!part.texture.empty()) {
-            auto [at, first] = textures.try_emplace(part.texture);
-            if (first) at->second = loadTextureImage(part.texture);
+            auto [at, first] = textures.images.try_emplace(part.texture);
+            if (first) at->second = loadTextureImage(part.texture, &textures.bytes);
             m.texture = at->second;
             m.uv = std::move(part.uv);
           }

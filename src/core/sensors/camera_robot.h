@@ -17,8 +17,11 @@ struct RTCSceneTy;
 
 namespace jetbot_rl {
 
-/// Textures read so far, one image per file.
-using TextureCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
+/// Textures read so far, one image per file, and their decoded bytes.
+struct TextureCache {
+  std::map<std::string, std::shared_ptr<const TextureImage>> images;
+  std::size_t bytes = 0;
+};
 
 /// The surfaces of visual `v` in its body's link frame [m], each with its material: one, in its
 /// colour, or, for a mesh without a URDF colour, one per material of its file (its diffuse

@@ -30,7 +30,7 @@ Eigen::Vector3f TextureImage::at(float u, float v) const {
   return Eigen::Vector3f(rgb[i], rgb[i + 1], rgb[i + 2]) * kByte;
 }
 
-std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path) {
+std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path, std::size_t* bytes) {
   const auto refuse = [&](const std::string& why) {
     throw ModelError("texture '" + path + "' " + why);
   };
@@ -43,6 +43,13 @@ std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path) {
     refuse("is " + std::to_string(width) + " x " + std::to_string(height) + " px: at most " +
            std::to_string(kMaxTextureSide) + " px a side");
   }
+  const std::size_t size = 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (bytes && *bytes + size > kMaxTextureBytes) {
+    constexpr std::size_t kMiB = std::size_t{1} << 20;
+    refuse("would make " + std::to_string((*bytes + size + kMiB - 1) / kMiB) +
+           " MiB of textures, more than the " + std::to_string(kMaxTextureBytes / kMiB) +
+           " MiB allowed");
+  }
   std::unique_ptr<unsigned char, void (*)(void*)> pixels{
       stbi_load(path.c_str(), &width, &height, &channels, 3), stbi_image_free};
   if (!pixels || width <= 0 || height <= 0) {
@@ -53,6 +60,7 @@ std::shared_ptr<const TextureImage> loadTextureImage(const std::string& path) {
   image->width = width;
   image->height = height;
   image->rgb.assign(pixels.get(), pixels.get() + 3 * static_cast<std::size_t>(width) * height);
+  if (bytes) *bytes += image->rgb.size();
   return image;
 }
 

@@ -135,11 +135,18 @@ const std::map<std::string, ScriptMaterial>& ScriptMaterials::read(
       problems.push_back("material script '" + file + "' (it " + problem + ")");
       continue;
     }
-    if (fs::file_size(file, error) > static_cast<std::uintmax_t>(kMaxScriptBytes)) {
+    const std::uintmax_t size = fs::file_size(file, error);
+    if (error || size > static_cast<std::uintmax_t>(kMaxScriptBytes)) {
       problems.push_back("material script '" + file + "' (over " + std::to_string(kMaxScriptBytes) +
                          " bytes)");
       continue;
     }
+    if (read_bytes_ + static_cast<long>(size) > kMaxScriptTotalBytes) {
+      problems.push_back("material script '" + file + "' (beyond the " +
+                         std::to_string(kMaxScriptTotalBytes) + " bytes of scripts read)");
+      continue;
+    }
+    read_bytes_ += static_cast<long>(size);
     std::ifstream in(file);
     std::stringstream text;
     text << in.rdbuf();

@@ -19,11 +19,12 @@ struct ScriptMaterial {
 };
 
 /// The material scripts of some folders, each `.material` file read once (at most
-/// kMaxScriptBytes each, kMaxScriptFiles a folder).
+/// kMaxScriptBytes each, kMaxScriptFiles a folder, kMaxScriptTotalBytes in all).
 class ScriptMaterials {
  public:
   static constexpr long kMaxScriptBytes = 1 << 20;
   static constexpr int kMaxScriptFiles = 1000;
+  static constexpr long kMaxScriptTotalBytes = 64 << 20;
 
   /// Material `name` as the script files in `folders` (folders or files, as a <script>'s <uri>s
   /// resolve) define it, or none. `problems`: files it could not read, each once.
@@ -37,6 +38,7 @@ class ScriptMaterials {
                                                     std::vector<std::string>& problems);
 
   std::map<std::string, std::map<std::string, ScriptMaterial>> by_folder_;
+  long read_bytes_ = 0;  // of every script read
 };
 
 /// The materials Ogre script text `text` defines (`material NAME [: PARENT] { ... }`), added to

@@ -64,7 +64,7 @@ std::shared_ptr<const TextureImage> texture(const std::string& path, const std::
   const auto [at, first] = sink.textures.try_emplace(path);
   if (!first) return at->second;
   try {
-    at->second = loadTextureImage(path);
+    at->second = loadTextureImage(path, &sink.texture_bytes);
   } catch (const Error& e) {
     sink.notes->push_back(std::string(e.what()) + " of visual '" + name + "' (its colour drawn)");
   }

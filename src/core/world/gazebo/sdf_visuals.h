@@ -38,7 +38,8 @@ struct VisualSink {
   std::vector<WorldVisual>* out = nullptr;
   std::vector<std::string>* notes = nullptr;
   std::map<std::string, std::shared_ptr<const TextureImage>> textures;
-  ScriptMaterials scripts;  ///< The material scripts read so far.
+  std::size_t texture_bytes = 0;  ///< Their decoded bytes (at most kMaxTextureBytes).
+  ScriptMaterials scripts;        ///< The material scripts read so far.
 };
 
 /// Appends a visual of geometry `g` and `material` (named `name`, at `pose` in the world;
