@@ -83,7 +83,7 @@ add_library(jetbot_rl_core
   src/core/world/gazebo/sdf_prepass.cpp
   src/core/world/gazebo/sdf_shapes.cpp
   src/core/world/gazebo/ogre_materials.cpp
-  src/core/world/gazebo/primitive_uv.cpp
+  src/core/world/primitive_uv.cpp
   src/core/world/gazebo/sdf_visuals.cpp
   src/core/world/gazebo/sdf_world_reader.cpp
   src/core/world/gazebo/world_cut.cpp

@@ -251,5 +251,51 @@ TEST(CameraTextures, ARobotsMeshWithoutAURDFColourShowsItsOwnMaterials) {
   }
 }
 
+TEST(CameraTextures, AURDFTextureCoversABoxAcrossItsFaces) {
+  const std::string texture = redBlueTexture("urdf_texture.png");
+  const std::string green =
+      "<material name=\"jetbot_green\"><color rgba=\"0.46 0.73 0.0 1.0\"/></material>";
+  const RobotModelConstPtr robot = RobotModel::fromUrdfString(test::replaceOnce(
+      test::jetbotUrdfText(), green,
+      "<material name=\"decal\"><texture filename=\"" + texture + "\"/></material>"));
+  const VisualGeometry* chassis = nullptr;
+  for (const VisualGeometry& v : robot->bodies()[0].visuals) {
+    if (v.shape.type == CollisionGeometry::Type::kBox) chassis = &v;
+  }
+  ASSERT_TRUE(chassis);
+  EXPECT_EQ(chassis->texture_path, texture);
+  TextureCache textures;
+  const auto surfaces = visualSurfaces(*chassis, textures);
+  ASSERT_EQ(surfaces.size(), 1u);
+  ASSERT_TRUE(surfaces[0].first.texture);
+  ASSERT_EQ(surfaces[0].first.uv.size(), surfaces[0].second.size());
+  int left = 0, right = 0;  // of the corners of the faces' triangles
+  for (const Eigen::Vector2f& uv : surfaces[0].first.uv) {
+    EXPECT_TRUE(uv.x() >= -1e-6f && uv.x() <= 1.0f + 1e-6f && uv.y() >= -1e-6f &&
+                uv.y() <= 1.0f + 1e-6f)
+        << uv.transpose();
+    (uv.x() < 0.5f ? left : right) += 1;
+  }
+  EXPECT_GT(left, 0);
+  EXPECT_GT(right, 0);
+  // A texture no file holds: the camera refuses naming the link and the texture.
+  const RobotModelConstPtr lost = RobotModel::fromUrdfString(test::replaceOnce(
+      test::jetbotUrdfText(), green,
+      "<material name=\"decal\"><texture filename=\"package://no_such_package/t.png\"/>"
+      "</material>"));
+  for (const VisualGeometry& v : lost->bodies()[0].visuals) {
+    if (v.shape.type != CollisionGeometry::Type::kBox) continue;
+    try {
+      visualSurfaces(v, textures);
+      ADD_FAILURE() << "a texture that cannot be resolved accepted";
+    } catch (const ModelError& e) {
+      EXPECT_NE(std::string(e.what()).find("base_link"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("visual texture 'package://no_such_package/t.png'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace jetbot_rl

@@ -37,6 +37,11 @@ struct VisualGeometry {
   Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
   /// Its URDF material gave `colour`; without, a mesh shows its file's own materials.
   bool coloured = false;
+  /// Its URDF material's `<texture filename>`, resolved: drawn instead of the colours, on a mesh
+  /// by its texture coordinates, on a box, cylinder or sphere across its faces. Empty without
+  /// one, or when it could not be resolved (texture_error).
+  std::string texture_path;
+  std::string texture_error;  ///< Why texture_path is empty though a texture is named.
   std::string mesh_path;   ///< Mesh: the file, resolved; empty when it could not be (mesh_error).
   std::string mesh_error;  ///< Mesh: why mesh_path is empty, naming the link and the URI.
 };

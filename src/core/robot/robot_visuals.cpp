@@ -59,6 +59,14 @@ VisualGeometry visualGeometry(const urdf::Link& link, const urdf::Visual& visual
     s << "visual shape dimensions must be finite and not negative, got " << g.size.transpose();
     throw ModelError(linkError(link.name, s.str()));
   }
+  if (visual.material && !visual.material->texture_filename.empty()) {
+    const std::string& name = visual.material->texture_filename;
+    try {
+      v.texture_path = resolveMeshUri(name, resolver);
+    } catch (const ModelError& e) {
+      v.texture_error = linkError(link.name, "visual texture '" + name + "': " + e.what());
+    }
+  }
   if (visual.material) {
     const urdf::Color& c = visual.material->color;
     const Eigen::Vector3f rgb(c.r, c.g, c.b);

@@ -5,6 +5,7 @@
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/world/gazebo/mesh_loader.h"
 #include "sensors/embree_geometry.h"
+#include "world/primitive_uv.h"
 #include "world/solid_surfaces.h"
 
 namespace jetbot_rl {
@@ -40,6 +41,46 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
     sphere[3] = 0.5 * box.diagonal().norm();
   }
   return scene;
+}
+
+/// Visual `v`'s surfaces `surfaces` (in its shape's own frame) as one, covered by its URDF
+/// texture: a mesh by its coordinates, a primitive across its faces.
+std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>> urdfTextured(
+    const VisualGeometry& v,
+    const std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>>& surfaces,
+    TextureCache& textures) {
+  if (v.texture_path.empty()) throw ModelError(v.texture_error);
+  const CollisionGeometry& g = v.shape;
+  std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>> out;
+  SurfaceMaterial& m = out.first;
+  try {
+    auto [at, first] = textures.images.try_emplace(v.texture_path);
+    if (first) at->second = loadTextureImage(v.texture_path, &textures.bytes);
+    m.texture = at->second;
+  } catch (const ModelError& e) {
+    throw ModelError("link '" + v.link + "': visual " + e.what());
+  }
+  switch (g.type) {
+    case CollisionGeometry::Type::kMesh:
+      for (MeshPart& part : loadMeshParts(v.mesh_path)) {  // read before: it can be read
+        out.second.insert(out.second.end(), part.triangles.begin(), part.triangles.end());
+        m.uv.insert(m.uv.end(), part.uv.begin(), part.uv.end());
+      }
+      break;
+    case CollisionGeometry::Type::kBox:
+      out.second = surfaces.front().second;
+      m.uv = primitiveUv(UvShape::kBox, g.size, out.second);
+      break;
+    case CollisionGeometry::Type::kCylinder:
+      out.second = surfaces.front().second;
+      m.uv = primitiveUv(UvShape::kCylinder, g.size, out.second);
+      break;
+    case CollisionGeometry::Type::kSphere:
+      out.second = surfaces.front().second;
+      m.uv = primitiveUv(UvShape::kSphere, g.size, out.second);
+      break;
+  }
+  return out;
 }
 
 }  // namespace
@@ -89,6 +130,7 @@ std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurf
       break;
     }
   }
+  if (!v.texture_path.empty() || !v.texture_error.empty()) out = {urdfTextured(v, out, textures)};
   for (auto& [material, corners] : out) {
     for (Eigen::Vector3d& c : corners) {
       if (g.type == CollisionGeometry::Type::kMesh) c = c.cwiseProduct(g.size);

@@ -6,8 +6,8 @@
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/robot/package_path.h"
-#include "world/gazebo/primitive_uv.h"
 #include "world/gazebo/sdf_shapes.h"
+#include "world/primitive_uv.h"
 
 namespace jetbot_rl {
 
@@ -158,8 +158,16 @@ void applyScript(const sdf::Geometry& g, const VisualMaterial& material, const s
       uv.insert(uv.end(), part.uv.begin(), part.uv.end());
     }
     v.triangles = std::move(corners);
-  } else {
-    uv = primitiveUv(g, v.triangles);
+  } else if (g.Type() == sdf::GeometryType::BOX) {
+    const auto s = g.BoxShape()->Size();
+    uv = primitiveUv(UvShape::kBox, Eigen::Vector3d(s.X(), s.Y(), s.Z()), v.triangles);
+  } else if (g.Type() == sdf::GeometryType::CYLINDER) {
+    uv = primitiveUv(UvShape::kCylinder,
+                     Eigen::Vector3d(g.CylinderShape()->Radius(), g.CylinderShape()->Length(), 0),
+                     v.triangles);
+  } else if (g.Type() == sdf::GeometryType::SPHERE) {
+    uv = primitiveUv(UvShape::kSphere, Eigen::Vector3d::Constant(g.SphereShape()->Radius()),
+                     v.triangles);
   }
   if (uv.empty()) {
     sink.notes->push_back("texture '" + m->texture + "' of visual '" + name +

@@ -1,4 +1,4 @@
-#include "world/gazebo/primitive_uv.h"
+#include "world/primitive_uv.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,17 +23,15 @@ void closeSeam(Eigen::Vector2f* uv) {
 
 }  // namespace
 
-std::vector<Eigen::Vector2f> primitiveUv(const sdf::Geometry& g,
+std::vector<Eigen::Vector2f> primitiveUv(UvShape shape, const Eigen::Vector3d& size,
                                          const std::vector<Eigen::Vector3d>& local) {
   std::vector<Eigen::Vector2f> uv(local.size());
   for (std::size_t t = 0; t + 2 < local.size(); t += 3) {
     const Eigen::Vector3d* c = &local[t];
     const Eigen::Vector3d n = (c[1] - c[0]).cross(c[2] - c[0]);
     Eigen::Vector2f* out = &uv[t];
-    switch (g.Type()) {
-      case sdf::GeometryType::BOX: {
-        const auto s = g.BoxShape()->Size();
-        const Eigen::Vector3d size(s.X(), s.Y(), s.Z());
+    switch (shape) {
+      case UvShape::kBox: {
         int axis = 0;
         n.cwiseAbs().maxCoeff(&axis);
         // A side face: from its left to its right as seen from outside, and up; the top and
@@ -47,8 +45,8 @@ std::vector<Eigen::Vector2f> primitiveUv(const sdf::Geometry& g,
         }
         break;
       }
-      case sdf::GeometryType::CYLINDER: {
-        const double r = g.CylinderShape()->Radius(), length = g.CylinderShape()->Length();
+      case UvShape::kCylinder: {
+        const double r = size.x(), length = size.y();
         const bool cap = std::abs(n.z()) > 0.9 * n.norm();
         for (int k = 0; k < 3; ++k) {
           out[k] = cap ? Eigen::Vector2f(c[k].x() / (2 * r) + 0.5, c[k].y() / (2 * r) + 0.5)
@@ -57,8 +55,8 @@ std::vector<Eigen::Vector2f> primitiveUv(const sdf::Geometry& g,
         if (!cap) closeSeam(out);
         break;
       }
-      case sdf::GeometryType::SPHERE: {
-        const double r = g.SphereShape()->Radius();
+      case UvShape::kSphere: {
+        const double r = size.x();
         for (int k = 0; k < 3; ++k) {
           out[k] = Eigen::Vector2f(around(c[k]),
                                    1.0 - std::acos(std::clamp(c[k].z() / r, -1.0, 1.0)) / kPi);
@@ -66,8 +64,6 @@ std::vector<Eigen::Vector2f> primitiveUv(const sdf::Geometry& g,
         closeSeam(out);
         break;
       }
-      default:
-        return {};
     }
   }
   return uv;
