@@ -51,6 +51,7 @@ catkin_add_gtest(test_core
   test/core/test_movers.cpp
   test/core/test_team.cpp
   test/core/test_team_people.cpp
+  test/core/test_team_obstacles.cpp
   test/core/test_navigation.cpp
   test/core/test_road_following.cpp
   test/core/test_depth_scan.cpp

@@ -36,6 +36,8 @@ EnvScene::EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* d
   robot_at_.assign(n, Eigen::Vector2d::Zero());
   present_.assign(n, 1);
   redraw_people_.assign(config_.num_envs, 0);
+  shared_obstacles_ = config_.world.num_boxes + config_.world.num_cylinders > 0;
+  redraw_obstacles_.assign(config_.num_envs, 1);
 }
 
 EnvScene::~EnvScene() = default;
@@ -57,6 +59,13 @@ void EnvScene::beginReset(const std::vector<std::uint8_t>& selected,
   // Robots reset together start free of each other, whatever they did before.
   for (std::size_t e = 0; e < selected.size(); ++e) {
     if (selected[e]) team_->forget(static_cast<int>(e));
+  }
+  // A world whose robots all start anew gets new obstacles; one robot starts among the old.
+  for (int g = 0; g < config_.num_envs; ++g) {
+    if (std::all_of(selected.begin() + g * k_, selected.begin() + (g + 1) * k_,
+                    [](std::uint8_t s) { return s != 0; })) {
+      redraw_obstacles_[g] = 1;
+    }
   }
   // A world whose robots are all reset gets new people once they stand at their starts;
   // otherwise its people walk on and a robot starts clear of them.
@@ -80,6 +89,7 @@ void EnvScene::endReset() {
 
 void EnvScene::beginRound(int world) {
   for (int e = world * k_; e < (world + 1) * k_; ++e) team_->forget(e);
+  redraw_obstacles_[world] = 1;
   if (people_) redraw_people_[world] = 1;
 }
 
@@ -121,13 +131,30 @@ void EnvScene::placeTeamRobot(int row) {
   std::optional<Eigen::Vector2d> goal;
   double yaw = 0.0;
   const bool avoid_people = people_ && !redraw_people_[row / k_];
-  team_->drawStart(row, rng, layout.start, goal, yaw,
-                   avoid_people ? &people_->bodies(row) : nullptr);
-  layout.obstacles.clear();
+  if (!shared_obstacles_) {
+    team_->drawStart(row, rng, layout.start, goal, yaw,
+                     avoid_people ? &people_->bodies(row) : nullptr);
+    layout.obstacles.clear();
+  } else {
+    const int world = row / k_;
+    if (redraw_obstacles_[world]) {  // from the stream of the robot placed first
+      world_->drawObstacles(rng, {}, layout);
+      given_up_ += static_cast<std::uint64_t>(layout.given_up);
+      for (int e = world * k_; e < (world + 1) * k_; ++e) {
+        if (e != row) layouts_[e].obstacles = layout.obstacles;
+      }
+      redraw_obstacles_[world] = 0;
+    }
+    std::vector<Obstacle> avoid = avoid_people ? people_->bodies(row) : std::vector<Obstacle>();
+    avoid.insert(avoid.end(), layout.obstacles.begin(), layout.obstacles.end());
+    team_->drawStart(row, rng, layout.start, goal, yaw, &avoid);
+    physics.setObstacles(layout.obstacles);
+  }
   if (drawer_) {
     WorldDraft draft;
     draft.start = layout.start;
     draft.goal = goal;
+    if (shared_obstacles_) draft.obstacles = &layout.obstacles;
     std::vector<Eigen::Vector2d> keep_free{layout.start};
     drawer_->drawInWorld(row, rng, *world_, draft, keep_free);
     drawer_->layoutDrawn(row, *world_, layout);

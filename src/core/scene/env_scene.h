@@ -66,8 +66,8 @@ class EnvScene {
   std::uint64_t moversGivenUp() const { return movers_given_up_; }
 
   /// Before the rows marked in `selected` are reset: robots reset together start free of each
-  /// other; a world whose robots are all reset gets its people anew at endReset() (from its
-  /// stream restarted at `seed`, when given).
+  /// other; a world whose robots are all reset gets its random obstacles anew and its people
+  /// anew at endReset() (from its stream restarted at `seed`, when given).
   void beginReset(const std::vector<std::uint8_t>& selected, std::optional<std::uint64_t> seed);
   /// Restarts row `row`'s streams from `seed` (one robot per world: its movers' too).
   void reseed(int row, std::uint64_t seed);
@@ -76,8 +76,8 @@ class EnvScene {
   void place(int row);
   /// After the rows of beginReset() were placed: the people of the worlds reset whole.
   void endReset();
-  /// Rounds: all robots of world `world` start anew; beginRound() before they are placed,
-  /// endRound() after.
+  /// Rounds: all robots of world `world` start anew (its random obstacles and people too);
+  /// beginRound() before they are placed, endRound() after.
   void beginRound(int world);
   void endRound(int world);
   /// Row `row`'s robot was moved by hand (setRootState): the others see it there.
@@ -95,7 +95,8 @@ class EnvScene {
  private:
   /// A row of a world with one robot: its layout, start and people.
   void placeRobot(int row);
-  /// A row of a team: its start (and a circle swap's goal) clear of the others of its world.
+  /// A row of a team: its start (and a circle swap's goal) clear of the others of its world and
+  /// of its obstacles (drawn first, when anew).
   void placeTeamRobot(int row);
   /// Draws the people of world `world` anew, clear of its robots' starts.
   void redrawPeople(int world);
@@ -117,6 +118,10 @@ class EnvScene {
   std::vector<Eigen::Vector2d> robot_at_;    // per row: its root at its world's step [m]
   std::vector<std::uint8_t> present_;        // per row: in its world at its world's step
   std::vector<std::uint8_t> redraw_people_;  // per world: its people are drawn after its robots
+  // A team's random obstacles (world/num_boxes, num_cylinders) are its world's: drawn anew by the
+  // robot placed first when all its robots start anew, kept when one does.
+  bool shared_obstacles_ = false;
+  std::vector<std::uint8_t> redraw_obstacles_;       // per world
   mutable std::vector<std::vector<Obstacle>> seen_;  // per world: a row's people and robots
   std::atomic<std::uint64_t> given_up_{0};           // obstacles left out
   std::atomic<std::uint64_t> unmade_{0};             // generated layouts not made
