@@ -251,6 +251,49 @@ TEST(CameraTextures, ARobotsMeshWithoutAURDFColourShowsItsOwnMaterials) {
   }
 }
 
+/// A world of one 0.1 x 0.4 x 0.5 m box 0.35 m ahead whose material is `material` (SDF text).
+std::string boxWorld(const std::string& name, const std::string& material) {
+  return test::sdfWorld(
+      name,
+      "<model name=\"panel\"><static>true</static><pose>0.35 0 0.25 0 0 0</pose>"
+      "<link name=\"link\"><collision name=\"c\"><geometry><box><size>0.1 0.4 0.5</size></box>"
+      "</geometry></collision><visual name=\"v\"><geometry><box><size>0.1 0.4 0.5</size></box>"
+      "</geometry>" +
+          material + "</visual></link></model>\n");
+}
+
+TEST(CameraTextures, AnSdfPbrAlbedoMapCoversABox) {
+  redBlueTexture("albedo_red_blue.png");  // beside the world file: a relative name
+  const std::string pbr =
+      "<material><diffuse>0 1 0 1</diffuse><pbr><metal><albedo_map>albedo_red_blue.png"
+      "</albedo_map></metal></pbr></material>";
+  const std::string world = boxWorld("albedo.world", pbr);
+  const GazeboWorld read = loadGazeboWorld(world, nullptr, true);
+  ASSERT_EQ(read.visuals.size(), 1u);
+  ASSERT_TRUE(read.visuals[0].texture);
+  EXPECT_EQ(read.visuals[0].texture->path, ::testing::TempDir() + "albedo_red_blue.png");
+  std::unique_ptr<BatchedEnv> env;
+  const EnvImages images = seenImages(world, env);
+  const int row = 16 * 33;
+  for (int x : {12, 20}) {  // red on the face's left, blue on its right, as a script's
+    const std::uint8_t* rgb = images.rgb + 3 * (row + x);
+    EXPECT_EQ(rgb[1], 0) << x;
+    EXPECT_GT(x < 16 ? rgb[0] : rgb[2], 60) << x;
+    EXPECT_EQ(x < 16 ? rgb[2] : rgb[0], 0) << x;
+  }
+  // A map that does not exist: named, the diffuse colour drawn.
+  const GazeboWorld lost = loadGazeboWorld(
+      boxWorld("albedo_lost.world", test::replaceOnce(pbr, "albedo_red_blue", "albedo_lost")),
+      nullptr, true);
+  ASSERT_EQ(lost.visuals.size(), 1u);
+  EXPECT_FALSE(lost.visuals[0].texture);
+  EXPECT_TRUE(lost.visuals[0].colour.isApprox(Eigen::Vector3f(0, 1, 0)));
+  EXPECT_NE(lost.skipped.find("albedo_lost.png' does not exist of visual 'panel::link::v' (its "
+                              "colour drawn)"),
+            std::string::npos)
+      << lost.skipped;
+}
+
 TEST(CameraTextures, AURDFTextureCoversABoxAcrossItsFaces) {
   const std::string texture = redBlueTexture("urdf_texture.png");
   const std::string green =

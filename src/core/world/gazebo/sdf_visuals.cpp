@@ -44,6 +44,14 @@ VisualMaterial materialOf(const sdf::Visual& visual) {
       m.diffuse = Eigen::Vector3f(d.R(), d.G(), d.B());
     }
     m.script = material->ScriptName();
+    m.file_path = material->FilePath();
+    for (const auto type : {sdf::PbrWorkflowType::METAL, sdf::PbrWorkflowType::SPECULAR}) {
+      const sdf::Pbr* pbr = material->PbrMaterial();
+      const sdf::PbrWorkflow* workflow = pbr ? pbr->Workflow(type) : nullptr;
+      if (workflow && !workflow->AlbedoMap().empty() && m.albedo_map.empty()) {
+        m.albedo_map = workflow->AlbedoMap();
+      }
+    }
     if (element && element->HasElement("script")) {
       const sdf::ElementPtr script = element->GetElement("script");
       for (sdf::ElementPtr u = script->HasElement("uri") ? script->GetElement("uri") : nullptr; u;
@@ -126,6 +134,44 @@ std::string scriptTexture(const std::string& name, const std::vector<std::string
   return "";
 }
 
+/// Visual `v` (its triangles in its own frame) covered by the texture in `file` (named
+/// `as_named`; coordinates divided by `scale`): a mesh by its coordinates, a box, cylinder or
+/// sphere across its faces; on other shapes, or when the file cannot be read, noted.
+void coverWith(const sdf::Geometry& g, const std::string& file, const std::string& as_named,
+               const Eigen::Vector2f& scale, const std::string& name, VisualSink& sink,
+               WorldVisual& v) {
+  std::shared_ptr<const TextureImage> image = texture(file, name, sink);
+  if (!image) return;
+  std::vector<Eigen::Vector2f> uv;
+  if (g.Type() == sdf::GeometryType::MESH) {  // the texture on the whole mesh
+    std::vector<Eigen::Vector3d> corners;
+    for (MeshPart& part :
+         sdfMeshParts(*g.MeshShape(), sink.world_path, sink.resolver, name, *sink.notes)) {
+      corners.insert(corners.end(), part.triangles.begin(), part.triangles.end());
+      uv.insert(uv.end(), part.uv.begin(), part.uv.end());
+    }
+    v.triangles = std::move(corners);
+  } else if (g.Type() == sdf::GeometryType::BOX) {
+    const auto s = g.BoxShape()->Size();
+    uv = primitiveUv(UvShape::kBox, Eigen::Vector3d(s.X(), s.Y(), s.Z()), v.triangles);
+  } else if (g.Type() == sdf::GeometryType::CYLINDER) {
+    uv = primitiveUv(UvShape::kCylinder,
+                     Eigen::Vector3d(g.CylinderShape()->Radius(), g.CylinderShape()->Length(), 0),
+                     v.triangles);
+  } else if (g.Type() == sdf::GeometryType::SPHERE) {
+    uv = primitiveUv(UvShape::kSphere, Eigen::Vector3d::Constant(g.SphereShape()->Radius()),
+                     v.triangles);
+  }
+  if (uv.empty()) {
+    sink.notes->push_back("texture '" + as_named + "' of visual '" + name +
+                          "' (not drawn on this shape; its colour is)");
+    return;
+  }
+  for (Eigen::Vector2f& c : uv) c = c.cwiseQuotient(scale);
+  v.texture = std::move(image);
+  v.uv = std::move(uv);
+}
+
 /// Visual `v` (its triangles in its own frame) in the colour and texture of its material script,
 /// found in the script's folders; what cannot be drawn as the script says is noted.
 void applyScript(const sdf::Geometry& g, const VisualMaterial& material, const std::string& name,
@@ -147,36 +193,32 @@ void applyScript(const sdf::Geometry& g, const VisualMaterial& material, const s
     }
     return;
   }
-  std::shared_ptr<const TextureImage> image = texture(file, name, sink);
-  if (!image) return;
-  std::vector<Eigen::Vector2f> uv;
-  if (g.Type() == sdf::GeometryType::MESH) {  // the script's texture on the whole mesh
-    std::vector<Eigen::Vector3d> corners;
-    for (MeshPart& part :
-         sdfMeshParts(*g.MeshShape(), sink.world_path, sink.resolver, name, *sink.notes)) {
-      corners.insert(corners.end(), part.triangles.begin(), part.triangles.end());
-      uv.insert(uv.end(), part.uv.begin(), part.uv.end());
-    }
-    v.triangles = std::move(corners);
-  } else if (g.Type() == sdf::GeometryType::BOX) {
-    const auto s = g.BoxShape()->Size();
-    uv = primitiveUv(UvShape::kBox, Eigen::Vector3d(s.X(), s.Y(), s.Z()), v.triangles);
-  } else if (g.Type() == sdf::GeometryType::CYLINDER) {
-    uv = primitiveUv(UvShape::kCylinder,
-                     Eigen::Vector3d(g.CylinderShape()->Radius(), g.CylinderShape()->Length(), 0),
-                     v.triangles);
-  } else if (g.Type() == sdf::GeometryType::SPHERE) {
-    uv = primitiveUv(UvShape::kSphere, Eigen::Vector3d::Constant(g.SphereShape()->Radius()),
-                     v.triangles);
+  coverWith(g, file, m->texture, m->scale, name, sink, v);
+}
+
+/// A visual's PBR albedo map (`<pbr><metal|specular><albedo_map>`, as Gazebo Sim's worlds give
+/// their textures): `model://`, `file://` or a path (a relative one against the SDF file naming
+/// it); drawn as a script's texture is.
+void applyAlbedoMap(const sdf::Geometry& g, const VisualMaterial& material, const std::string& name,
+                    VisualSink& sink, WorldVisual& v) {
+  namespace fs = std::filesystem;
+  std::string file = material.albedo_map;
+  if (file.rfind("model://", 0) == 0) {
+    file = findGazeboModel(file);
+  } else if (file.rfind("file://", 0) == 0) {
+    file = file.substr(7);
   }
-  if (uv.empty()) {
-    sink.notes->push_back("texture '" + m->texture + "' of visual '" + name +
-                          "' (not drawn on this shape; its colour is)");
+  if (!file.empty() && !fs::path(file).is_absolute()) {
+    const std::string& from =
+        material.file_path.rfind('/', 0) == 0 ? material.file_path : sink.world_path;
+    file = (fs::path(from).parent_path() / file).lexically_normal().string();
+  }
+  if (file.empty()) {
+    sink.notes->push_back("albedo map '" + material.albedo_map + "' of visual '" + name +
+                          "' (not found; its colour drawn)");
     return;
   }
-  for (Eigen::Vector2f& c : uv) c = c.cwiseQuotient(m->scale);
-  v.texture = std::move(image);
-  v.uv = std::move(uv);
+  coverWith(g, file, material.albedo_map, Eigen::Vector2f::Ones(), name, sink, v);
 }
 
 }  // namespace
@@ -189,7 +231,8 @@ void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
   };
   if (g.Type() == sdf::GeometryType::PLANE) return;  // the ground is the simulator's own
   if (const std::string bad = sdfPlacementProblem(g, pose); !bad.empty()) refuse(bad);
-  if (g.Type() == sdf::GeometryType::MESH && !material.diffuse && material.script.empty()) {
+  if (g.Type() == sdf::GeometryType::MESH && !material.diffuse && material.script.empty() &&
+      material.albedo_map.empty()) {
     try {
       readMeshParts(*g.MeshShape(), pose, name, sink);
     } catch (const Error& e) {
@@ -213,6 +256,13 @@ void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
   } else if (!material.script.empty() && !gazeboScriptColour(material.script, v.colour)) {
     try {
       applyScript(g, material, name, sink, v);
+    } catch (const Error& e) {
+      refuse(e.what());
+    }
+  }
+  if (!material.albedo_map.empty()) {
+    try {
+      applyAlbedoMap(g, material, name, sink, v);
     } catch (const Error& e) {
       refuse(e.what());
     }

@@ -24,6 +24,9 @@ struct VisualMaterial {
   std::optional<Eigen::Vector3f> diffuse;  ///< RGB as given (clamped to [0, 1] when drawn).
   std::string script;
   std::vector<std::string> script_uris;  ///< Its script's <uri>s: folders or files of scripts.
+  /// Its `<pbr>`'s albedo map as given (metal workflow, else specular), or "".
+  std::string albedo_map;
+  std::string file_path;  ///< The SDF file it was read from, when sdformat knows it.
 };
 
 /// The material of an sdformat visual.
