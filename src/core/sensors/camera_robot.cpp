@@ -43,44 +43,18 @@ RTCScene visualScene(RTCDevice device, const std::vector<const VisualGeometry*>&
   return scene;
 }
 
-/// Visual `v`'s surfaces `surfaces` (in its shape's own frame) as one, covered by its URDF
-/// texture: a mesh by its coordinates, a primitive across its faces.
-std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>> urdfTextured(
-    const VisualGeometry& v,
-    const std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>>& surfaces,
-    TextureCache& textures) {
-  if (v.texture_path.empty()) throw ModelError(v.texture_error);
-  const CollisionGeometry& g = v.shape;
-  std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>> out;
-  SurfaceMaterial& m = out.first;
-  try {
-    auto [at, first] = textures.images.try_emplace(v.texture_path);
-    if (first) at->second = loadTextureImage(v.texture_path, &textures.bytes);
-    m.texture = at->second;
-  } catch (const ModelError& e) {
-    throw ModelError("link '" + v.link + "': visual " + e.what());
+/// The texture at `path` through `textures` (read at its first use); ModelError saying why not.
+std::shared_ptr<const TextureImage> cachedTexture(const std::string& path, TextureCache& textures) {
+  auto [at, first] = textures.images.try_emplace(path);
+  if (first) {
+    try {
+      at->second = loadTextureImage(path, &textures.bytes);
+    } catch (...) {
+      textures.images.erase(at);
+      throw;
+    }
   }
-  switch (g.type) {
-    case CollisionGeometry::Type::kMesh:
-      for (MeshPart& part : loadMeshParts(v.mesh_path)) {  // read before: it can be read
-        out.second.insert(out.second.end(), part.triangles.begin(), part.triangles.end());
-        m.uv.insert(m.uv.end(), part.uv.begin(), part.uv.end());
-      }
-      break;
-    case CollisionGeometry::Type::kBox:
-      out.second = surfaces.front().second;
-      m.uv = primitiveUv(UvShape::kBox, g.size, out.second);
-      break;
-    case CollisionGeometry::Type::kCylinder:
-      out.second = surfaces.front().second;
-      m.uv = primitiveUv(UvShape::kCylinder, g.size, out.second);
-      break;
-    case CollisionGeometry::Type::kSphere:
-      out.second = surfaces.front().second;
-      m.uv = primitiveUv(UvShape::kSphere, g.size, out.second);
-      break;
-  }
-  return out;
+  return at->second;
 }
 
 }  // namespace
@@ -89,37 +63,57 @@ std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurf
     const VisualGeometry& v, TextureCache& textures) {
   const CollisionGeometry& g = v.shape;
   if (g.type != CollisionGeometry::Type::kMesh && g.size.maxCoeff() <= 0.0) return {};  // size 0
+  if (!v.texture_error.empty()) throw ModelError(v.texture_error);
+  std::shared_ptr<const TextureImage> urdf_texture;  // covers the whole visual
+  if (!v.texture_path.empty()) {
+    try {
+      urdf_texture = cachedTexture(v.texture_path, textures);
+    } catch (const ModelError& e) {
+      throw ModelError("link '" + v.link + "': visual " + e.what());
+    }
+  }
   std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> out(1);
   out[0].first.colour = v.colour;
+  out[0].first.texture = urdf_texture;
   std::vector<Eigen::Vector3d>& local = out[0].second;
+  std::vector<Eigen::Vector2f>& uv = out[0].first.uv;
   switch (g.type) {
     case CollisionGeometry::Type::kBox:
       local = boxSurface(g.size);
+      if (urdf_texture) uv = primitiveUv(UvShape::kBox, g.size, local);
       break;
     case CollisionGeometry::Type::kCylinder:
       local = cylinderSurface(g.size.x(), g.size.y());
+      if (urdf_texture) uv = primitiveUv(UvShape::kCylinder, g.size, local);
       break;
     case CollisionGeometry::Type::kSphere:
       local = ellipsoidSurface(Eigen::Vector3d::Constant(g.size.x()));
+      if (urdf_texture) uv = primitiveUv(UvShape::kSphere, g.size, local);
       break;
     case CollisionGeometry::Type::kMesh: {
       if (v.mesh_path.empty()) throw ModelError(v.mesh_error);
       try {
-        if (v.coloured) {
+        if (v.coloured && !urdf_texture) {
           local = loadMeshTriangles(v.mesh_path);
           break;
         }
-        out.clear();
-        for (MeshPart& part : loadMeshParts(v.mesh_path)) {
+        std::vector<MeshPart> parts = loadMeshParts(v.mesh_path);
+        if (urdf_texture) {  // the URDF's texture by the mesh's coordinates
+          for (MeshPart& part : parts) {
+            local.insert(local.end(), part.triangles.begin(), part.triangles.end());
+            uv.insert(uv.end(), part.uv.begin(), part.uv.end());
+          }
+          break;
+        }
+        out.clear();  // the file's own materials
+        for (MeshPart& part : parts) {
           SurfaceMaterial m;
           if (part.colour) m.colour = part.colour->cwiseMax(0.0f).cwiseMin(1.0f);
           if (!part.texture_as_given.empty() && part.texture.empty()) {
             throw ModelError("texture '" + part.texture_as_given + "' not found");
           }
           if (!part.texture.empty()) {
-            auto [at, first] = textures.images.try_emplace(part.texture);
-            if (first) at->second = loadTextureImage(part.texture, &textures.bytes);
-            m.texture = at->second;
+            m.texture = cachedTexture(part.texture, textures);
             m.uv = std::move(part.uv);
           }
           out.emplace_back(std::move(m), std::move(part.triangles));
@@ -130,7 +124,6 @@ std::vector<std::pair<SurfaceMaterial, std::vector<Eigen::Vector3d>>> visualSurf
       break;
     }
   }
-  if (!v.texture_path.empty() || !v.texture_error.empty()) out = {urdfTextured(v, out, textures)};
   for (auto& [material, corners] : out) {
     for (Eigen::Vector3d& c : corners) {
       if (g.type == CollisionGeometry::Type::kMesh) c = c.cwiseProduct(g.size);

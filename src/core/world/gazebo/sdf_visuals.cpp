@@ -100,23 +100,18 @@ void readMeshParts(const sdf::Mesh& m, const Eigen::Isometry3d& pose, const std:
   }
 }
 
-/// The folders (or files) of a script's <uri>s: `model://` as Gazebo finds it, `file://` and
-/// other paths as given, relative ones against the world file's folder; those not found left out.
-std::vector<std::string> scriptFolders(const VisualMaterial& material,
-                                       const std::string& world_path) {
+/// The file of a world's `uri`: `model://` as Gazebo finds it, `file://` and other paths as
+/// given, a relative one against the folder of `relative_to` (a file); "" when not found.
+std::string worldFile(std::string uri, const std::string& relative_to) {
   namespace fs = std::filesystem;
-  std::vector<std::string> folders;
-  for (std::string uri : material.script_uris) {
-    if (uri.rfind("model://", 0) == 0) {
-      uri = findGazeboModel(uri);
-      if (uri.empty()) continue;
-    } else if (uri.rfind("file://", 0) == 0) {
-      uri = uri.substr(7);
-    }
-    if (!fs::path(uri).is_absolute()) uri = (fs::path(world_path).parent_path() / uri).string();
-    folders.push_back(uri);
+  if (uri.rfind("model://", 0) == 0) {
+    uri = findGazeboModel(uri);
+    if (uri.empty()) return uri;
+  } else if (uri.rfind("file://", 0) == 0) {
+    uri = uri.substr(7);
   }
-  return folders;
+  if (!fs::path(uri).is_absolute()) uri = (fs::path(relative_to).parent_path() / uri).string();
+  return fs::path(uri).lexically_normal().string();
 }
 
 /// A script texture's file: in one of the script's folders, or a `textures` folder beside one
@@ -134,91 +129,76 @@ std::string scriptTexture(const std::string& name, const std::vector<std::string
   return "";
 }
 
-/// Visual `v` (its triangles in its own frame) covered by the texture in `file` (named
-/// `as_named`; coordinates divided by `scale`): a mesh by its coordinates, a box, cylinder or
-/// sphere across its faces; on other shapes, or when the file cannot be read, noted.
-void coverWith(const sdf::Geometry& g, const std::string& file, const std::string& as_named,
-               const Eigen::Vector2f& scale, const std::string& name, VisualSink& sink,
-               WorldVisual& v) {
-  std::shared_ptr<const TextureImage> image = texture(file, name, sink);
-  if (!image) return;
-  std::vector<Eigen::Vector2f> uv;
-  if (g.Type() == sdf::GeometryType::MESH) {  // the texture on the whole mesh
-    std::vector<Eigen::Vector3d> corners;
-    for (MeshPart& part :
-         sdfMeshParts(*g.MeshShape(), sink.world_path, sink.resolver, name, *sink.notes)) {
-      corners.insert(corners.end(), part.triangles.begin(), part.triangles.end());
-      uv.insert(uv.end(), part.uv.begin(), part.uv.end());
+/// What a visual's <material> makes of it besides its shape: its colour, and the file of the
+/// texture that covers it ("" for none; named `as_named`, its coordinates divided by `scale`).
+struct Look {
+  Eigen::Vector3f colour{0.7f, 0.7f, 0.7f};
+  std::string texture, as_named;
+  Eigen::Vector2f scale = Eigen::Vector2f::Ones();
+};
+
+/// `material`'s look: its <diffuse>, else its script's (Gazebo's own colours, else the script
+/// files of its <uri>s: colour and texture), and over either its PBR albedo map; what cannot be
+/// drawn as it says is noted.
+Look lookOf(const VisualMaterial& material, const std::string& name, VisualSink& sink) {
+  Look look;
+  if (material.diffuse) {
+    look.colour = material.diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
+  } else if (!material.script.empty() && !gazeboScriptColour(material.script, look.colour)) {
+    std::vector<std::string> folders;
+    for (const std::string& uri : material.script_uris) {
+      const std::string folder = worldFile(uri, sink.world_path);
+      if (!folder.empty()) folders.push_back(folder);
     }
-    v.triangles = std::move(corners);
-  } else if (g.Type() == sdf::GeometryType::BOX) {
-    const auto s = g.BoxShape()->Size();
-    uv = primitiveUv(UvShape::kBox, Eigen::Vector3d(s.X(), s.Y(), s.Z()), v.triangles);
-  } else if (g.Type() == sdf::GeometryType::CYLINDER) {
-    uv = primitiveUv(UvShape::kCylinder,
-                     Eigen::Vector3d(g.CylinderShape()->Radius(), g.CylinderShape()->Length(), 0),
-                     v.triangles);
-  } else if (g.Type() == sdf::GeometryType::SPHERE) {
-    uv = primitiveUv(UvShape::kSphere, Eigen::Vector3d::Constant(g.SphereShape()->Radius()),
-                     v.triangles);
+    const auto m = sink.scripts.find(material.script, folders, *sink.notes);
+    if (!m) {
+      sink.notes->push_back("material '" + material.script + "' of visual '" + name +
+                            "' (drawn grey)");
+    } else {
+      if (m->diffuse) look.colour = m->diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
+      look.as_named = m->texture;
+      look.scale = m->scale;
+      look.texture = m->texture.empty() ? "" : scriptTexture(m->texture, folders);
+      if (!m->texture.empty() && look.texture.empty() &&
+          sink.textures.try_emplace("?" + m->texture).second) {
+        sink.notes->push_back("texture '" + m->texture + "' of material '" + material.script +
+                              "' of visual '" + name + "' (not found; its colour drawn)");
+      }
+    }
   }
-  if (uv.empty()) {
-    sink.notes->push_back("texture '" + as_named + "' of visual '" + name +
-                          "' (not drawn on this shape; its colour is)");
-    return;
+  if (!material.albedo_map.empty()) {  // a relative map against the SDF file naming it
+    look.as_named = material.albedo_map;
+    look.scale = Eigen::Vector2f::Ones();
+    look.texture =
+        worldFile(material.albedo_map,
+                  material.file_path.rfind('/', 0) == 0 ? material.file_path : sink.world_path);
+    if (look.texture.empty()) {
+      sink.notes->push_back("albedo map '" + material.albedo_map + "' of visual '" + name +
+                            "' (not found; its colour drawn)");
+    }
   }
-  for (Eigen::Vector2f& c : uv) c = c.cwiseQuotient(scale);
-  v.texture = std::move(image);
-  v.uv = std::move(uv);
+  return look;
 }
 
-/// Visual `v` (its triangles in its own frame) in the colour and texture of its material script,
-/// found in the script's folders; what cannot be drawn as the script says is noted.
-void applyScript(const sdf::Geometry& g, const VisualMaterial& material, const std::string& name,
-                 VisualSink& sink, WorldVisual& v) {
-  const std::vector<std::string> folders = scriptFolders(material, sink.world_path);
-  const std::optional<ScriptMaterial> m = sink.scripts.find(material.script, folders, *sink.notes);
-  if (!m) {
-    sink.notes->push_back("material '" + material.script + "' of visual '" + name +
-                          "' (drawn grey)");
-    return;
-  }
-  if (m->diffuse) v.colour = m->diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
-  if (m->texture.empty()) return;
-  const std::string file = scriptTexture(m->texture, folders);
-  if (file.empty()) {
-    if (sink.textures.try_emplace("?" + m->texture).second) {
-      sink.notes->push_back("texture '" + m->texture + "' of material '" + material.script +
-                            "' of visual '" + name + "' (not found; its colour drawn)");
+/// The texture coordinates of a box's, cylinder's or sphere's surface `corners` in its own
+/// frame (primitiveUv()); empty for other shapes.
+std::vector<Eigen::Vector2f> primitiveUvOf(const sdf::Geometry& g,
+                                           const std::vector<Eigen::Vector3d>& corners) {
+  switch (g.Type()) {
+    case sdf::GeometryType::BOX: {
+      const auto s = g.BoxShape()->Size();
+      return primitiveUv(UvShape::kBox, Eigen::Vector3d(s.X(), s.Y(), s.Z()), corners);
     }
-    return;
+    case sdf::GeometryType::CYLINDER:
+      return primitiveUv(
+          UvShape::kCylinder,
+          Eigen::Vector3d(g.CylinderShape()->Radius(), g.CylinderShape()->Length(), 0), corners);
+    case sdf::GeometryType::SPHERE:
+      return primitiveUv(UvShape::kSphere, Eigen::Vector3d::Constant(g.SphereShape()->Radius()),
+                         corners);
+    default:
+      return {};
   }
-  coverWith(g, file, m->texture, m->scale, name, sink, v);
-}
-
-/// A visual's PBR albedo map (`<pbr><metal|specular><albedo_map>`, as Gazebo Sim's worlds give
-/// their textures): `model://`, `file://` or a path (a relative one against the SDF file naming
-/// it); drawn as a script's texture is.
-void applyAlbedoMap(const sdf::Geometry& g, const VisualMaterial& material, const std::string& name,
-                    VisualSink& sink, WorldVisual& v) {
-  namespace fs = std::filesystem;
-  std::string file = material.albedo_map;
-  if (file.rfind("model://", 0) == 0) {
-    file = findGazeboModel(file);
-  } else if (file.rfind("file://", 0) == 0) {
-    file = file.substr(7);
-  }
-  if (!file.empty() && !fs::path(file).is_absolute()) {
-    const std::string& from =
-        material.file_path.rfind('/', 0) == 0 ? material.file_path : sink.world_path;
-    file = (fs::path(from).parent_path() / file).lexically_normal().string();
-  }
-  if (file.empty()) {
-    sink.notes->push_back("albedo map '" + material.albedo_map + "' of visual '" + name +
-                          "' (not found; its colour drawn)");
-    return;
-  }
-  coverWith(g, file, material.albedo_map, Eigen::Vector2f::Ones(), name, sink, v);
 }
 
 }  // namespace
@@ -240,10 +220,23 @@ void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
     }
     return;
   }
+  const Look look = lookOf(material, name, sink);
+  const std::shared_ptr<const TextureImage> image =
+      look.texture.empty() ? nullptr : texture(look.texture, name, sink);
   WorldVisual v;
   v.name = name;
+  v.colour = look.colour;
   try {
-    v.triangles = sdfSurface(g, sink.world_path, sink.resolver, name, *sink.notes);
+    if (image && g.Type() == sdf::GeometryType::MESH) {  // the texture on the whole mesh
+      for (MeshPart& part :
+           sdfMeshParts(*g.MeshShape(), sink.world_path, sink.resolver, name, *sink.notes)) {
+        v.triangles.insert(v.triangles.end(), part.triangles.begin(), part.triangles.end());
+        v.uv.insert(v.uv.end(), part.uv.begin(), part.uv.end());
+      }
+    } else {
+      v.triangles = sdfSurface(g, sink.world_path, sink.resolver, name, *sink.notes);
+      if (image) v.uv = primitiveUvOf(g, v.triangles);
+    }
   } catch (const Error& e) {
     refuse(e.what());
   }
@@ -251,21 +244,12 @@ void readVisual(const sdf::Geometry& g, const VisualMaterial& material,
     sink.notes->push_back("empty visual '" + name + "'");
     return;
   }
-  if (material.diffuse) {
-    v.colour = material.diffuse->cwiseMax(0.0f).cwiseMin(1.0f);
-  } else if (!material.script.empty() && !gazeboScriptColour(material.script, v.colour)) {
-    try {
-      applyScript(g, material, name, sink, v);
-    } catch (const Error& e) {
-      refuse(e.what());
-    }
-  }
-  if (!material.albedo_map.empty()) {
-    try {
-      applyAlbedoMap(g, material, name, sink, v);
-    } catch (const Error& e) {
-      refuse(e.what());
-    }
+  if (image && v.uv.empty()) {
+    sink.notes->push_back("texture '" + look.as_named + "' of visual '" + name +
+                          "' (not drawn on this shape; its colour is)");
+  } else if (image) {
+    for (Eigen::Vector2f& c : v.uv) c = c.cwiseQuotient(look.scale);
+    v.texture = image;
   }
   for (Eigen::Vector3d& c : v.triangles) c = pose * c;
   sink.out->push_back(std::move(v));
