@@ -12,15 +12,10 @@
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
 #include "jetbot_rl/world/texture_image.h"
 #include "sensors/camera_robot.h"
-#include "world_test_util.h"
+#include "texture_test_util.h"
 
 namespace jetbot_rl {
 namespace {
-
-/// A 2 x 1 texture: its left texel red, its right one blue; its path.
-std::string redBlueTexture(const std::string& name) {
-  return test::writePng(name, 2, 1, {255, 0, 0, 255, 0, 0, 255, 255});
-}
 
 /// An OBJ of two parts: an upright 0.4 x 0.5 m quad facing -x at x = -0.05 (its texture's left
 /// half at +y, where a camera looking along +x sees its left), of material `textured`, and a
@@ -52,7 +47,7 @@ std::string meshWorld(const std::string& name, const std::string& mesh,
 
 TEST(MeshMaterials, EachPartHasItsColourAndTexture) {
   const std::string mesh = texturedMesh("parts_mesh", "parts_texture.png");
-  redBlueTexture("parts_texture.png");
+  test::redBlueTexture("parts_texture.png");
   const std::vector<MeshPart> parts = loadMeshParts(mesh);
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].triangles.size(), 6u);
@@ -80,7 +75,7 @@ TEST(MeshMaterials, ATextureIsFoundInTheModelsTextureFolderAsGazeboFindsIt) {
   ::mkdir((model + "/meshes").c_str(), 0755);
   ::mkdir((model + "/materials").c_str(), 0755);
   ::mkdir((model + "/materials/textures").c_str(), 0755);
-  redBlueTexture("texture_folder_model/materials/textures/wall.png");
+  test::redBlueTexture("texture_folder_model/materials/textures/wall.png");
   const std::string mesh =
       texturedMesh("texture_folder_model/meshes/wall", "some/where/else/wall.png");
   const std::vector<MeshPart> parts = loadMeshParts(mesh);
@@ -124,7 +119,7 @@ TEST(TextureImage, FilesItCannotUseAreNamed) {
                          std::vector<unsigned char>(4 * (kMaxTextureSide + 1), 255)),
           "is 8193 x 1 px: at most 8192 px a side");
   // The textures of a world or robot, counted: one more past the budget is refused.
-  const std::string small = redBlueTexture("budget_texture.png");
+  const std::string small = test::redBlueTexture("budget_texture.png");
   std::size_t bytes = kMaxTextureBytes - 6;
   ASSERT_TRUE(loadTextureImage(small, &bytes));
   EXPECT_EQ(bytes, kMaxTextureBytes);
@@ -140,24 +135,9 @@ TEST(TextureImage, FilesItCannotUseAreNamed) {
   EXPECT_EQ(bytes, kMaxTextureBytes);  // nothing counted
 }
 
-/// The camera Jetbot at the origin facing +x, 33 x 33 px over 0.6 rad, seeing `world`'s model.
-EnvImages seenImages(const std::string& world, std::unique_ptr<BatchedEnv>& env) {
-  EnvConfig c = test::smallConfig(1);
-  c.world.gazebo_world = world;
-  c.world.start_clearance = 0.1;
-  c.camera.width = 33;
-  c.camera.height = 33;
-  c.camera.horizontal_fov = 0.6;
-  c.camera.noise_std = 0.0;
-  c.camera.images = {"rgb", "label"};
-  env = std::make_unique<BatchedEnv>(
-      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf"), c);
-  return env->view(0).images();
-}
-
 TEST(CameraTextures, TheCameraSeesAMeshsTextureWhereItsCoordinatesPutIt) {
   const std::string mesh = texturedMesh("seen_mesh", "seen_texture.png");
-  redBlueTexture("seen_texture.png");
+  test::redBlueTexture("seen_texture.png");
   const GazeboWorld read = loadGazeboWorld(meshWorld("textured.world", mesh, ""), nullptr, true);
   ASSERT_EQ(read.visuals.size(), 2u);  // one per part of the file
   ASSERT_TRUE(read.visuals[0].texture);
@@ -166,23 +146,16 @@ TEST(CameraTextures, TheCameraSeesAMeshsTextureWhereItsCoordinatesPutIt) {
   EXPECT_TRUE(read.visuals[1].colour.isApprox(Eigen::Vector3f(0, 1, 0)));
 
   std::unique_ptr<BatchedEnv> env;
-  const EnvImages images = seenImages(meshWorld("textured.world", mesh, ""), env);
+  const EnvImages images = test::seenImages(meshWorld("textured.world", mesh, ""), env);
   // The centre row: left of the centre the texture's red half, right of it its blue half.
-  const int row = 16 * 33;
-  for (int x : {12, 14, 18, 20}) {
-    ASSERT_EQ(images.label[row + x], static_cast<std::uint8_t>(SurfaceClass::kMap)) << x;
-    const std::uint8_t* rgb = images.rgb + 3 * (row + x);
-    EXPECT_EQ(rgb[1], 0) << x;
-    EXPECT_GT(x < 16 ? rgb[0] : rgb[2], 60) << x;
-    EXPECT_EQ(x < 16 ? rgb[2] : rgb[0], 0) << x;
-  }
+  test::expectRedLeftBlueRight(images);  // the texture's red half left of the centre
   // A <material> colours the whole mesh, as before.
   std::unique_ptr<BatchedEnv> coloured;
-  const EnvImages green = seenImages(
+  const EnvImages green = test::seenImages(
       meshWorld("coloured_mesh.world", mesh, "<material><diffuse>0 1 0 1</diffuse></material>"),
       coloured);
-  for (int x : {12, 20}) {
-    const std::uint8_t* rgb = green.rgb + 3 * (row + x);
+  for (int x : {12 + 16 * 33, 20 + 16 * 33}) {  // the centre row
+    const std::uint8_t* rgb = green.rgb + 3 * x;
     EXPECT_EQ(rgb[0], 0) << x;
     EXPECT_GT(rgb[1], 60) << x;
     EXPECT_EQ(rgb[2], 0) << x;
@@ -219,7 +192,7 @@ TEST(CameraTextures, ARobotsMeshWithoutAURDFColourShowsItsOwnMaterials) {
   v.shape.size = Eigen::Vector3d(2.0, 1.0, 1.0);  // the mesh's scale
   v.shape.mesh_uri = "file://robot_mesh.obj";
   v.mesh_path = texturedMesh("robot_mesh", "robot_texture.png");
-  redBlueTexture("robot_texture.png");
+  test::redBlueTexture("robot_texture.png");
   TextureCache textures;
   const auto surfaces = visualSurfaces(v, textures);
   ASSERT_EQ(surfaces.size(), 2u);
@@ -251,39 +224,22 @@ TEST(CameraTextures, ARobotsMeshWithoutAURDFColourShowsItsOwnMaterials) {
   }
 }
 
-/// A world of one 0.1 x 0.4 x 0.5 m box 0.35 m ahead whose material is `material` (SDF text).
-std::string boxWorld(const std::string& name, const std::string& material) {
-  return test::sdfWorld(
-      name,
-      "<model name=\"panel\"><static>true</static><pose>0.35 0 0.25 0 0 0</pose>"
-      "<link name=\"link\"><collision name=\"c\"><geometry><box><size>0.1 0.4 0.5</size></box>"
-      "</geometry></collision><visual name=\"v\"><geometry><box><size>0.1 0.4 0.5</size></box>"
-      "</geometry>" +
-          material + "</visual></link></model>\n");
-}
-
 TEST(CameraTextures, AnSdfPbrAlbedoMapCoversABox) {
-  redBlueTexture("albedo_red_blue.png");  // beside the world file: a relative name
+  test::redBlueTexture("albedo_red_blue.png");  // beside the world file: a relative name
   const std::string pbr =
       "<material><diffuse>0 1 0 1</diffuse><pbr><metal><albedo_map>albedo_red_blue.png"
       "</albedo_map></metal></pbr></material>";
-  const std::string world = boxWorld("albedo.world", pbr);
+  const std::string world = test::boxWorld("albedo.world", pbr);
   const GazeboWorld read = loadGazeboWorld(world, nullptr, true);
   ASSERT_EQ(read.visuals.size(), 1u);
   ASSERT_TRUE(read.visuals[0].texture);
   EXPECT_EQ(read.visuals[0].texture->path, ::testing::TempDir() + "albedo_red_blue.png");
   std::unique_ptr<BatchedEnv> env;
-  const EnvImages images = seenImages(world, env);
-  const int row = 16 * 33;
-  for (int x : {12, 20}) {  // red on the face's left, blue on its right, as a script's
-    const std::uint8_t* rgb = images.rgb + 3 * (row + x);
-    EXPECT_EQ(rgb[1], 0) << x;
-    EXPECT_GT(x < 16 ? rgb[0] : rgb[2], 60) << x;
-    EXPECT_EQ(x < 16 ? rgb[2] : rgb[0], 0) << x;
-  }
+  const EnvImages images = test::seenImages(world, env);
+  test::expectRedLeftBlueRight(images);  // as a script's texture
   // A map that does not exist: named, the diffuse colour drawn.
   const GazeboWorld lost = loadGazeboWorld(
-      boxWorld("albedo_lost.world", test::replaceOnce(pbr, "albedo_red_blue", "albedo_lost")),
+      test::boxWorld("albedo_lost.world", test::replaceOnce(pbr, "albedo_red_blue", "albedo_lost")),
       nullptr, true);
   ASSERT_EQ(lost.visuals.size(), 1u);
   EXPECT_FALSE(lost.visuals[0].texture);
@@ -295,7 +251,7 @@ TEST(CameraTextures, AnSdfPbrAlbedoMapCoversABox) {
 }
 
 TEST(CameraTextures, AURDFTextureCoversABoxAcrossItsFaces) {
-  const std::string texture = redBlueTexture("urdf_texture.png");
+  const std::string texture = test::redBlueTexture("urdf_texture.png");
   const std::string green =
       "<material name=\"jetbot_green\"><color rgba=\"0.46 0.73 0.0 1.0\"/></material>";
   const RobotModelConstPtr robot = RobotModel::fromUrdfString(test::replaceOnce(

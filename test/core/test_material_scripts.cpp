@@ -10,8 +10,8 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/world/gazebo/sdf_world_reader.h"
+#include "texture_test_util.h"
 #include "world/gazebo/ogre_materials.h"
-#include "world_test_util.h"
 
 namespace jetbot_rl {
 namespace {
@@ -84,17 +84,11 @@ TEST(MaterialScripts, FoldersAreReadOnceAndBounded) {
   for (const std::string& w : written) std::remove(w.c_str());
 }
 
-/// A model with a 0.1 x 0.4 x 0.5 m box 0.35 m ahead whose visual's material is `script`, found
-/// in `uri`.
+/// A world of the box of test::boxWorld() whose visual's material is `script`, found in `uri`.
 std::string scriptWorld(const std::string& name, const std::string& script,
                         const std::string& uri) {
-  return test::sdfWorld(
-      name,
-      "<model name=\"panel\"><static>true</static><pose>0.35 0 0.25 0 0 0</pose>"
-      "<link name=\"link\"><collision name=\"c\"><geometry><box><size>0.1 0.4 0.5</size></box>"
-      "</geometry></collision><visual name=\"v\"><geometry><box><size>0.1 0.4 0.5</size></box>"
-      "</geometry><material><script><uri>" +
-          uri + "</uri><name>" + script + "</name></script></material></visual></link></model>\n");
+  return test::boxWorld(name, "<material><script><uri>" + uri + "</uri><name>" + script +
+                                  "</name></script></material>");
 }
 
 TEST(MaterialScripts, TheCameraSeesABoxInItsScriptsTexture) {
@@ -106,8 +100,7 @@ TEST(MaterialScripts, TheCameraSeesABoxInItsScriptsTexture) {
   test::writeTempFile("script_model/materials/scripts/panel.material",
                       "material Panel/RedBlue\n{\n technique\n {\n  pass\n  {\n   texture_unit\n"
                       "   {\n    texture red_blue.png\n   }\n  }\n }\n}\n");
-  test::writePng("script_model/materials/textures/red_blue.png", 2, 1,
-                 {255, 0, 0, 255, 0, 0, 255, 255});
+  test::redBlueTexture("script_model/materials/textures/red_blue.png");
   const std::string world =
       scriptWorld("script_panel.world", "Panel/RedBlue", "file://" + model + "/materials/scripts");
   const GazeboWorld read = loadGazeboWorld(world, nullptr, true);
@@ -117,27 +110,10 @@ TEST(MaterialScripts, TheCameraSeesABoxInItsScriptsTexture) {
   EXPECT_EQ(read.visuals[0].uv.size(), read.visuals[0].triangles.size());
   EXPECT_TRUE(read.skipped.empty()) << read.skipped;
 
-  EnvConfig c = test::smallConfig(1);
-  c.world.gazebo_world = world;
-  c.world.start_clearance = 0.1;
-  c.camera.width = 33;
-  c.camera.height = 33;
-  c.camera.horizontal_fov = 0.6;
-  c.camera.noise_std = 0.0;
-  c.camera.images = {"rgb", "label"};
-  BatchedEnv env(
-      RobotModel::fromUrdfFile(std::string(JETBOT_RL_SOURCE_DIR) + "/urdf/jetbot_camera.urdf"), c);
-  const EnvImages images = env.view(0).images();
+  std::unique_ptr<BatchedEnv> env;
   // The face towards the camera: along its horizontal edge, red on the +y half (the image's
   // left), blue on the other.
-  const int row = 16 * 33;
-  for (int x : {12, 20}) {
-    ASSERT_EQ(images.label[row + x], static_cast<std::uint8_t>(SurfaceClass::kMap)) << x;
-    const std::uint8_t* rgb = images.rgb + 3 * (row + x);
-    EXPECT_EQ(rgb[1], 0) << x;
-    EXPECT_GT(x < 16 ? rgb[0] : rgb[2], 60) << x;
-    EXPECT_EQ(x < 16 ? rgb[2] : rgb[0], 0) << x;
-  }
+  test::expectRedLeftBlueRight(test::seenImages(world, env));
 }
 
 TEST(MaterialScripts, AScriptOrTextureNotFoundIsNamed) {
