@@ -5,6 +5,7 @@
 # and the env node's program and nodelet.
 add_library(jetbot_rl_ros_common
   src/ros/common/bounded_deserialization.cpp
+  src/ros/common/counted_subscriber_queues.cpp
   src/ros/common/drop_counter.cpp
   src/ros/common/geometry_conversion.cpp
   src/ros/common/inline_callback_queue.cpp

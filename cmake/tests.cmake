@@ -177,7 +177,8 @@ endforeach()
 add_rostest(test/policies/shipped_policies.test DEPENDENCIES jetbot_rl_evaluate)
 
 # ---- the fault suite (docs/reliability.md): peers that die or misbehave, signals, a soak ----
-foreach(_scenario signals client_killed env_killed env_hung two_learners slow_subscriber soak)
+foreach(_scenario signals client_killed env_killed env_hung two_learners slow_subscriber soak
+    counted_losses)
   add_rostest(test/reliability/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

@@ -269,5 +269,26 @@ class StalledSubscriber(object):
                     return int(fields[4].split(':')[0], 16)  # tx_queue
         raise RuntimeError('no socket of the publisher to port %d' % ours)
 
+    def read_seqs(self, last_seq, timeout):
+        """Reads from now on, until a message with header.seq `last_seq` (or later) arrives: the
+        publisher's connection header (once), then every message. Returns the header.seq of each
+        message received (a message with a std_msgs/Header first), in order."""
+        import time
+        deadline = time.monotonic() + timeout
+        self.sock.settimeout(max(0.1, timeout))
+        if not getattr(self, '_header_read', False):
+            (length,) = struct.unpack('<I', _recv_exactly(self.sock, 4))
+            _recv_exactly(self.sock, length)
+            self._header_read = True
+        seqs = []
+        while not seqs or seqs[-1] < last_seq:
+            if time.monotonic() > deadline:
+                raise RuntimeError('seq %d did not arrive within %.0f s (last %s)'
+                                   % (last_seq, timeout, seqs[-1] if seqs else None))
+            (length,) = struct.unpack('<I', _recv_exactly(self.sock, 4))
+            payload = _recv_exactly(self.sock, length)
+            seqs.append(struct.unpack_from('<I', payload)[0])
+        return seqs
+
     def close(self):
         self.sock.close()

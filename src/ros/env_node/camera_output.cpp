@@ -11,6 +11,9 @@
 namespace jetbot_rl {
 namespace {
 
+// Images per subscriber connection: a viewer that falls behind gets the newest.
+constexpr std::size_t kImageQueue = 2;
+
 const std::string& colourEncoding(CameraFormat format) {
   switch (format) {
     case CameraFormat::kBgr8:
@@ -74,14 +77,19 @@ void fillColourImage(const std::uint8_t* rgb, int width, int height, const std::
 
 CameraOutput::Stream CameraOutput::makeStream(const std::string& image_topic,
                                               const std::string& info_topic,
+                                              CountedSubscriberQueues& queues,
                                               const RobotNames& names) {
   Stream stream;
   for (std::size_t e = 0; e < frames_.size(); ++e) {
     const int env = static_cast<int>(e);
-    stream.images.push_back(transport_->advertise(names.topic(env, image_topic), 2));
+    // Queue 0 for every transport the plugins offer; each connection keeps 2 images, counted.
+    stream.images.push_back(transport_->advertise(names.topic(env, image_topic), 0));
+    if (queues.addWithSubtopics(stream.images.back().getTopic(), kImageQueue).empty()) {
+      warnUncounted(stream.images.back().getTopic());
+    }
     if (!info_topic.empty()) {
-      stream.infos.push_back(
-          nh_.advertise<sensor_msgs::CameraInfo>(names.topic(env, info_topic), 2));
+      stream.infos.push_back(advertiseCounted<sensor_msgs::CameraInfo>(
+          nh_, names.topic(env, info_topic), kImageQueue, queues));
     }
     stream.messages.emplace_back();
     stream.messages.back().header.frame_id = frames_[e];
@@ -91,7 +99,7 @@ CameraOutput::Stream CameraOutput::makeStream(const std::string& image_topic,
 }
 
 CameraOutput::CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int camera, int envs,
-                           const RobotNames& names)
+                           const RobotNames& names, CountedSubscriberQueues& queues)
     : nh_(nh), camera_(camera) {
   const CameraSpec* spec = env.camera(camera);
   if (!spec) return;
@@ -100,9 +108,11 @@ CameraOutput::CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int camer
   transport_ = std::make_unique<image_transport::ImageTransport>(nh_);
   colour_encoding_ = colourEncoding(spec->format);
   const sensor_msgs::CameraInfo info = cameraInfo(*spec, "");
-  if (spec->rgb) rgb_ = makeStream(spec->image_topic, spec->info_topic, names);
-  if (spec->depth) depth_ = makeStream(spec->depth_image_topic, spec->depth_info_topic, names);
-  if (spec->label) label_ = makeStream(spec->label_topic, "", names);
+  if (spec->rgb) rgb_ = makeStream(spec->image_topic, spec->info_topic, queues, names);
+  if (spec->depth) {
+    depth_ = makeStream(spec->depth_image_topic, spec->depth_info_topic, queues, names);
+  }
+  if (spec->label) label_ = makeStream(spec->label_topic, "", queues, names);
   for (Stream* stream : {&rgb_, &depth_, &label_}) stream->info = info;
   due_.assign(n, 0);
 }

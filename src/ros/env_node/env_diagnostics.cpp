@@ -41,7 +41,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
       c.rejections > previous_.rejections || c.cmd_vel_rejections > previous_.cmd_vel_rejections;
   const bool new_divergences = c.diverged > previous_.diverged;
   const bool new_timeouts = c.pacing_timeouts > previous_.pacing_timeouts;
-  s.level = (new_rejections || new_divergences || new_timeouts)
+  const bool new_undelivered = c.undelivered > previous_.undelivered;
+  s.level = (new_rejections || new_divergences || new_timeouts || new_undelivered)
                 ? diagnostic_msgs::DiagnosticStatus::WARN
                 : diagnostic_msgs::DiagnosticStatus::OK;
   if (new_rejections && new_divergences) {
@@ -52,6 +53,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
     s.message = "diverged envs reset since the last report";
   } else if (new_timeouts) {
     s.message = "published states that roscpp's network thread was too late for";
+  } else if (new_undelivered) {
+    s.message = "messages not delivered to subscribers that fell behind";
   } else {
     s.message = "OK";
   }
@@ -74,6 +77,8 @@ void EnvDiagnostics::publish(const EnvCounters& c, std::uint64_t step) {
   s.values.push_back(keyValue("states paced", std::to_string(c.paced_states)));
   s.values.push_back(keyValue("pacing time-outs", std::to_string(c.pacing_timeouts)));
   s.values.push_back(keyValue("env_step queue", std::to_string(c.env_step_queue)));
+  s.values.push_back(keyValue("undelivered messages", std::to_string(c.undelivered)));
+  s.values.push_back(keyValue("undelivered by topic", c.undelivered_by_topic));
   msg_.header.stamp = ros::Time::now();
   pub_.publish(msg_);
   last_publish_ = now;

@@ -58,15 +58,16 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   const RobotNames names(params_.env_prefix, params_.robot_prefix,
                          params_.setup.env.team.robots_per_env);
   env_step_queue_ = envStepQueueSize(ros::serialization::serializationLength(*server_.state()));
-  outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_, env_step_queue_));
-  if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_));
-  outputs_.push_back(std::make_unique<EnvTfPublisher>(*env_, tfEnvs(params_), params_.tf_rate,
-                                                      names, params_.publish_link_tf));
-  outputs_.push_back(
-      std::make_unique<RobotStateOutput>(nh_, *env_, robot_view_envs, params_.odom_rate, names));
-  outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names));
+  outputs_.push_back(std::make_unique<EnvStepOutput>(pnh_, env_step_queue_, queues_));
+  if (params_.publish_clock) outputs_.push_back(std::make_unique<ClockOutput>(nh_, queues_));
+  outputs_.push_back(std::make_unique<EnvTfPublisher>(nh_, *env_, tfEnvs(params_), params_.tf_rate,
+                                                      names, params_.publish_link_tf, queues_));
+  outputs_.push_back(std::make_unique<RobotStateOutput>(nh_, *env_, robot_view_envs,
+                                                        params_.odom_rate, names, queues_));
+  outputs_.push_back(std::make_unique<ScanOutput>(nh_, *env_, robot_view_envs, names, queues_));
   for (int k = 0; k < env_->numCameras(); ++k) {
-    outputs_.push_back(std::make_unique<CameraOutput>(nh_, *env_, k, robot_view_envs, names));
+    outputs_.push_back(
+        std::make_unique<CameraOutput>(nh_, *env_, k, robot_view_envs, names, queues_));
   }
   if (env_->world() && env_->world()->map()) {
     map_publisher_ = std::make_unique<MapPublisher>(nh_, *env_->world()->map(), names);
@@ -74,8 +75,8 @@ EnvNode::EnvNode(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& para
   if (env_->world() && env_->world()->gazebo()) {
     geometry_publisher_ = std::make_unique<WorldGeometryPublisher>(nh_, *env_->world(), names);
   }
-  outputs_.push_back(std::make_unique<EnvMarkerPublisher>(pnh_, *env_, params_.tf_envs,
-                                                          params_.tf_rate, params_.markers));
+  outputs_.push_back(std::make_unique<EnvMarkerPublisher>(
+      pnh_, *env_, params_.tf_envs, params_.tf_rate, params_.markers, queues_));
   {
     std::unique_lock<std::mutex> lock(state_mutex_);
     publish(lock, /*reset=*/true);  // initial /clock, EnvStep and tf batch
@@ -182,6 +183,15 @@ void EnvNode::publish(std::unique_lock<std::mutex>& state_lock, bool reset) {
                       static_cast<unsigned long long>(pacer_.timeouts()));
   }
   for (auto& output : outputs_) output->send();
+  // Subscribers that fell behind lose their oldest messages here, counted (not in roscpp).
+  for (const auto& lost : queues_.trim()) {
+    ROS_WARN_THROTTLE(10.0,
+                      "%s: %llu messages of %s not delivered: subscriber %s fell behind by more "
+                      "than its queue (%llu undelivered on all topics so far; /diagnostics)",
+                      pnh_.getNamespace().c_str(), static_cast<unsigned long long>(lost.dropped),
+                      lost.topic.c_str(), lost.last_subscriber.c_str(),
+                      static_cast<unsigned long long>(queues_.total()));
+  }
 }
 
 void EnvNode::onWheelTargets(const WheelTargets::ConstPtr& msg) {
@@ -231,6 +241,12 @@ EnvCounters EnvNode::counters() const {
   c.paced_states = pacer_.waits();
   c.pacing_timeouts = pacer_.timeouts();
   c.env_step_queue = env_step_queue_;
+  for (const auto& topic : queues_.counts()) {
+    if (topic.dropped == 0) continue;
+    c.undelivered += topic.dropped;
+    if (!c.undelivered_by_topic.empty()) c.undelivered_by_topic += ", ";
+    c.undelivered_by_topic += topic.topic + ": " + std::to_string(topic.dropped);
+  }
   return c;
 }
 

@@ -62,13 +62,14 @@ visualization_msgs::Marker marker(const std::string& ns, int id, int type,
 }  // namespace
 
 EnvMarkerPublisher::EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs,
-                                       double rate, bool enabled)
+                                       double rate, bool enabled, CountedSubscriberQueues& queues)
     : envs_(std::clamp(envs, 0, env.numEnvs())),
       enabled_(enabled),
       arrow_task_(capability<ArrowDrawing>(env.task())),
       arrows_(arrow_task_ ? static_cast<int>(arrow_task_->arrowNames().size()) : 0),
       gate_(rate) {
-  pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
+  pub_ = advertiseCounted<visualization_msgs::MarkerArray>(pnh, "markers", 1, queues,
+                                                           /*latch=*/true);
   if (!enabled_) {
     deleteAll();
     return;

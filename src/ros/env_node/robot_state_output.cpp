@@ -55,14 +55,15 @@ void updateJointState(const BatchedEnv& env, int env_index, const ros::Time& sta
 }
 
 RobotStateOutput::RobotStateOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs,
-                                   double rate, const RobotNames& names)
+                                   double rate, const RobotNames& names,
+                                   CountedSubscriberQueues& queues)
     : gate_(rate) {
   const int n = std::clamp(envs, 0, env.numEnvs());
   for (int e = 0; e < n; ++e) {
-    odom_pubs_.push_back(
-        nh.advertise<nav_msgs::Odometry>(names.topic(e, "odom"), kEnvNodeQueueSize));
-    joint_pubs_.push_back(
-        nh.advertise<sensor_msgs::JointState>(names.topic(e, "joint_states"), kEnvNodeQueueSize));
+    odom_pubs_.push_back(advertiseCounted<nav_msgs::Odometry>(nh, names.topic(e, "odom"),
+                                                              kEnvNodeQueueSize, queues));
+    joint_pubs_.push_back(advertiseCounted<sensor_msgs::JointState>(
+        nh, names.topic(e, "joint_states"), kEnvNodeQueueSize, queues));
     odom_.push_back(odometryFrame(env, e, names));
     joints_.emplace_back();
   }

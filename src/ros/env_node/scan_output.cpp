@@ -29,12 +29,13 @@ void updateScan(const BatchedEnv& env, int env_index, const ros::Time& stamp,
 }
 
 ScanOutput::ScanOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs,
-                       const RobotNames& names) {
+                       const RobotNames& names, CountedSubscriberQueues& queues) {
   if (!env.scanner()) return;
   const int n = std::clamp(envs, 0, env.numEnvs());
   due_.assign(n, 0);
   for (int e = 0; e < n; ++e) {
-    pubs_.push_back(nh.advertise<sensor_msgs::LaserScan>(names.topic(e, "scan"), 10));
+    pubs_.push_back(
+        advertiseCounted<sensor_msgs::LaserScan>(nh, names.topic(e, "scan"), 10, queues));
     scans_.push_back(scanFrame(env, e, names));
   }
 }

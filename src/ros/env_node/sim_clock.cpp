@@ -12,8 +12,8 @@ ros::Time simTime(std::uint64_t step, double control_dt) {
   return t;
 }
 
-ClockOutput::ClockOutput(ros::NodeHandle& nh)
-    : pub_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)) {}
+ClockOutput::ClockOutput(ros::NodeHandle& nh, CountedSubscriberQueues& queues)
+    : pub_(advertiseCounted<rosgraph_msgs::Clock>(nh, "/clock", 10, queues)) {}
 
 void ClockOutput::send() {
   if (due_) pub_.publish(msg_);

@@ -1,8 +1,9 @@
 #include "jetbot_rl/ros/env_node/state_output.h"
 
 namespace jetbot_rl {
-EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size)
-    : pub_(pnh.advertise<EnvStep>("env_step", queue_size)) {}
+EnvStepOutput::EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size,
+                             CountedSubscriberQueues& queues)
+    : pub_(advertiseCounted<EnvStep>(pnh, "env_step", queue_size, queues)) {}
 
 void EnvStepOutput::send() {
   if (msg_) pub_.publish(msg_);

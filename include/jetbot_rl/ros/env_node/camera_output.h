@@ -40,7 +40,7 @@ class CameraOutput : public StateOutput {
   /// Camera `camera`'s (BatchedEnv::camera()); topics relative to `nh` (the node's namespace);
   /// `envs` clamped to the batch.
   CameraOutput(ros::NodeHandle& nh, const BatchedEnv& env, int camera, int envs,
-               const RobotNames& names);
+               const RobotNames& names, CountedSubscriberQueues& queues);
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
 
@@ -55,7 +55,7 @@ class CameraOutput : public StateOutput {
   };
   /// Advertises `image_topic` (and `info_topic`, when given) of every env.
   Stream makeStream(const std::string& image_topic, const std::string& info_topic,
-                    const RobotNames& names);
+                    CountedSubscriberQueues& queues, const RobotNames& names);
   /// Copies env `e`'s image into `stream`'s message when anyone subscribes to it.
   template <typename Fill>
   void take(Stream& stream, int e, Fill&& fill);

@@ -14,6 +14,7 @@
 
 #include "jetbot_rl/env/batched_env.h"
 #include "jetbot_rl/robot/diff_drive.h"
+#include "jetbot_rl/ros/common/counted_subscriber_queues.h"
 #include "jetbot_rl/ros/common/inline_callback_queue.h"
 #include "jetbot_rl/ros/common/publication_pacer.h"
 #include "jetbot_rl/ros/env_node/env_diagnostics.h"
@@ -60,7 +61,8 @@ class EnvNode {
   void onDiagnosticsTimer(const ros::WallTimerEvent& event);
   /// Captures the new state in every output, releases `state_lock`, then publishes.
   void publish(std::unique_lock<std::mutex>& state_lock, bool reset);
-  /// The server's counters with the publication pacer's; under the state lock.
+  /// The server's counters with the publication pacer's and the undelivered messages; under the
+  /// state lock.
   EnvCounters counters() const;
 
   NodeParams params_;
@@ -73,6 +75,7 @@ class EnvNode {
   ros::NodeHandle nh_, pnh_;
   InlineCallbackQueue inline_queue_;  // topics and services, in the network thread
   ros::Publisher spec_pub_;
+  CountedSubscriberQueues queues_;  // the outputs' subscriber queues, under publish_mutex_
   std::vector<std::unique_ptr<StateOutput>> outputs_;
   ros::Subscriber targets_sub_;
   std::vector<ros::Subscriber> cmd_vel_subs_;  // per robot env

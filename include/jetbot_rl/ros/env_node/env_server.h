@@ -40,6 +40,10 @@ struct EnvCounters {
   std::uint64_t paced_states = 0;     ///< States that waited for roscpp's network thread.
   std::uint64_t pacing_timeouts = 0;  ///< Waits that timed out (older messages may be lost).
   std::uint32_t env_step_queue = 0;   ///< ~env_step's queue per connection [messages].
+  /// Messages dropped from subscriber queues (CountedSubscriberQueues), and per topic
+  /// ("topic: n, ...", topics with drops only).
+  std::uint64_t undelivered = 0;
+  std::string undelivered_by_topic;
 };
 
 /**

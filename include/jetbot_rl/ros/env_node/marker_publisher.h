@@ -20,9 +20,10 @@ namespace jetbot_rl {
  */
 class EnvMarkerPublisher : public StateOutput {
  public:
-  /// `envs`: envs with markers (clamped to the batch); `enabled`: the `markers` parameter.
+  /// `envs`: envs with markers (clamped to the batch); `enabled`: the `markers` parameter;
+  /// ~markers' queue kept in `queues`.
   EnvMarkerPublisher(ros::NodeHandle& pnh, const BatchedEnv& env, int envs, double rate,
-                     bool enabled);
+                     bool enabled, CountedSubscriberQueues& queues);
   EnvMarkerPublisher(const EnvMarkerPublisher&) = delete;
   EnvMarkerPublisher& operator=(const EnvMarkerPublisher&) = delete;
 

@@ -41,9 +41,10 @@ void updateJointState(const BatchedEnv& env, int env_index, const ros::Time& sta
  */
 class RobotStateOutput : public StateOutput {
  public:
-  /// Topics relative to `nh` (the node's namespace); `envs` clamped to the batch.
+  /// Topics relative to `nh` (the node's namespace), their queues kept in `queues`; `envs`
+  /// clamped to the batch.
   RobotStateOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs, double rate,
-                   const RobotNames& names);
+                   const RobotNames& names, CountedSubscriberQueues& queues);
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
 

@@ -27,7 +27,8 @@ void updateScan(const BatchedEnv& env, int env_index, const ros::Time& stamp,
 class ScanOutput : public StateOutput {
  public:
   /// Topics relative to `nh` (the node's namespace); `envs` clamped to the batch.
-  ScanOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs, const RobotNames& names);
+  ScanOutput(ros::NodeHandle& nh, const BatchedEnv& env, int envs, const RobotNames& names,
+             CountedSubscriberQueues& queues);
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
 

@@ -18,7 +18,7 @@ ros::Time simTime(std::uint64_t step, double control_dt);
 /// /clock: the simulation time of every state.
 class ClockOutput : public StateOutput {
  public:
-  explicit ClockOutput(ros::NodeHandle& nh);
+  ClockOutput(ros::NodeHandle& nh, CountedSubscriberQueues& queues);
   void capture(const BatchedEnv&, const EnvStep::ConstPtr& msg, bool) override {
     msg_.clock = msg->header.stamp;
     due_ = true;

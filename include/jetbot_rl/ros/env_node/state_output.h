@@ -8,6 +8,7 @@
 
 #include "jetbot_rl/EnvStep.h"
 #include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/ros/common/counted_subscriber_queues.h"
 
 namespace jetbot_rl {
 
@@ -33,8 +34,8 @@ class StateOutput {
 /// ~env_step: every state, as the EnvStep message itself (shared, never copied).
 class EnvStepOutput : public StateOutput {
  public:
-  /// `queue_size`: per subscriber connection [messages] (envStepQueueSize()).
-  EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size);
+  /// `queue_size`: per subscriber connection [messages] (envStepQueueSize()), kept in `queues`.
+  EnvStepOutput(ros::NodeHandle& pnh, std::uint32_t queue_size, CountedSubscriberQueues& queues);
   void capture(const BatchedEnv&, const EnvStep::ConstPtr& msg, bool) override { msg_ = msg; }
   void send() override;
 

@@ -1,7 +1,7 @@
 #pragma once
 
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <memory>
 
@@ -12,13 +12,14 @@ namespace jetbot_rl {
 
 /// Broadcasts the TfTree of the first `tf_envs` envs: world -> odom once on /tf_static at
 /// start-up, the rest on /tf at most `tf_rate` Hz of simulation time and after every reset (see
-/// SimRateGate).
+/// SimRateGate). /tf is published as tf2_ros::TransformBroadcaster does, with its queue of 100
+/// per connection kept in a CountedSubscriberQueues.
 class EnvTfPublisher : public StateOutput {
  public:
   /// `tf_envs`: envs that get frames (clamped to the batch; 0 disables); `tf_rate` [Hz];
   /// `link_tf` false: only odom -> root link (robot_state_publisher does the links).
-  EnvTfPublisher(const BatchedEnv& env, int tf_envs, double tf_rate, const RobotNames& names,
-                 bool link_tf);
+  EnvTfPublisher(ros::NodeHandle& nh, const BatchedEnv& env, int tf_envs, double tf_rate,
+                 const RobotNames& names, bool link_tf, CountedSubscriberQueues& queues);
   void capture(const BatchedEnv& env, const EnvStep::ConstPtr& msg, bool reset) override;
   void send() override;
 
@@ -26,7 +27,8 @@ class EnvTfPublisher : public StateOutput {
   TfTree tree_;
   SimRateGate gate_;
   bool due_ = false;
-  std::unique_ptr<tf2_ros::TransformBroadcaster> broadcaster_;
+  ros::Publisher pub_;  // /tf
+  tf2_msgs::TFMessage msg_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;
 };
 
