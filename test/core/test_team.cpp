@@ -251,9 +251,10 @@ TEST(Team, BadParametersAreRefusedNamingTheField) {
   c.world.num_boxes =
       2;  // on a circle swap's points (random starts share them: test_team_obstacles)
   test::expectRefused(test::lidarJetbot(), c, "swap_radius");
-  c = teamConfig(1, 3, 0.0);
-  c.world.families = {"clutter"};  // each robot would draw its own layout
-  test::expectRefused(test::lidarJetbot(), c, "robots_per_env");
+  c = teamConfig(1, 3, 1.0);
+  c.world.families = {"clutter"};  // walls on the circle's points (random starts share
+  c.world.num_boxes = 0;           // layouts: test_team_obstacles)
+  test::expectRefused(test::lidarJetbot(), c, "swap_radius");
   c = teamConfig(1, 3, 0.0);
   c.world.random_start = false;
   test::expectRefused(test::lidarJetbot(), c, "robots_per_env");

@@ -1,12 +1,15 @@
-// Several robots among random obstacles (robots_per_env with world/num_boxes, num_cylinders):
-// the robots of a world share its obstacles, start and aim clear of them and collide with them;
-// one robot starts anew among the old obstacles, all of them among new ones; the same on any
-// thread count, with rounds and with people.
+// Several robots among random obstacles (robots_per_env with world/num_boxes, num_cylinders)
+// and in generated layouts (world/families): the robots of a world share its obstacles, start
+// and aim clear of them (in a layout: on its free floor, with a path to their goals) and collide
+// with them; one robot starts anew among the old obstacles, all of them among new ones; the same
+// on any thread count, with rounds and with people.
 #include <cmath>
 
 #include "jetbot_rl/env/batched_env.h"
+#include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/rng.h"
 #include "jetbot_rl/tasks/navigation_task.h"
+#include "jetbot_rl/world/world_generation.h"
 #include "test_util.h"
 
 namespace jetbot_rl {
@@ -20,6 +23,18 @@ EnvConfig clutteredTeam(int num_envs, int threads = 1) {
   c.team.robots_per_env = kMates;
   c.world.num_boxes = 3;
   c.world.num_cylinders = 2;
+  return c;
+}
+
+/// `num_envs` 6 x 6 m arenas of generated rooms and clutter, `kMates` scanning robots each.
+EnvConfig generatedTeam(int num_envs, int threads = 1) {
+  EnvConfig c = test::scanningArenaConfig(num_envs, threads);
+  c.team.robots_per_env = kMates;
+  c.world.arena_size = {6.0, 6.0};
+  c.world.num_boxes = 0;
+  c.world.num_cylinders = 0;
+  c.world.families = {"rooms", "clutter"};
+  c.world.difficulty = 0.7;
   return c;
 }
 
@@ -111,9 +126,51 @@ TEST(TeamObstacles, ARobotOfTheWorldThatDidNotDrawThemHitsThem) {
                    << ", " << nearest->center.y() << ")";
 }
 
+TEST(TeamObstacles, InAGeneratedLayoutEachRobotStartsOnItsFreeFloorWithAPathToItsGoal) {
+  const int n = 4;
+  BatchedEnv env(test::lidarJetbot(), generatedTeam(n), test::navigationTask());
+  const auto& task = dynamic_cast<const NavigationTask&>(env.task());
+  const WorldModel& world = *env.world();
+  for (int g = 0; g < n; ++g) {
+    const EnvLayout& layout = env.view(g * kMates).layout();
+    ASSERT_FALSE(layout.unmade) << "world " << g;
+    EXPECT_GE(layout.obstacles.size(), 4u) << "world " << g << ": walls or clutter";
+    const FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(),
+                             layout.obstacles);
+    for (int row = g * kMates; row < (g + 1) * kMates; ++row) {
+      EXPECT_EQ(obstaclesOf(env, row), obstaclesOf(env, g * kMates)) << "row " << row;
+      EXPECT_EQ(env.view(row).layout().family, layout.family) << "row " << row;
+      const Eigen::Vector2d start = env.view(row).rootState().position.head<2>();
+      EXPECT_TRUE(fitsGeneratedStart(world, grid, layout.obstacles, start)) << "row " << row;
+      for (int mate = g * kMates; mate < row; ++mate) {
+        EXPECT_GE((env.view(mate).rootState().position.head<2>() - start).norm(),
+                  world.startClearance())
+            << "rows " << mate << " and " << row;
+      }
+      FootprintGrid reach = grid;
+      ASSERT_TRUE(reach.reachFrom(start)) << "row " << row;
+      EXPECT_TRUE(reach.reachable(task.goal(row))) << "row " << row << ": no path to its goal";
+    }
+  }
+  EXPECT_EQ(env.layoutsUnmade(), 0u);
+}
+
+TEST(TeamObstacles, OneRobotStartsAnewInTheOldLayoutAndAllInANewOne) {
+  BatchedEnv env(test::lidarJetbot(), generatedTeam(2), test::navigationTask());
+  const std::vector<double> before = obstaclesOf(env, 0), other = obstaclesOf(env, kMates);
+  env.reset({1});
+  for (int row = 0; row < 2 * kMates; ++row) {
+    EXPECT_EQ(obstaclesOf(env, row), row < kMates ? before : other) << "row " << row;
+  }
+  env.reset({0, 1, 2});
+  EXPECT_NE(obstaclesOf(env, 0), before);
+  EXPECT_EQ(obstaclesOf(env, 1), obstaclesOf(env, 0));
+  EXPECT_EQ(obstaclesOf(env, kMates), other);
+}
+
 TEST(TeamObstacles, TheSameOnAnyThreadCountWithRoundsAndPeople) {
-  const auto run = [](int threads, bool rounds) {
-    EnvConfig c = clutteredTeam(4, threads);
+  const auto run = [](bool generated, int threads, bool rounds) {
+    EnvConfig c = generated ? generatedTeam(4, threads) : clutteredTeam(4, threads);
     c.team.rounds = rounds;
     c.movers.num_people = 2;
     BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
@@ -132,11 +189,13 @@ TEST(TeamObstacles, TheSameOnAnyThreadCountWithRoundsAndPeople) {
     out.insert(out.end(), obstacles.begin(), obstacles.end());
     return out;
   };
-  for (bool rounds : {false, true}) {
-    const std::vector<float> one = run(1, rounds), two = run(2, rounds);
-    ASSERT_EQ(one.size(), two.size());
-    EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin()))
-        << "1 and 2 threads differ, rounds " << rounds;
+  for (bool generated : {false, true}) {
+    for (bool rounds : {false, true}) {
+      const std::vector<float> one = run(generated, 1, rounds), two = run(generated, 2, rounds);
+      ASSERT_EQ(one.size(), two.size());
+      EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin()))
+          << "1 and 2 threads differ, generated " << generated << ", rounds " << rounds;
+    }
   }
 }
 

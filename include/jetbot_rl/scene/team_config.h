@@ -20,9 +20,10 @@ IfConfig<C, TeamConfig> visitFields(C& c, V&& v) {
     "K robots in each env's world (num_envs worlds): the batch has num_envs x K rows, robot k "
     "of env e at row e x K + k, each an agent with its own actions, observation, reward and "
     "episode. They see each other in their scans and collide (outcome 4); movers (movers/...) "
-    "walk in the world among all K, and random obstacles (world/num_boxes, num_cylinders) are "
-    "the world's, drawn when all K start anew. K > 1 needs a world without generated layouts "
-    "(world/families), and world/random_start or swap_radius.");
+    "walk in the world among all K, and random obstacles (world/num_boxes, num_cylinders) and "
+    "generated layouts (world/families) are the world's, drawn when all K start anew (in a "
+    "layout each robot starts on its free floor with a path to its goal). K > 1 needs "
+    "world/random_start or swap_radius.");
   v("swap_radius", c.swap_radius, Range<double>{0.0, 1000.0, false, false, "m", "0: off"},
     "Circle swap: the K robots of an env start evenly spaced on a circle of this radius about "
     "world/spawn, facing the centre (plus initial_yaw), each with its goal at the opposite "

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "jetbot_rl/config/config_fields.h"
+#include "jetbot_rl/planning/footprint_grid.h"
 #include "jetbot_rl/rng.h"
 #include "jetbot_rl/world/world_model.h"
 
@@ -62,6 +63,17 @@ int generateObstacles(WorldFamily family, double difficulty, const GenerationAre
  */
 void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double difficulty,
                          WorldDrawing* task, EnvLayout& layout);
+
+/// A generated layout for the robots of a team's world (robots_per_env > 1), which draw their
+/// own starts and goals in it: a family by world/family_weights and its obstacles at
+/// `difficulty`, drawn again (up to kLayoutAttempts) until the robot can start somewhere in it;
+/// then the bare arena, with `layout.unmade` set. Returns its footprint grid (nothing reached).
+FootprintGrid drawSharedGeneratedLayout(const WorldModel& world, Rng& rng, double difficulty,
+                                        EnvLayout& layout);
+/// True when a robot of `world` can start at `p` in the layout of `grid` (drawn with
+/// `obstacles`): free for its footprint and clear of everything by the start clearance.
+bool fitsGeneratedStart(const WorldModel& world, const FootprintGrid& grid,
+                        const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p);
 
 /// Start-up check that every family leaves the robot somewhere to start at world/difficulty and
 /// at the hardest the curriculum reaches: ConfigError naming world/difficulty (or

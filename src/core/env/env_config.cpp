@@ -30,12 +30,11 @@ void checkTeamRules(const EnvConfig& config) {
     refuse("num_envs x robots_per_env = " + std::to_string(rows) + ": must be <= 1000000");
   const WorldConfig& w = config.world;
   if (!w.enabled()) refuse("needs a world: give world/arena_size, world/map or world/gazebo_world");
-  if (w.num_boxes + w.num_cylinders > 0 && swap) {
+  if ((w.num_boxes + w.num_cylinders > 0 || !w.families.empty()) && swap) {
     throwInvalid("swap_radius", config.team.swap_radius,
-                 "needs world/num_boxes and world/num_cylinders 0: the circle's points and their "
-                 "opposites must stay free");
+                 "needs world/num_boxes and world/num_cylinders 0 and world/families []: the "
+                 "circle's points and their opposites must stay free");
   }
-  if (!w.families.empty()) refuse("needs world/families []: each robot would draw its own layout");
   if (!w.random_start && !swap) {
     refuse(
         "needs world/random_start true or swap_radius > 0: K robots cannot all start at "

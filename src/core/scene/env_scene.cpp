@@ -7,6 +7,7 @@
 #include "env/env_physics.h"
 #include "jetbot_rl/scene/movers.h"
 #include "jetbot_rl/tasks/task_capabilities.h"
+#include "jetbot_rl/world/world_generation.h"
 #include "scene/people_bodies.h"
 #include "scene/robot_team.h"
 #include "world/world_shapes.h"
@@ -36,8 +37,10 @@ EnvScene::EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* d
   robot_at_.assign(n, Eigen::Vector2d::Zero());
   present_.assign(n, 1);
   redraw_people_.assign(config_.num_envs, 0);
-  shared_obstacles_ = config_.world.num_boxes + config_.world.num_cylinders > 0;
+  generated_ = !config_.world.families.empty();
+  shared_obstacles_ = config_.world.num_boxes + config_.world.num_cylinders > 0 || generated_;
   redraw_obstacles_.assign(config_.num_envs, 1);
+  if (generated_ && k_ > 1) grids_.resize(config_.num_envs);
 }
 
 EnvScene::~EnvScene() = default;
@@ -137,24 +140,35 @@ void EnvScene::placeTeamRobot(int row) {
     layout.obstacles.clear();
   } else {
     const int world = row / k_;
-    if (redraw_obstacles_[world]) {  // from the stream of the robot placed first
-      world_->drawObstacles(rng, {}, layout);
-      given_up_ += static_cast<std::uint64_t>(layout.given_up);
-      for (int e = world * k_; e < (world + 1) * k_; ++e) {
-        if (e != row) layouts_[e].obstacles = layout.obstacles;
+    if (redraw_obstacles_[world]) drawWorldObstacles(row);  // by the robot placed first
+    if (generated_) {
+      // Each robot its own start on the layout's free floor, and a goal it has a path to.
+      const FootprintGrid& grid = *grids_[world];
+      const auto fits = [&](const Eigen::Vector2d& p) {
+        return fitsGeneratedStart(*world_, grid, layout.obstacles, p);
+      };
+      if (!team_->drawStart(row, rng, layout.start, goal, yaw,
+                            avoid_people ? &people_->bodies(row) : nullptr, fits)) {
+        ++unmade_;
       }
-      redraw_obstacles_[world] = 0;
+    } else {
+      std::vector<Obstacle> avoid = avoid_people ? people_->bodies(row) : std::vector<Obstacle>();
+      avoid.insert(avoid.end(), layout.obstacles.begin(), layout.obstacles.end());
+      team_->drawStart(row, rng, layout.start, goal, yaw, &avoid);
     }
-    std::vector<Obstacle> avoid = avoid_people ? people_->bodies(row) : std::vector<Obstacle>();
-    avoid.insert(avoid.end(), layout.obstacles.begin(), layout.obstacles.end());
-    team_->drawStart(row, rng, layout.start, goal, yaw, &avoid);
     physics.setObstacles(layout.obstacles);
   }
   if (drawer_) {
     WorldDraft draft;
     draft.start = layout.start;
     draft.goal = goal;
+    std::optional<FootprintGrid> reach;
     if (shared_obstacles_) draft.obstacles = &layout.obstacles;
+    if (generated_) {
+      reach.emplace(*grids_[row / k_]);
+      reach->reachFrom(layout.start);
+      draft.reach = &*reach;
+    }
     std::vector<Eigen::Vector2d> keep_free{layout.start};
     drawer_->drawInWorld(row, rng, *world_, draft, keep_free);
     drawer_->layoutDrawn(row, *world_, layout);
@@ -170,6 +184,29 @@ void EnvScene::placeTeamRobot(int row) {
   physics.moveRobot(layout.start);
   team_->started(row);
   team_->capture(row, physics);
+}
+
+void EnvScene::drawWorldObstacles(int row) {
+  const int world = row / k_;
+  EnvLayout& layout = layouts_[row];
+  Rng& rng = rngs_[row];
+  if (generated_) {
+    const double difficulty = curriculum_.drawDifficulty(row, rng);
+    grids_[world] = std::make_unique<FootprintGrid>(
+        drawSharedGeneratedLayout(*world_, rng, difficulty, layout));
+    if (layout.unmade) ++unmade_;
+  } else {
+    world_->drawObstacles(rng, {}, layout);
+  }
+  given_up_ += static_cast<std::uint64_t>(layout.given_up);
+  for (int e = world * k_; e < (world + 1) * k_; ++e) {
+    if (e == row) continue;
+    layouts_[e].obstacles = layout.obstacles;
+    layouts_[e].family = layout.family;
+    layouts_[e].difficulty = layout.difficulty;
+    layouts_[e].unmade = layout.unmade;
+  }
+  redraw_obstacles_[world] = 0;
 }
 
 void EnvScene::redrawPeople(int world) {

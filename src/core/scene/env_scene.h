@@ -98,6 +98,9 @@ class EnvScene {
   /// A row of a team: its start (and a circle swap's goal) clear of the others of its world and
   /// of its obstacles (drawn first, when anew).
   void placeTeamRobot(int row);
+  /// The obstacles (random, or a generated layout) of row `row`'s world, from its stream, for
+  /// all its robots.
+  void drawWorldObstacles(int row);
   /// Draws the people of world `world` anew, clear of its robots' starts.
   void redrawPeople(int world);
 
@@ -118,14 +121,17 @@ class EnvScene {
   std::vector<Eigen::Vector2d> robot_at_;    // per row: its root at its world's step [m]
   std::vector<std::uint8_t> present_;        // per row: in its world at its world's step
   std::vector<std::uint8_t> redraw_people_;  // per world: its people are drawn after its robots
-  // A team's random obstacles (world/num_boxes, num_cylinders) are its world's: drawn anew by the
-  // robot placed first when all its robots start anew, kept when one does.
+  // A team's random obstacles (world/num_boxes, num_cylinders) or generated layout
+  // (world/families) are its world's: drawn anew by the robot placed first when all its robots
+  // start anew, kept when one does.
   bool shared_obstacles_ = false;
-  std::vector<std::uint8_t> redraw_obstacles_;       // per world
-  mutable std::vector<std::vector<Obstacle>> seen_;  // per world: a row's people and robots
-  std::atomic<std::uint64_t> given_up_{0};           // obstacles left out
-  std::atomic<std::uint64_t> unmade_{0};             // generated layouts not made
-  std::atomic<std::uint64_t> movers_given_up_{0};    // movers left out
+  bool generated_ = false;                             // world/families
+  std::vector<std::uint8_t> redraw_obstacles_;         // per world
+  std::vector<std::unique_ptr<FootprintGrid>> grids_;  // per world: its generated layout's
+  mutable std::vector<std::vector<Obstacle>> seen_;    // per world: a row's people and robots
+  std::atomic<std::uint64_t> given_up_{0};             // obstacles left out
+  std::atomic<std::uint64_t> unmade_{0};               // generated layouts not made
+  std::atomic<std::uint64_t> movers_given_up_{0};      // movers left out
 };
 
 }  // namespace jetbot_rl

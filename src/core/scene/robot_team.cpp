@@ -143,9 +143,10 @@ double RobotTeam::mateDistance(int row, const Eigen::Vector2d& p) const {
   return d;
 }
 
-void RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
+bool RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
                           std::optional<Eigen::Vector2d>& goal, double& yaw,
-                          const std::vector<Obstacle>* others) const {
+                          const std::vector<Obstacle>* others,
+                          const std::function<bool(const Eigen::Vector2d&)>& fits) const {
   const double clearance = world_.startClearance();
   // Distance from `p` to the nearest other robot or to the outline of the nearest other body.
   const auto free_of = [&](const Eigen::Vector2d& p) {
@@ -176,14 +177,23 @@ void RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
     start = onCircle(angle);
     goal = onCircle(angle + kPi);
     yaw = angle + kPi;
-    return;
+    return best >= 0.0;
   }
   goal.reset();
   yaw = 0.0;
   double best = -1.0;
+  const Eigen::AlignedBox2d& region = world_.region();
   for (int k = 0; k < world_.config().placement_tries && best < clearance; ++k) {
-    const std::optional<Eigen::Vector2d> p = world_.drawFreePoint(rng, clearance);
-    if (!p) break;
+    std::optional<Eigen::Vector2d> p;
+    if (fits) {  // one candidate a try
+      const Eigen::Vector2d q(uniform(rng, region.min().x(), region.max().x()),
+                              uniform(rng, region.min().y(), region.max().y()));
+      if (!fits(q)) continue;
+      p = q;
+    } else {
+      p = world_.drawFreePoint(rng, clearance);
+      if (!p) break;
+    }
     const double s = free_of(*p);
     if (s > best) best = s, start = *p;
   }
@@ -191,7 +201,9 @@ void RobotTeam::drawStart(int row, Rng& rng, Eigen::Vector2d& start,
     EnvLayout layout;
     world_.drawStart(rng, layout);
     start = layout.start;
+    return false;
   }
+  return true;
 }
 
 }  // namespace jetbot_rl

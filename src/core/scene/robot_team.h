@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -80,9 +81,12 @@ class RobotTeam final : public MovingBodies {
   /// world/start_clearance: circle swap (its own point when free, else a free point of the
   /// circle) with `goal` the opposite point and `yaw` facing the centre [rad]; else a free
   /// point of the region (no goal, yaw 0). The clearest draw stands in when none is free.
-  /// With `others` (the people of its world), clear of their outlines too.
-  void drawStart(int row, Rng& rng, Eigen::Vector2d& start, std::optional<Eigen::Vector2d>& goal,
-                 double& yaw, const std::vector<Obstacle>* others = nullptr) const;
+  /// With `others` (the people of its world), clear of their outlines too. With `fits` (a
+  /// generated layout's free floor), the region's points it accepts stand for the free points.
+  /// False when no draw was free (the stand-in is then the clearest, or the world's fallback).
+  bool drawStart(int row, Rng& rng, Eigen::Vector2d& start, std::optional<Eigen::Vector2d>& goal,
+                 double& yaw, const std::vector<Obstacle>* others = nullptr,
+                 const std::function<bool(const Eigen::Vector2d&)>& fits = nullptr) const;
 
  private:
   /// Least distance from `p` to the placed robots of `row`'s world other than it [m].

@@ -231,7 +231,7 @@ void generateFor(const WorldModel& world, int family, double difficulty, Rng& rn
 bool drawGeneratedStart(const WorldModel& world, const FootprintGrid& grid, Rng& rng,
                         EnvLayout& layout) {
   const auto fits = [&](const Eigen::Vector2d& p) {
-    return grid.isFree(p) && world.isClear(p, world.startClearance(), layout.obstacles);
+    return fitsGeneratedStart(world, grid, layout.obstacles, p);
   };
   if (!world.config().random_start) {
     layout.start = Eigen::Vector2d::Zero();
@@ -276,6 +276,27 @@ void drawGeneratedLayout(const WorldModel& world, Rng& rng, int env, double diff
   draft.start = layout.start;
   std::vector<Eigen::Vector2d> keep_free{layout.start};
   if (task) task->drawInWorld(env, rng, world, draft, keep_free);
+}
+
+bool fitsGeneratedStart(const WorldModel& world, const FootprintGrid& grid,
+                        const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p) {
+  return grid.isFree(p) && world.isClear(p, world.startClearance(), obstacles);
+}
+
+FootprintGrid drawSharedGeneratedLayout(const WorldModel& world, Rng& rng, double difficulty,
+                                        EnvLayout& layout) {
+  for (int attempt = 0; attempt < kLayoutAttempts; ++attempt) {
+    generateFor(world, pickFamily(world.config(), rng), difficulty, rng, layout);
+    FootprintGrid grid(world, kFootprintGridResolution, world.robotRadius(), layout.obstacles);
+    EnvLayout trial = layout;  // the robots draw their own starts: this one only shows there is one
+    if (!drawGeneratedStart(world, grid, rng, trial)) continue;
+    layout.unmade = false;
+    return grid;
+  }
+  layout.obstacles.clear();
+  layout.given_up = 0;
+  layout.unmade = true;
+  return FootprintGrid(world, kFootprintGridResolution, world.robotRadius(), layout.obstacles);
 }
 
 void checkGeneratedLayouts(const WorldModel& world) {
