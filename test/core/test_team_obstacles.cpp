@@ -127,8 +127,12 @@ TEST(TeamObstacles, ARobotOfTheWorldThatDidNotDrawThemHitsThem) {
 }
 
 TEST(TeamObstacles, InAGeneratedLayoutEachRobotStartsOnItsFreeFloorWithAPathToItsGoal) {
-  const int n = 4;
-  BatchedEnv env(test::lidarJetbot(), generatedTeam(n), test::navigationTask());
+  const int n = 8;
+  EnvConfig c = generatedTeam(n);
+  c.world.families = {"maze", "rooms"};  // at their hardest: many goals without a path
+  c.world.difficulty = 1.0;
+  c.world.start_clearance = 0.3;  // config/navigation_env.yaml's: a maze at 1 leaves no 0.4 m
+  BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
   const auto& task = dynamic_cast<const NavigationTask&>(env.task());
   const WorldModel& world = *env.world();
   for (int g = 0; g < n; ++g) {
