@@ -46,6 +46,13 @@ TEST(RobotModel, JetbotLoadsAsThreeBodies) {
   EXPECT_EQ(model->bodyOfJoint("caster_joint"), -1);  // fixed joints are not dofs
 }
 
+TEST(RobotModel, ItsVisibleTopCountsVisualsWithoutCollisionShapes) {
+  // The chassis box (0.05 m tall, its centre 0.02 m above the axle, 0.03 m up) tops both.
+  EXPECT_NEAR(jetbot()->visibleTop(), 0.03 + 0.02 + 0.025, 1e-9);
+  // The scanner's housing has a visual only: a cylinder 0.04 m tall, 0.075 m above the axle.
+  EXPECT_NEAR(test::lidarJetbot()->visibleTop(), 0.03 + 0.075 + 0.02, 1e-9);
+}
+
 TEST(RobotModel, MergedInertiaUsesTheParallelAxisTheorem) {
   const BodyModel& base = jetbot()->bodies()[0];
   // Chassis 0.8 kg at x = -0.03, caster 0.02 kg at x = -0.075: COM at their weighted mean.

@@ -55,22 +55,32 @@ TEST(Team, TheBatchHasARowPerRobotAndTheRobotsOfAnEnvStartOnItsCircle) {
 }
 
 TEST(Team, RobotsSeeEachOtherInTheirScans) {
-  BatchedEnv env(test::lidarJetbot(), teamConfig(1, 2, 0.0), test::navigationTask());
-  const std::vector<float> stop(2 * env.actionDim(), 0.0f);
-  const ScannerSpec& scanner = *env.scanner();
-  const int ahead = static_cast<int>(std::lround(-scanner.min_angle / scanner.angleIncrement()));
-  ASSERT_NEAR(scanner.min_angle + ahead * scanner.angleIncrement(), 0.0, 1e-6);
-  const auto front = [&](int row) { return env.view(row).scan()[ahead]; };
-  test::place(env, 0, Eigen::Vector2d(-1.0, 0.0), 0.0);
-  test::place(env, 1, Eigen::Vector2d(0.0, 0.0), kPi);
-  env.step(stop);
-  // Robot 1 stands 1 m ahead of robot 0 (its footprint about 0.1 m), the wall 3 m ahead.
-  const double gap = 1.0 - env.robot().footprintRadius();
-  EXPECT_NEAR(front(0), gap, 0.1);
-  EXPECT_NEAR(front(1), gap, 0.1);
-  test::place(env, 1, Eigen::Vector2d(-1.0, 1.5), kPi);  // out of the way
-  env.step(stop);
-  EXPECT_GT(front(0), 2.5);
+  // On base_link (below the chassis top) and on the URDF's own scanner, whose rays pass above
+  // the chassis: the other's lidar housing stands in their plane.
+  for (const std::string link : {"base_link", ""}) {
+    SCOPED_TRACE("scan/link '" + link + "'");
+    EnvConfig c = teamConfig(1, 2, 0.0);
+    c.scan.link = link;
+    c.scan.angles = {-kPi, kPi - 2.0 * kPi / c.scan.samples};  // a beam straight ahead
+    c.scan.noise_std = 0.0;
+    c.scan.update_every = 1;  // the Gazebo block's 5.5 Hz would skip steps
+    BatchedEnv env(test::lidarJetbot(), c, test::navigationTask());
+    const std::vector<float> stop(2 * env.actionDim(), 0.0f);
+    const ScannerSpec& scanner = *env.scanner();
+    const int ahead = static_cast<int>(std::lround(-scanner.min_angle / scanner.angleIncrement()));
+    ASSERT_NEAR(scanner.min_angle + ahead * scanner.angleIncrement(), 0.0, 1e-6);
+    const auto front = [&](int row) { return env.view(row).scan()[ahead]; };
+    test::place(env, 0, Eigen::Vector2d(-1.0, 0.0), 0.0);
+    test::place(env, 1, Eigen::Vector2d(0.0, 0.0), kPi);
+    env.step(stop);
+    // Robot 1 stands 1 m ahead of robot 0 (its footprint about 0.1 m), the wall 3 m ahead.
+    const double gap = 1.0 - env.robot().footprintRadius();
+    EXPECT_NEAR(front(0), gap, 0.1);
+    EXPECT_NEAR(front(1), gap, 0.1);
+    test::place(env, 1, Eigen::Vector2d(-1.0, 1.5), kPi);  // out of the way
+    env.step(stop);
+    EXPECT_GT(front(0), 2.5);
+  }
 }
 
 TEST(Team, TwoRobotsDrivingIntoEachOtherEndAsARobotCollision) {

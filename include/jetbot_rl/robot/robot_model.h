@@ -113,6 +113,10 @@ class RobotModel {
   /// Radius of a vertical cylinder about the root link origin that holds every collision shape
   /// at rest (the robot's footprint, for clearances) [m].
   double footprintRadius() const { return footprint_radius_; }
+  /// Height of its highest point above the ground at rest, collision and visual shapes alike
+  /// (a scanner's housing often has no collision shape; visual meshes, not read here, aside)
+  /// [m]: what another robot's sensors see of it.
+  double visibleTop() const { return visible_top_; }
   /// The <gazebo> blocks the description holds (ray sensor, diff drive plugin); their link and
   /// joints are checked against the URDF.
   const GazeboBlocks& gazebo() const { return gazebo_; }
@@ -126,6 +130,7 @@ class RobotModel {
   std::vector<BodyModel> bodies_;
   double rest_height_ = 0.0;
   double footprint_radius_ = 0.0;
+  double visible_top_ = 0.0;
   GazeboBlocks gazebo_;
 };
 

@@ -108,7 +108,7 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
                                               num_obstacles, num_movers, num_peers);
     }
   });
-  scene_->attach(envs_);
+  scene_->attach(envs_, robot_->visibleTop());
   for (std::size_t b = 1; b < robot_->bodies().size(); ++b) {
     joint_names_.push_back(robot_->bodies()[b].joint_name);
     dof_of_joint_.push_back(-1);

@@ -294,16 +294,6 @@ void EnvPhysics::step(double dt) {
   if (movers_.size() > num_movers_) hit_peer_ = hit_peer_ || touches(kPeerUserIndex);
 }
 
-double EnvPhysics::robotTop() const {
-  btScalar top = 0;
-  for (const auto& c : colliders_) {
-    btVector3 low, high;
-    c->getCollisionShape()->getAabb(c->getWorldTransform(), low, high);
-    top = std::max(top, high.z());
-  }
-  return static_cast<double>(top);
-}
-
 btTransform EnvPhysics::comPose(int body) const {
   // Colliders carry the poses after the last integration (a link's m_cachedWorldTransform is the
   // one before it).

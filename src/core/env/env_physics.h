@@ -123,8 +123,6 @@ class EnvPhysics {
   /// Velocity of the root link frame's origin [m/s] and angular velocity [rad/s], both in the
   /// root link frame.
   void rootLinkTwist(Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
-  /// Height of the robot's highest point above the ground (its colliders' bounding boxes) [m].
-  double robotTop() const;
   /// Contact points of the last collision detection, and the pairs they belong to.
   int contactPoints(int* pairs = nullptr) const;
   /// The robot's rigid bodies (linkPose()'s range).

@@ -134,29 +134,36 @@ CollisionGeometry collisionGeometry(const urdf::Link& link, const urdf::Collisio
   return g;
 }
 
-/// Lowest point of a primitive along z of the frame it is expressed in [m].
-double lowestZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose) {
+/// Lowest (`sign` -1) or highest (+1) point of a primitive along z of the frame it is expressed
+/// in [m]; a mesh without vertices (a visual's, read only for cameras): -inf for the highest.
+double extremeZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose, double sign) {
   const Eigen::Isometry3d pose = body_pose * g.origin;
   const Eigen::Matrix3d& r = pose.linear();
   const double centre = pose.translation().z();
   switch (g.type) {
     case CollisionGeometry::Type::kBox:
-      return centre - 0.5 * (std::abs(r(2, 0)) * g.size(0) + std::abs(r(2, 1)) * g.size(1) +
-                             std::abs(r(2, 2)) * g.size(2));
+      return centre + sign * 0.5 *
+                          (std::abs(r(2, 0)) * g.size(0) + std::abs(r(2, 1)) * g.size(1) +
+                           std::abs(r(2, 2)) * g.size(2));
     case CollisionGeometry::Type::kCylinder: {
       const double axis_z = std::abs(r(2, 2));
-      return centre - (0.5 * g.size(1) * axis_z +
-                       g.size(0) * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)));
+      return centre + sign * (0.5 * g.size(1) * axis_z +
+                              g.size(0) * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)));
     }
     case CollisionGeometry::Type::kSphere:
-      return centre - g.size(0);
+      return centre + sign * g.size(0);
     case CollisionGeometry::Type::kMesh: {
-      double lowest = std::numeric_limits<double>::infinity();
-      for (const auto& v : g.vertices) lowest = std::min(lowest, (pose * v).z());
-      return lowest;
+      double extreme = -sign * std::numeric_limits<double>::infinity();
+      for (const auto& v : g.vertices)
+        extreme = sign * std::max(sign * extreme, sign * (pose * v).z());
+      return extreme;
     }
   }
   return centre;
+}
+
+double lowestZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose) {
+  return extremeZ(g, body_pose, -1.0);
 }
 
 class BodyBuilder {
@@ -324,11 +331,16 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
   }
   if (!std::isfinite(lowest)) throw ModelError("URDF has no collision shapes to stand on");
   model->rest_height_ = -lowest;
+  double top = lowest;
   for (std::size_t b = 0; b < model->bodies_.size(); ++b) {
     for (const auto& g : model->bodies_[b].collisions) {
       model->footprint_radius_ = std::max(model->footprint_radius_, horizontalReach(g, poses[b]));
+      top = std::max(top, extremeZ(g, poses[b], 1.0));
     }
+    for (const auto& v : model->bodies_[b].visuals)
+      top = std::max(top, extremeZ(v.shape, poses[b], 1.0));
   }
+  model->visible_top_ = top - lowest;
   model->gazebo_ = parseGazeboBlocks(urdf_xml);
   int body = 0;
   Eigen::Isometry3d offset;

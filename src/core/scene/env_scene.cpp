@@ -45,12 +45,11 @@ EnvScene::EnvScene(const EnvConfig& config, double robot_radius, WorldDrawing* d
 
 EnvScene::~EnvScene() = default;
 
-void EnvScene::attach(std::vector<std::unique_ptr<EnvPhysics>>& envs) {
+void EnvScene::attach(std::vector<std::unique_ptr<EnvPhysics>>& envs, double robot_height) {
   envs_ = &envs;
   if (!world_ || (k_ == 1 && config_.team.swap_radius <= 0.0)) return;
-  team_ =
-      std::make_unique<RobotTeam>(config_.team, *world_, config_.num_envs, world_->robotRadius(),
-                                  envs.front()->robotTop(), config_.physics_dt);
+  team_ = std::make_unique<RobotTeam>(config_.team, *world_, config_.num_envs,
+                                      world_->robotRadius(), robot_height, config_.physics_dt);
   for (auto& env : envs) env->setPeers(team_->footprints());
   moving_.push_back(team_.get());
   seen_.resize(moving_.size() > 1 ? config_.num_envs : 0);

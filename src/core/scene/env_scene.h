@@ -42,9 +42,10 @@ class EnvScene {
   EnvScene& operator=(const EnvScene&) = delete;
 
   /// After the rows' physics were built (`envs`, one per row, kept by the caller): the team,
-  /// when configured, with its stand-ins in every row's physics. ConfigError when its starts do
-  /// not fit the world.
-  void attach(std::vector<std::unique_ptr<EnvPhysics>>& envs);
+  /// when configured, with its stand-ins in every row's physics, `robot_height` [m] tall (the
+  /// robot's visible top: a scanner above the chassis sees the others' scanners). ConfigError
+  /// when its starts do not fit the world.
+  void attach(std::vector<std::unique_ptr<EnvPhysics>>& envs, double robot_height);
 
   /// The world, or nullptr.
   const WorldModel* world() const { return world_.get(); }
