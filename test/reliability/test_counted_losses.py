@@ -20,9 +20,9 @@ from jetbot_rl_test.fault_util import DiagnosticsRecorder, figure
 from jetbot_rl_test.raw_tcpros import StalledSubscriber
 
 TOPIC = NODE + '/env_step'
-STEPS = 2000  # back-to-back ~step calls
-RESETS = 500  # then back-to-back ~reset calls
-MIXED = 500  # then a ~reset after every ~step
+STEPS = 1000  # back-to-back ~step calls
+RESETS = 250  # then back-to-back ~reset calls
+MIXED = 250  # then a ~reset after every ~step
 STALLED = 2
 
 
