@@ -1,7 +1,9 @@
 """Helpers of the PPO rostests: progress.csv, the latched ~training_stats topic, node runs."""
 import csv
+import os
 import subprocess
 import threading
+import time
 
 import rospy
 from std_msgs.msg import Float32MultiArray
@@ -53,6 +55,24 @@ class StatsWatcher(object):
             msg = self.messages[-1]
         names = msg.layout.dim[0].label.split(',')
         return dict(zip(names, msg.data))
+
+
+def wait_completed(run_dir, timeout=TIMEOUT):
+    """Blocks until the run in `run_dir` has written its summary.yaml with `status: completed`
+    (written after its last progress.csv row). For trainings launched before the test: their
+    latched ~training_stats ends with the trainer, which may finish before a loaded test's
+    subscriber connects. Polls the file: nothing announces it."""
+    path = os.path.join(run_dir, 'summary.yaml')
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and not rospy.is_shutdown():
+        try:
+            with open(path) as f:
+                if 'status: completed' in f.read():
+                    return
+        except FileNotFoundError:
+            pass
+        time.sleep(0.1)
+    raise AssertionError('%s: no completed run within %.0f s' % (path, timeout))
 
 
 _NODE_PATHS = {}

@@ -8,20 +8,18 @@ import unittest
 import rospy
 import rostest
 
-from jetbot_rl_test.ppo_test_util import StatsWatcher, learning_columns
+from jetbot_rl_test.ppo_test_util import learning_columns, wait_completed
 
 
 class TestDeterminism(unittest.TestCase):
     def test_same_seed_same_curve(self):
         iterations = rospy.get_param('~iterations')
-        a = StatsWatcher('/a/jetbot_ppo_trainer/training_stats')
-        b = StatsWatcher('/b/jetbot_ppo_trainer/training_stats')
-        c = StatsWatcher('/c/jetbot_ppo_trainer/training_stats')
-        d = StatsWatcher('/d/jetbot_ppo_trainer/training_stats')
-        for watcher in (a, b, c, d):
-            watcher.wait_iteration(iterations)
-        rows = {name: learning_columns(os.path.join(rospy.get_param('~run_dir_' + name),
-                                                    'progress.csv'))
+        # The trainings started with the launch, perhaps before this node: their run directories
+        # (a latched ~training_stats ends with its trainer, which may be before we connect).
+        run_dirs = {name: rospy.get_param('~run_dir_' + name) for name in 'abcd'}
+        for run_dir in run_dirs.values():
+            wait_completed(run_dir)
+        rows = {name: learning_columns(os.path.join(run_dirs[name], 'progress.csv'))
                 for name in 'abcd'}
         rows_a = rows['a']
         self.assertEqual(len(rows_a), iterations + 1)
