@@ -157,7 +157,7 @@ endforeach()
 
 # ---- training, determinism, Ctrl-C and resume, start-up refusals ----
 foreach(_scenario train train_command train_navigation train_tribot determinism determinism_memory
-    determinism_history interrupt_resume refuse_start_ppo clean_end)
+    determinism_history determinism_mix interrupt_resume refuse_start_ppo clean_end)
   add_rostest(test/ppo/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()
 

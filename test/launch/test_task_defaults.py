@@ -106,6 +106,7 @@ class TestTaskDefaults(unittest.TestCase):
     def test_train_launch_trains_that_env(self):
         train = dump('train.launch', 'task:=navigation')
         self.assertEqual(train['/robot_description'], text(NAV_URDF))
+        self.assertEqual(train['/jetbot_ppo_trainer/env_nodes'], 'jetbot_env')
         self.assertSameEnv(under(train, '/jetbot_env'), 'train.launch task:=navigation')
         # the env in the trainer's process gets the same parameters in its ~env_config
         in_process = dump('train.launch', 'task:=navigation', 'in_process:=true')
@@ -113,6 +114,54 @@ class TestTaskDefaults(unittest.TestCase):
         self.assertEqual(under(in_process, '/jetbot_env'), {})
         self.assertSameEnv(under(in_process, '/jetbot_ppo_trainer/env_config'),
                            'train.launch task:=navigation in_process:=true')
+
+    def test_train_launch_trains_the_navigators_mix(self):
+        """task:=navigation mix:=true: the three parts of launch/navigation_mix.launch, as env nodes
+        or under the trainer's ~env_config/NAME: the generated worlds of jetbot_env.launch
+        task:=navigation, the same with navigation_mix_team.yaml over them, and the swap with
+        the navigator's observation; all parts agree on what the batch needs alike."""
+        parts = ['jetbot_env_worlds', 'jetbot_env_team', 'jetbot_env_swap']
+        team = file_params(os.path.join(PKG, 'config', 'navigation_mix_team.yaml'))
+        swap_files = [os.path.join(PKG, 'config', f)
+                      for f in ('navigation_swap.yaml', 'navigation_mix_swap.yaml')]
+        swap = dict(file_params(swap_files[0]), **file_params(swap_files[1]))
+        in_process = '/jetbot_ppo_trainer/env_config/'
+        for args, prefix in (([], in_process), (['nodelet:=true'], in_process),
+                             (['in_process:=false'], '/'),
+                             (['in_process:=false', 'nodelet:=true'], '/')):
+            what = 'train.launch task:=navigation mix:=true ' + ' '.join(args)
+            params = dump('train.launch', 'task:=navigation', 'mix:=true', *args)
+            self.assertTrue(params['/jetbot_ppo_trainer/iterations'] > 0, what)
+            self.assertEqual(params['/jetbot_ppo_trainer/max_learning_rate'], 0.0005, what)
+            self.assertEqual(params['/robot_description'], text(NAV_URDF), what)
+            self.assertEqual(params['/jetbot_ppo_trainer/env_nodes'], parts, what)
+            self.assertEqual(under(params, '/jetbot_env'), {}, what)
+            self.assertEqual(params['/jetbot_ppo_trainer/env_in_process'], prefix == in_process,
+                             what)
+            envs = {p: under(params, prefix + p) for p in parts}
+            self.assertSameEnv(envs['jetbot_env_worlds'], what + ': worlds')
+            self.assertEqual(envs['jetbot_env_worlds']['num_envs'], 24, what)
+            self.assertSameEnv(envs['jetbot_env_team'], what + ': team', also_differ=team)
+            for key, value in team.items():
+                self.assertEqual(envs['jetbot_env_team'][key], value, '%s: team %s' % (what, key))
+            for key, value in swap.items():
+                self.assertEqual(envs['jetbot_env_swap'][key], value, '%s: swap %s' % (what, key))
+            self.assertNotIn('world/families', envs['jetbot_env_swap'], what)
+            for key in ('task', 'decimation', 'episode_length_s', 'action_space',
+                        'twist_reverse_speed', 'scan/samples', 'scan/angles', 'scan/range',
+                        'nav/beams', 'nav/path', 'nav/path_lookahead', 'nav/log_beams'):
+                self.assertEqual(envs['jetbot_env_swap'].get(key), self.nav_env.get(key),
+                                 '%s: the swap part differs in %s' % (what, key))
+        # num_envs sizes the generated worlds; what the mix cannot honour ends the launch naming it
+        self.assertEqual(dump('train.launch', 'task:=navigation', 'mix:=true', 'num_envs:=7')
+                         [in_process + 'jetbot_env_worlds/num_envs'], 7)
+        for args in (['task:=command'],
+                     ['task:=navigation', 'map:=' + os.path.join(PKG, 'maps', 'office.yaml')],
+                     ['task:=navigation', 'num_env_nodes:=2'], ['task:=navigation', 'x_pos:=0'],
+                     ['task:=navigation', 'task_config:=' + NAV_ENV]):
+            with self.assertRaises(Exception) as refused:
+                dump('train.launch', 'mix:=true', *args)
+            self.assertIn('mix:=true_takes_only_task:=navigation', str(refused.exception), args)
         # several env nodes, and env nodes on another host
         for launch_file, args in (('train.launch', ['num_env_nodes:=2']),
                                   ('env_host.launch', ['num_env_nodes:=2'])):

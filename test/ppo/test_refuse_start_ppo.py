@@ -126,6 +126,26 @@ class TestRefuseStartPpo(unittest.TestCase):
                       'env_config/reward': 'exp'},
                      'invalid reward = (set): was renamed reward_variant')
 
+    def test_in_process_parts_that_disagree(self):
+        # Two in-process parts (~env_config/NAME) of different episode lengths cannot be one
+        # batch: refused naming both parts and the field, as env nodes that disagree are.
+        self.refuses('jetbot_ppo_trainer',
+                     {'env_in_process': 'true', 'iterations': 1,
+                      'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_'),
+                      'env_config/part_a/num_envs': 2, 'env_config/part_b/num_envs': 3,
+                      'env_config/part_b/episode_length_s': 7.0},
+                     'env part_b differs from env part_a', 'max_episode_length',
+                     lists={'env_nodes': ['part_a', 'part_b']})
+
+    def test_in_process_part_with_a_bad_value(self):
+        # A part's own parameters are validated as an env node's, naming the part's namespace.
+        self.refuses('jetbot_ppo_trainer',
+                     {'env_in_process': 'true', 'iterations': 1,
+                      'run_dir': tempfile.mkdtemp(prefix='jetbot_rl_test_refuse_'),
+                      'env_config/part_a/num_envs': 2, 'env_config/part_b/num_envs': -4},
+                     'env_config/part_b: invalid num_envs = -4',
+                     lists={'env_nodes': ['part_a', 'part_b']})
+
     # --- memory ---
     def test_obs_history_length_zero(self):
         self.refuses('jetbot_ppo_trainer', {'obs_history_length': 0}, 'obs_history_length = 0')

@@ -9,6 +9,7 @@
 
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/env/local_vec_env.h"
+#include "jetbot_rl/env/multi_vec_env.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
@@ -42,16 +43,37 @@ std_msgs::Float32MultiArray statsMessage(const IterationStats& s) {
   return msg;
 }
 
-/// The env the trainer trains on: env nodes, or one built in this process from ~env_config.
+/// The env of the parameters under ~env_config[/part] (those of jetbot_env_node), built here.
+std::unique_ptr<BatchedEnv> makeLocalEnv(const RobotModelConstPtr& robot,
+                                         const ros::NodeHandle& pnh, const std::string& part) {
+  const std::string ns = part.empty() ? "env_config" : "env_config/" + part;
+  const ros::NodeHandle env_pnh(pnh, ns);
+  try {
+    const EnvSetup setup = readParams<EnvSetup>(env_pnh);
+    echoParams(env_pnh, describeFields(setup));
+    return makeEnv(robot, setup);
+  } catch (const ConfigError& e) {
+    throw ConfigError(ns + ": " + e.what());  // which part's parameter, among several
+  }
+}
+
+/// The env the trainer trains on: env nodes, or one built in this process from ~env_config (one
+/// part per name of env_nodes when there are several).
 std::unique_ptr<VecEnv> makeTrainingEnv(const TrainerParams& params, const ros::NodeHandle& nh,
                                         const ros::NodeHandle& pnh, const std::atomic<bool>& stop) {
   if (!params.env_in_process) {
     return connectEnvs(params.env_nodes.env_nodes, true, params.env_nodes.step_timeout, &stop, nh);
   }
-  const ros::NodeHandle env_pnh(pnh, "env_config");
-  const EnvSetup setup = readParams<EnvSetup>(env_pnh);
-  echoParams(env_pnh, describeFields(setup));
-  return std::make_unique<LocalVecEnv>(makeEnv(loadRobotDescription(nh), setup));
+  const RobotModelConstPtr robot = loadRobotDescription(nh);
+  const std::vector<std::string>& names = params.env_nodes.env_nodes;
+  // One part: ~env_config itself; several (a mix of task configs): ~env_config/NAME each, as
+  // the env nodes of those names would read them, stepped as one batch in list order.
+  if (names.size() == 1) return std::make_unique<LocalVecEnv>(makeLocalEnv(robot, pnh, ""));
+  std::vector<std::unique_ptr<VecEnv>> parts;
+  for (const std::string& name : names) {
+    parts.push_back(std::make_unique<LocalVecEnv>(makeLocalEnv(robot, pnh, name)));
+  }
+  return std::make_unique<MultiVecEnv>(std::move(parts), names);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ struct TrainerParams {
   RunnerOptions run;         ///< iterations, run_dir, resume, save_interval, ...
   EnvNodesParams env_nodes;  ///< env_nodes, step_timeout
   /// Build the env in this process (LocalVecEnv) from the parameters under ~env_config (those of
-  /// jetbot_env_node) and robot_description, instead of talking to env nodes.
+  /// jetbot_env_node) and robot_description, instead of talking to env nodes; with several
+  /// env_nodes, one part per name from ~env_config/NAME, stepped as one batch in list order.
   bool env_in_process = false;
   int torch_threads = 1;  ///< libtorch intra-op threads (1: deterministic, leaves a core).
   /// When the run has ended well (completed or interrupted), end the roslaunch that started
@@ -33,7 +34,8 @@ IfConfig<C, TrainerParams> visitFields(C& c, V&& v) {
   visitFields(c.env_nodes, v);
   v("env_in_process", c.env_in_process, AnyValue{},
     "Build the env in this process from the parameters under ~env_config (those of "
-    "jetbot_env_node's EnvSetup) and robot_description, instead of stepping env nodes.");
+    "jetbot_env_node's EnvSetup) and robot_description, instead of stepping env nodes; with "
+    "several env_nodes, one part per name from ~env_config/NAME, one batch in list order.");
   v("torch_threads", c.torch_threads, inRange(1, 256),
     "libtorch intra-op threads; 1 is deterministic and leaves a core to the env.");
   v("end_launch", c.end_launch, AnyValue{},
