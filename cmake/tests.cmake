@@ -75,6 +75,7 @@ catkin_add_gtest(test_ppo
   test/ppo/test_checkpoint.cpp
   test/ppo/test_config.cpp
   test/ppo/test_runner.cpp
+  test/ppo/test_freed_memory.cpp
   test/ppo/test_update.cpp
   test/ppo/test_in_process.cpp
   test/ppo/test_memory.cpp

@@ -29,6 +29,7 @@ target_link_libraries(jetbot_rl_policy PUBLIC jetbot_rl_core ${TORCH_LIBRARIES})
 
 add_library(jetbot_rl_ppo
   src/ppo/episode_tracker.cpp
+  src/ppo/freed_memory.cpp
   src/ppo/gae.cpp
   src/ppo/iteration_stats.cpp
   src/ppo/ppo.cpp

@@ -10,6 +10,7 @@
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/env/local_vec_env.h"
 #include "jetbot_rl/env/multi_vec_env.h"
+#include "jetbot_rl/ppo/freed_memory.h"
 #include "jetbot_rl/ppo/iteration_stats.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ros/trainer_params.h"
@@ -91,6 +92,9 @@ int runTrainer(ros::NodeHandle nh, ros::NodeHandle pnh, const std::atomic<bool>&
   const TrainerParams& params = config->trainer;
   const PpoConfig& ppo = config->ppo;
   ppo::setTorchThreads(params.torch_threads);
+  // The update's tensors come and go every iteration: kept, their pages are not faulted in anew.
+  const std::string heap = ppo::keepFreedMemory();
+  if (!heap.empty()) ROS_WARN("freed memory goes back to the system: %s", heap.c_str());
 
   // Latched: a late subscriber (a test, rqt_plot started later) still gets the newest row.
   ros::Publisher stats_pub =
