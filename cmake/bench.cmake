@@ -10,6 +10,12 @@ target_compile_definitions(jetbot_rl_camera_bench PRIVATE
   JETBOT_RL_DEFAULT_MAP="${PROJECT_SOURCE_DIR}/maps/office.yaml")
 target_link_libraries(jetbot_rl_camera_bench jetbot_rl_core)
 
+# The trainer's in-process training without ROS, for training experiments on hosts without ROS.
+add_executable(jetbot_rl_train_bench bench/train_bench_main.cpp)
+target_compile_definitions(jetbot_rl_train_bench PRIVATE
+  JETBOT_RL_DEFAULT_LIDAR_URDF="${PROJECT_SOURCE_DIR}/urdf/jetbot_lidar.urdf")
+target_link_libraries(jetbot_rl_train_bench jetbot_rl_ppo)
+
 # The lockstep round trips against a running env node: jetbot_rl_ros_bench and the nodelet.
 add_library(jetbot_rl_lockstep_bench bench/lockstep_bench.cpp)
 target_include_directories(jetbot_rl_lockstep_bench PUBLIC bench)
@@ -38,6 +44,7 @@ install(TARGETS jetbot_rl_lockstep_bench
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(TARGETS jetbot_rl_bench jetbot_rl_camera_bench jetbot_rl_ros_bench jetbot_rl_nodes_bench
+  jetbot_rl_train_bench
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(PROGRAMS bench/bench.sh bench/bench16.sh bench/bench_nodes.sh bench/bench_world.sh bench/bench_team.sh
   bench/bench_camera_ros.sh

@@ -1,9 +1,14 @@
 #!/usr/bin/python3
 """Trainings with the same seed (run side by side by determinism.test: two through env nodes, one
 with the env in the trainer's process, one with env and trainer as nodelets of one manager) write
-identical progress.csv files, timing columns aside."""
+identical progress.csv files, timing columns aside; with ~ros_free (determinism_mix.test), so does
+jetbot_rl_train_bench, which trains without ROS from the in-process trainer's parameters written
+as YAML files."""
 import os
+import subprocess
 import unittest
+
+import yaml
 
 import rospy
 import rostest
@@ -32,6 +37,31 @@ class TestDeterminism(unittest.TestCase):
         # The curve moves (identical constant rows would prove nothing).
         column = rows_a[0].index('mean_reward_per_step')
         self.assertGreater(len(set(row[column] for row in rows_a[1:])), iterations // 2)
+        if rospy.get_param('~ros_free', False):
+            self.assertEqual(self._train_without_ros(run_dirs['c']), rows_a, 'ROS-free run differs')
+
+    def _train_without_ros(self, run_dir_c):
+        """jetbot_rl_train_bench on run c's parameters (its trainer's, each part's, its robot), as
+        a user without a master would write them: the learning columns of its progress.csv."""
+        ns = rospy.get_param('~trainer_ns')
+        trainer = rospy.get_param(ns)
+        env_config = trainer.pop('env_config')
+        files = os.path.join(run_dir_c + '_ros_free_params')
+        os.makedirs(files, exist_ok=True)
+
+        def write(name, content):
+            path = os.path.join(files, name)
+            with open(path, 'w') as f:
+                f.write(content if isinstance(content, str) else yaml.safe_dump(content))
+            return path
+        args = ['rosrun', 'jetbot_rl', 'jetbot_rl_train_bench',
+                '--trainer', write('trainer.yaml', trainer),
+                '--urdf', write('robot.urdf', rospy.get_param(rospy.get_param('~robot_description'))),
+                '--run-dir', run_dir_c + '_ros_free']
+        for part in trainer['env_nodes']:  # one part each, in the batch's order
+            args += ['--part', write(part + '.yaml', env_config[part])]
+        subprocess.run(args, check=True, stdout=subprocess.DEVNULL, timeout=240)
+        return learning_columns(os.path.join(run_dir_c + '_ros_free', 'progress.csv'))
 
 
 if __name__ == '__main__':
