@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "jetbot_rl/config/command_line.h"
+#include "jetbot_rl/config/file_checks.h"
 #include "jetbot_rl/config/yaml_flatten.h"
 #include "jetbot_rl/env/env_setup.h"
 #include "jetbot_rl/env/local_vec_env.h"
@@ -66,16 +67,21 @@ std::vector<std::string> splitList(const std::string& text) {
   return pieces;
 }
 
-/// The fields of `config` that the files set, in order (later files win).
-template <typename C>
-void readFiles(const std::vector<std::string>& paths, C& config) {
+/// The trainer's fields that the files set, in order (later files win); each file read once.
+void readTrainerFiles(const std::vector<std::string>& paths, ppo::PpoConfig& ppo_config,
+                      ppo::RunnerOptions& options) {
   for (const std::string& path : paths) {
+    if (const std::string problem = fileProblem(path); !problem.empty()) {
+      throw ConfigError("cannot read the parameter file " + path + ": it " + problem);
+    }
     std::ifstream file(path);
     std::ostringstream text;
     text << file.rdbuf();
     if (!file) throw ConfigError("cannot read the parameter file " + path);
     try {
-      fieldsFromYaml(flattenYaml(text.str()), config);
+      const std::string fields = flattenYaml(text.str());
+      fieldsFromYaml(fields, ppo_config);
+      fieldsFromYaml(fields, options);
     } catch (const ConfigError& e) {
       throw ConfigError(path + ": " + e.what());
     }
@@ -132,8 +138,7 @@ int main(int argc, char** argv) {
   try {
     ppo::PpoConfig ppo_config;
     ppo::RunnerOptions options;
-    readFiles(trainer_files, ppo_config);
-    readFiles(trainer_files, options);
+    readTrainerFiles(trainer_files, ppo_config, options);
     if (seed >= 0) ppo_config.seed = seed;
     if (iterations > 0) options.iterations = iterations;
     options.run_dir = run_dir;
@@ -141,7 +146,9 @@ int main(int argc, char** argv) {
     if (!resume.empty() && std::filesystem::is_directory(resume)) {
       options.resume = resume + "/checkpoints/latest.pt";
     }
-    std::filesystem::create_directories(run_dir);
+    // Refused before anything is created: a bad value or part leaves no run directory behind.
+    ppo::validate(ppo_config);
+    validateFields(options);
     ppo::setTorchThreads(torch_threads);
     const std::string heap = ppo::keepFreedMemory();
     if (!heap.empty()) std::fprintf(stderr, "warning: %s\n", heap.c_str());
@@ -162,6 +169,7 @@ int main(int argc, char** argv) {
                                          : std::make_unique<MultiVecEnv>(std::move(envs), names));
     std::signal(SIGINT, [](int) { stop_requested = true; });
     std::signal(SIGTERM, [](int) { stop_requested = true; });
+    std::filesystem::create_directories(run_dir);
     ppo::OnPolicyRunner runner(env, ppo_config, options);
     const ppo::TrainingSummary summary = runner.learn();
     std::cout << "final figures:\n" << ppo::describeSummary(summary) << std::endl;
