@@ -166,6 +166,7 @@ UpdateStats Ppo::update() {
   UpdateStats stats;
   int updates = 0;
   const auto params = model_->parameters();
+  if (learning_rate_ > lr_ceiling_) setLearningRate(lr_ceiling_);
   for (int epoch = 0; epoch < c.num_learning_epochs; ++epoch) {
     const std::vector<MiniBatch> batches = model_->recurrent()
                                                ? storage.sequenceMiniBatches(c.num_mini_batches)
@@ -177,7 +178,7 @@ UpdateStats Ppo::update() {
 
       // KL(old || new) drives the adaptive learning rate (rsl_rl).
       const double kl = gaussianKl(b.old_mean, b.old_std, e.mean, e.std);
-      setLearningRate(adaptedLearningRate(learning_rate_, kl, c));
+      setLearningRate(std::min(adaptedLearningRate(learning_rate_, kl, c), lr_ceiling_));
 
       const torch::Tensor ratio = torch::exp(e.log_probs - b.old_log_probs);
       const torch::Tensor surrogate = clippedSurrogate(ratio, b.advantages, c.clip_param);

@@ -1,6 +1,7 @@
 #include "jetbot_rl/ppo/ppo_losses.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "jetbot_rl/ppo/torch_api.h"
 
@@ -35,6 +36,15 @@ double adaptedLearningRate(double lr, double kl, const PpoConfig& c) {
   if (kl > 2.0 * c.desired_kl) return std::max(c.min_learning_rate, lr / 1.5);
   if (kl < 0.5 * c.desired_kl && kl > 0.0) return std::min(c.max_learning_rate, lr * 1.5);
   return lr;
+}
+
+double learningRateCeiling(const PpoConfig& c, std::int64_t iteration, std::int64_t iterations) {
+  const double window = c.lr_cooldown * static_cast<double>(iterations);
+  const double left = static_cast<double>(iterations - 1 - iteration);  // iterations after this
+  if (window <= 0.0 || left >= window) return std::numeric_limits<double>::infinity();
+  const double top = c.schedule == LrSchedule::kAdaptive ? c.max_learning_rate : c.learning_rate;
+  const double low = std::min(c.min_learning_rate, top);
+  return low + (top - low) * std::max(0.0, left) / window;
 }
 
 }  // namespace ppo

@@ -13,6 +13,7 @@
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/ppo/ppo.h"
 #include "jetbot_rl/ppo/ppo_checkpoint.h"
+#include "jetbot_rl/ppo/ppo_losses.h"
 #include "jetbot_rl/ppo/progress_csv.h"
 #include "jetbot_rl/ppo/torch_api.h"
 
@@ -177,6 +178,8 @@ TrainingSummary OnPolicyRunner::learn() {
       }
       ppo_->computeReturns(*state);
       const auto t1 = Clock::now();
+      ppo_->setLearningRateCeiling(
+          learningRateCeiling(ppo_->config(), iteration_, options_.iterations));
       const UpdateStats update = ppo_->update();
       const auto t2 = Clock::now();
 

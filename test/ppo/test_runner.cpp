@@ -181,6 +181,33 @@ std::vector<std::vector<std::string>> learningColumns(const std::string& path) {
   return rows;
 }
 
+TEST(Runner, TheCooldownBringsTheLearningRateDownToItsFloorAtTheLastIteration) {
+  // A fixed rate of 1e-3 with lr_cooldown 0.5 of 8 iterations: iterations 1-4 learn at 1e-3,
+  // 5-8 at the falling ceiling, the last at min_learning_rate.
+  ToyEnv env(8);
+  RunnerOptions o;
+  o.iterations = 8;
+  o.run_dir = runDir("cooldown");
+  PpoConfig c = toyConfig();
+  c.schedule = LrSchedule::kFixed;
+  c.learning_rate = 1e-3;
+  c.min_learning_rate = 1e-5;
+  c.lr_cooldown = 0.5;
+  OnPolicyRunner runner(env, c, o);
+  runner.setLogger([](const std::string&) {});
+  EXPECT_TRUE(runner.learn().error.empty());
+  const auto rows = readCsv(o.run_dir + "/progress.csv");
+  ASSERT_EQ(rows.size(), 9u);
+  const auto column = std::find(rows[0].begin(), rows[0].end(), "learning_rate") - rows[0].begin();
+  ASSERT_LT(column, static_cast<long>(rows[0].size()));
+  const auto rate = [&](int iteration) { return std::stod(rows[iteration][column]); };
+  for (int i = 1; i <= 4; ++i) EXPECT_NEAR(rate(i), 1e-3, 1e-12) << "iteration " << i;
+  for (int i = 5; i <= 8; ++i) {
+    EXPECT_NEAR(rate(i), 1e-5 + (1e-3 - 1e-5) * (8 - i) / 4.0, 1e-9) << "iteration " << i;
+  }
+  EXPECT_NEAR(rate(8), 1e-5, 1e-12);
+}
+
 TEST(Runner, SameSeedSameLearningCurve) {
   ToyEnv env_a(8), env_b(8);
   const std::string a = runDir("seed_a"), b = runDir("seed_b");

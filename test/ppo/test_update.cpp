@@ -1,7 +1,9 @@
 // The pieces of the PPO update, each against hand-computed values: the clipped surrogate and
-// value loss (and where their gradients vanish), the adaptive learning rate, the observation
-// normaliser and the action scaler.
+// value loss (and where their gradients vanish), the adaptive learning rate and its cooldown, the
+// observation normaliser and the action scaler.
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include "jetbot_rl/errors.h"
 #include "jetbot_rl/ppo/action_scaler.h"
@@ -72,6 +74,26 @@ TEST(PpoLosses, TheAdaptiveLearningRateFollowsTheKl) {
   EXPECT_DOUBLE_EQ(adaptedLearningRate(9e-3, 0.001, c), 1e-2);       // and above
   c.schedule = LrSchedule::kFixed;
   EXPECT_DOUBLE_EQ(adaptedLearningRate(1e-3, 0.05, c), 1e-3);
+}
+
+TEST(PpoLosses, TheCooldownLowersTheCeilingLinearlyOverTheLastIterations) {
+  PpoConfig c;
+  c.min_learning_rate = 1e-5;
+  c.max_learning_rate = 5e-4;
+  const double none = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(learningRateCeiling(c, 99, 100), none);  // lr_cooldown 0: never
+  c.lr_cooldown = 0.25;                              // the last 25 of 100 iterations
+  EXPECT_EQ(learningRateCeiling(c, 0, 100), none);
+  EXPECT_EQ(learningRateCeiling(c, 74, 100), none);  // 25 iterations after it: still outside
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 75, 100), 1e-5 + (5e-4 - 1e-5) * 24.0 / 25.0);
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 87, 100), 1e-5 + (5e-4 - 1e-5) * 12.0 / 25.0);
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 99, 100), 1e-5);  // the last update: the floor
+  c.schedule = LrSchedule::kFixed;                          // from the fixed rate instead
+  c.learning_rate = 1e-3;
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 99, 100), 1e-5);
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 75, 100), 1e-5 + (1e-3 - 1e-5) * 24.0 / 25.0);
+  c.lr_cooldown = 1.0;  // the whole run
+  EXPECT_DOUBLE_EQ(learningRateCeiling(c, 0, 100), 1e-5 + (1e-3 - 1e-5) * 99.0 / 100.0);
 }
 
 TEST(ObsNormalizer, MatchesTheStatisticsOfEverythingSeenAndClips) {

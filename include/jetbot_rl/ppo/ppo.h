@@ -2,6 +2,7 @@
 
 #include <torch/optim/adam.h>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -51,6 +52,8 @@ class Ppo {
   double learningRate() const { return learning_rate_; }
   /// Sets the Adam learning rate of every parameter group.
   void setLearningRate(double lr);
+  /// Caps the learning rate of the next update()s (lr_cooldown; infinity: none).
+  void setLearningRateCeiling(double ceiling) { lr_ceiling_ = ceiling; }
   /// Mean policy std [normalised action units].
   double actionStd();
   /// The network's input width (the observation, or the history stacked; an image's values
@@ -81,6 +84,7 @@ class Ppo {
   RolloutStorage storage_;
   ActionScaler scaler_;
   double learning_rate_;
+  double lr_ceiling_ = std::numeric_limits<double>::infinity();
 
   int step_ = 0;         // transitions stored in this rollout
   bool acted_ = false;   // act() awaits its processEnvStep()

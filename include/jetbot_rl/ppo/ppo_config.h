@@ -31,9 +31,12 @@ struct PpoConfig : NetworkConfig {
   int num_mini_batches = 4;                     ///< Minibatches per epoch.
   double learning_rate = 1e-3;                  ///< Adam learning rate (initial, when adaptive).
   LrSchedule schedule = LrSchedule::kAdaptive;  ///< KL-controlled or fixed learning rate.
-  double desired_kl = 0.01;            ///< Adaptive schedule: target KL divergence per minibatch.
-  double min_learning_rate = 1e-5;     ///< Adaptive schedule: lower bound of the learning rate.
-  double max_learning_rate = 1e-2;     ///< Adaptive schedule: upper bound of the learning rate.
+  double desired_kl = 0.01;         ///< Adaptive schedule: target KL divergence per minibatch.
+  double min_learning_rate = 1e-5;  ///< Adaptive schedule: lower bound of the learning rate.
+  double max_learning_rate = 1e-2;  ///< Adaptive schedule: upper bound of the learning rate.
+  /// Fraction of the iterations, at the end, over which the learning rate's ceiling falls
+  /// linearly to min_learning_rate (0: none).
+  double lr_cooldown = 0.0;
   double gamma = 0.99;                 ///< Discount per control step.
   double lam = 0.95;                   ///< GAE lambda.
   double clip_param = 0.2;             ///< Clip range of the probability ratio and value change.
@@ -66,8 +69,12 @@ IfConfig<C, PpoConfig> visitFields(C& c, V&& v) {
     "(rsl_rl); fixed: constant.");
   v("desired_kl", c.desired_kl, positive(), "Adaptive schedule's target KL per minibatch.");
   v("min_learning_rate", c.min_learning_rate, positive(),
-    "Adaptive schedule's lower bound (<= max_learning_rate).");
+    "Adaptive schedule's lower bound (<= max_learning_rate), and where lr_cooldown ends.");
   v("max_learning_rate", c.max_learning_rate, positive(), "Adaptive schedule's upper bound.");
+  v("lr_cooldown", c.lr_cooldown, inRange(0.0, 1.0),
+    "Fraction of the iterations, at the end, over which the learning rate's ceiling falls "
+    "linearly from max_learning_rate (fixed schedule: learning_rate) to min_learning_rate, so "
+    "that the last policy settles (0: none).");
   v("gamma", c.gamma, inRange(0.0, 1.0), "Discount per control step.");
   v("lam", c.lam, inRange(0.0, 1.0), "GAE lambda.");
   v("clip_param", c.clip_param, positive(),
