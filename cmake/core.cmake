@@ -37,6 +37,7 @@ add_library(jetbot_rl_core
   src/core/planning/grid_planner.cpp
   src/core/planning/map_planner.cpp
   src/core/planning/path_tracker.cpp
+  src/core/planning/speed_limit.cpp
   src/core/robot/diff_drive.cpp
   src/core/robot/dof_limits.cpp
   src/core/robot/package_path.cpp

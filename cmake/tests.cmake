@@ -63,6 +63,7 @@ catkin_add_gtest(test_core
   test/core/test_dwa_planner.cpp
   test/core/test_map_planner.cpp
   test/core/test_goal_watch.cpp
+  test/core/test_speed_limit.cpp
 )
 target_link_libraries(test_core jetbot_rl_core jetbot_rl_dataset_writer ${STB_LIBRARIES})
 target_include_directories(test_core PRIVATE src/core)
@@ -170,6 +171,7 @@ foreach(_scenario closed_loop_velocity closed_loop_command closed_loop_navigatio
     closed_loop_road
     closed_loop_dwa
     deploy_node
+    deploy_speed_limit
     evaluator_options)
   add_rostest(test/sim2real/${_scenario}.test DEPENDENCIES ${_nodes})
 endforeach()

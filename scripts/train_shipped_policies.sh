@@ -20,11 +20,12 @@ declare -A recipe=(
   [navigation_arena]="task:=navigation iterations:=200 task_config:=$config/navigation_arena.yaml"
   [people]="task:=navigation task_config:=$config/navigation_people.yaml config:=$config/ppo_navigation_people.yaml"
   [swap]="task:=navigation task_config:=$config/navigation_swap.yaml config:=$config/ppo_navigation_swap.yaml"
+  [navigation_mix]="task:=navigation mix:=true"
   [navigation_camera]="task:=navigation urdf:=$repo/urdf/jetbot_camera.urdf task_config:=$config/navigation_camera_env.yaml world:=$config/world_generated.yaml"
   [road_following]="task:=road_following"
 )
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(velocity command command_memory command_motors navigation_arena people navigation swap navigation_camera road_following)
+[ ${#names[@]} -gt 0 ] || names=(velocity command command_memory command_motors navigation_arena people navigation swap navigation_mix navigation_camera road_following)
 for name in "${names[@]}"; do
   [ -n "${recipe[$name]+x}" ] || { echo "unknown policy '$name': one of ${!recipe[*]}" >&2; exit 2; }
 done

@@ -20,6 +20,7 @@
 #include "jetbot_rl/eval/episode_loop.h"
 #include "jetbot_rl/eval/navigation_metrics.h"
 #include "jetbot_rl/eval/observation_means.h"
+#include "jetbot_rl/planning/speed_limit.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 #include "jetbot_rl/tasks/road_following_task.h"
@@ -51,16 +52,17 @@ int main(int argc, char** argv) {
   const long long seed = options.seed;
   const int episodes = options.episodes;
   try {
+    if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/best.pt";
+    ppo::Policy policy(checkpoint);
     EnvSetup setup = env_options.setup();
     if (!task.empty()) fieldsFromYaml("task: " + task, setup);
     setup.env.seed = static_cast<std::uint64_t>(seed);
+    takeSpeedLimit(policy.meta().spec.observer, setup.env.speed_limit);  // as it was trained
     const std::unique_ptr<BatchedEnv> batch = makeEnv(
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
         setup);
     BatchedEnv& env = *batch;
     const int envs = env.numEnvs(), steps = env_options.steps;
-    if (std::filesystem::is_directory(checkpoint)) checkpoint += "/checkpoints/best.pt";
-    ppo::Policy policy(checkpoint);
     for (const std::string& warning : policy.fitTo(env.spec())) {
       std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }

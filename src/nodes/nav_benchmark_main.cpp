@@ -20,6 +20,7 @@
 #include "jetbot_rl/config/yaml_flatten.h"
 #include "jetbot_rl/eval/dwa_actor.h"
 #include "jetbot_rl/eval/nav_benchmark.h"
+#include "jetbot_rl/planning/speed_limit.h"
 #include "jetbot_rl/tasks/navigation_task.h"
 
 int main(int argc, char** argv) {
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
     validateConfig(dwa);
     EnvSetup base = env_options.setup();
     takeObservationContract(contract, base.task.navigation);
+    takeSpeedLimit(contract, base.env.speed_limit);  // the policy drives as it was trained
     base.env.seed = static_cast<std::uint64_t>(seed);
     const RobotModelConstPtr robot =
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
@@ -135,6 +137,7 @@ int main(int argc, char** argv) {
         // The same worlds, seeds and global path (planned whether the policy observes one).
         EnvSetup setup = world.setup;
         setup.task.navigation.path = true;
+        setup.env.speed_limit.enabled = false;  // move_base's planner as it is, no monitor
         const std::unique_ptr<BatchedEnv> env = makeEnv(robot, setup);
         DwaActor actor(*env, dwa);
         row(world.name, "dwa",

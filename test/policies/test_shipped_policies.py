@@ -50,6 +50,12 @@ CASES = {
     'swap': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--num-envs', '5',
                            '--episodes', '200', '--seed', '123'],
              {'success_rate': (0.93, None), 'collision_rate': (None, 0.07)}),
+    # the mix's navigator in the 20-robot swap, as its mix's swap part holds it (the navigator's
+    # observation, 20 s episodes), behind the speed limit its checkpoint names
+    'navigation_mix': (NAVIGATION + ['--config', config('navigation_swap.yaml'), '--config',
+                                     config('navigation_mix_swap.yaml'), '--num-envs', '5',
+                                     '--episodes', '400', '--seed', '123'],
+                       {'success_rate': (0.95, None), 'collision_rate': (None, 0.02)}),
     # the camera's depth as its scan (the forward field of view only), in the generated worlds
     'navigation_camera': (['--urdf', os.path.join(PKG, 'urdf', 'jetbot_camera.urdf'), '--config',
                            config('jetbot_env.yaml'), '--task', 'navigation', '--steps', '100000',

@@ -141,6 +141,8 @@ TEST_F(CheckpointTest, TheEnvsSpecWithItsObservationContractRoundTrips) {
   o.wheel_radius = 0.03;
   o.wheel_separation = 0.1125;
   o.footprint_radius = 0.095;
+  o.speed_limit_path = {0.06, 0.074, -0.074};
+  o.speed_limit_distances = {0.1, 0.4};
   const std::string with_beams = tempPath("with_beams.pt");
   saveCheckpoint(with_beams, *trained, meta);
   const BatchSpec read = readCheckpointMeta(with_beams).spec;

@@ -33,6 +33,8 @@ BatchSpec sampleSpec() {
   s.observer.path_clearance = 0.35;
   s.observer.path_clearance_cost = 2.5;
   s.observer.footprint_radius = 0.095;
+  s.observer.speed_limit_path = {0.06, 0.074, -0.074};
+  s.observer.speed_limit_distances = {0.1, 0.4};
   s.action_low = {0.0f, -10.5f};
   s.action_high = {0.6f, 10.5f};
   s.control_dt = 0.05;
@@ -66,6 +68,7 @@ TEST(SpecSchema, TheMessageConversionGoesBothWaysFieldForField) {
   EXPECT_EQ(msg.scan_range, (std::vector<double>{0.15, 3.5}));
   EXPECT_TRUE(msg.log_beams);
   EXPECT_EQ(msg.footprint_radius, 0.095);
+  EXPECT_EQ(msg.speed_limit_distances, (std::vector<double>{0.1, 0.4}));
   EXPECT_EQ(fieldsToYaml(fromMsg(msg)), fieldsToYaml(spec));
 }
 

@@ -180,6 +180,9 @@ class BatchedEnv {
   static constexpr std::uint8_t kHitWorld = 1, kHitMover = 2, kHitRobot = 3;
   // The sensors (the scanner and the camera, when the robot has them).
   std::unique_ptr<ScanSensor> scan_;
+  SpeedLimitSpec speed_limit_spec_;          // speed_limit/...: the path ahead in the scan's frame
+  std::unique_ptr<SpeedLimit> speed_limit_;  // none without speed_limit/enabled
+  std::vector<float> speed_caps_;            // per env: its fastest forward v this step [m/s]
   std::vector<std::unique_ptr<CameraSensor>> cameras_;  // cameras_[0] fills result_.images
   std::vector<EnvSensor*> sensors_;                     // every sensor, in stepping order
 };

@@ -6,6 +6,7 @@
 
 #include "jetbot_rl/config/config_fields.h"
 #include "jetbot_rl/env/randomization.h"
+#include "jetbot_rl/planning/speed_limit.h"
 #include "jetbot_rl/robot/motor_model.h"
 #include "jetbot_rl/scene/mover_config.h"
 #include "jetbot_rl/scene/team_config.h"
@@ -84,6 +85,8 @@ struct EnvConfig {
   CameraConfig camera;
   /// Robots per env (one by default).
   TeamConfig team;
+  /// The forward speed limit near what the scan sees ahead (off by default).
+  SpeedLimitConfig speed_limit;
 
   /// Throws ConfigError naming the first invalid field and its value.
   void validate() const;
@@ -153,6 +156,7 @@ IfConfig<C, EnvConfig> visitFields(C& c, V&& v) {
   visitFields(c.scan, v);
   visitFields(c.camera, v);
   visitFields(c.team, v);
+  visitFields(c.speed_limit, v);
 }
 
 /// The rules between EnvConfig's fields: an episode lasts 2 to 1e9 control steps; the world's and

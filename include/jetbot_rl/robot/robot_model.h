@@ -113,6 +113,11 @@ class RobotModel {
   /// Radius of a vertical cylinder about the root link origin that holds every collision shape
   /// at rest (the robot's footprint, for clearances) [m].
   double footprintRadius() const { return footprint_radius_; }
+  /// How far the collision shapes reach ahead of the root link origin at rest, along its x [m].
+  double frontReach() const { return front_reach_; }
+  /// How far the collision shapes reach to either side of the root link's x axis at rest (the
+  /// larger side) [m].
+  double halfWidth() const { return half_width_; }
   /// Height of its highest point above the ground at rest, collision and visual shapes alike
   /// (a scanner's housing often has no collision shape; visual meshes, not read here, aside)
   /// [m]: what another robot's sensors see of it.
@@ -130,6 +135,8 @@ class RobotModel {
   std::vector<BodyModel> bodies_;
   double rest_height_ = 0.0;
   double footprint_radius_ = 0.0;
+  double front_reach_ = 0.0;
+  double half_width_ = 0.0;
   double visible_top_ = 0.0;
   GazeboBlocks gazebo_;
 };

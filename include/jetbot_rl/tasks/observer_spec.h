@@ -32,6 +32,11 @@ struct ObserverSpec {
   double wheel_radius = 0.0;         ///< The cmd_vel kinematics [m]; 0: no differential drive.
   double wheel_separation = 0.0;     ///< The cmd_vel kinematics [m]; 0: no differential drive.
   double footprint_radius = 0.0;     ///< The robot's footprint, paths are planned for [m].
+  /// The speed limit's path ahead in the scanner's frame: [front x, left y, right y] [m]; empty:
+  /// no limit (speed_limit/enabled false).
+  std::vector<double> speed_limit_path;
+  /// The speed limit's [stop_distance, slow_distance] from the front [m]; empty: no limit.
+  std::vector<double> speed_limit_distances;
   /// The camera image the policy observes beside the vector (rgb); empty: none.
   std::string camera_image;
   int camera_width = 0, camera_height = 0;  ///< Its size [px]; 0 without camera_image.
@@ -91,6 +96,14 @@ IfConfig<C, ObserverSpec> visitGoalAndRobotFields(C& c, V&& v) {
   v("footprint_radius", c.footprint_radius, AnyValue{"m"},
     "The robot's footprint radius (its collision shapes' extent about the root link origin), "
     "which paths are planned for.");
+  v("speed_limit_path", c.speed_limit_path, AnyValue{"m"},
+    "The forward speed limit the policy was trained behind (speed_limit/...): the robot's path "
+    "ahead in the scanner's frame, [x of its front, y of its left side, y of its right side] "
+    "(its collision shapes plus speed_limit/margin); empty: none.");
+  v("speed_limit_distances", c.speed_limit_distances, AnyValue{"m"},
+    "[stop_distance, slow_distance] of that limit, from the front: forward v 0 with a scan "
+    "reading in the path this close, the action's bound with none within the second; empty: "
+    "none.");
 }
 
 /// Every field: the observation's, then the goals' and the robot's.

@@ -64,7 +64,8 @@ void checkActions(const ActionLayout& layout, int num_envs, const float* actions
 }
 
 void actionsToTargets(const ActionLayout& layout, int num_envs, std::size_t dofs,
-                      const float* actions, bool raw, float* clamped, float* targets) {
+                      const float* actions, bool raw, float* clamped, float* targets,
+                      const float* speed_caps) {
   const std::size_t a = layout.low.size();
   const std::size_t count = static_cast<std::size_t>(num_envs) * a;
   for (std::size_t i = 0; i < count; ++i) {
@@ -72,6 +73,7 @@ void actionsToTargets(const ActionLayout& layout, int num_envs, std::size_t dofs
   }
   if (layout.drive) {
     for (int e = 0; e < num_envs; ++e) {
+      if (speed_caps) clamped[2 * e] = std::min(clamped[2 * e], speed_caps[e]);
       const std::array<double, 2> wheels =
           layout.drive->wheelTargets({clamped[2 * e], clamped[2 * e + 1]});
       for (std::size_t d = 0; d < dofs; ++d) targets[e * dofs + d] = static_cast<float>(wheels[d]);

@@ -35,8 +35,10 @@ void checkActions(const ActionLayout& layout, int num_envs, const float* actions
 /// Clamps `actions` (num_envs x layout size) into the bounds (`clamped`) and gives each env's
 /// dof targets [rad/s] (num_envs x `dofs`): a twist through the drive (the curvature kept within
 /// the wheels' limits), wheel targets as clamped, or as given when `raw` (action noise is added
-/// before clamping).
+/// before clamping). `speed_caps` (twist only; per env [m/s], or none) lower each env's forward v
+/// to its cap (speed_limit/...), in `clamped` too.
 void actionsToTargets(const ActionLayout& layout, int num_envs, std::size_t dofs,
-                      const float* actions, bool raw, float* clamped, float* targets);
+                      const float* actions, bool raw, float* clamped, float* targets,
+                      const float* speed_caps = nullptr);
 
 }  // namespace jetbot_rl

@@ -82,6 +82,21 @@ BatchedEnv::BatchedEnv(RobotModelConstPtr robot, const EnvConfig& config,
     scan_ = std::make_unique<DepthScanSensor>(*scanner, *cameras_[0], n, config_.seed);
     sensors_.push_back(scan_.get());
   }
+  const SpeedLimitConfig& limit = config_.speed_limit;
+  if (limit.enabled || limit.deployed) {
+    if (!scan_) {
+      throwInvalid(limit.enabled ? "speed_limit/enabled" : "speed_limit/deployed", "true",
+                   "reads the scan ahead: the robot has no scanner (scan/link or a Gazebo ray "
+                   "sensor)");
+    }
+    const ScannerSpec& s = scan_->spec();
+    speed_limit_spec_ = makeSpeedLimitSpec(limit, *robot_, s);
+    if (limit.enabled) {
+      speed_limit_ = std::make_unique<SpeedLimit>(speed_limit_spec_, s.samples, s.min_angle,
+                                                  s.angleIncrement(), s.range_min);
+      speed_caps_.assign(static_cast<std::size_t>(n), 0.0f);
+    }
+  }
   TaskContext context;
   context.scanner = scanner ? &scan_->spec() : nullptr;
   context.world = scene_->world();
@@ -154,8 +169,14 @@ const CameraSpec* BatchedEnv::camera(int index) const {
 const StepResult& BatchedEnv::step(const float* actions, std::size_t count) {
   const int n = config_.numRows();
   checkActions(*actions_layout_, n, actions, count);
+  if (speed_limit_) {  // on the scan each robot observed before acting
+    const double v_max = actions_layout_->high[0];
+    for (int e = 0; e < n; ++e) {
+      speed_caps_[e] = static_cast<float>(speed_limit_->cap(scan_->ranges(e), v_max));
+    }
+  }
   actionsToTargets(*actions_layout_, n, wheel_low_.size(), actions, randomizer_->noisesActions(),
-                   actions_.data(), targets_.data());
+                   actions_.data(), targets_.data(), speed_limit_ ? speed_caps_.data() : nullptr);
   // An env's result does not depend on the thread that steps it: the thread lends it its
   // solver, which keeps nothing between envs.
   // The robots of one env are stepped by one thread (stepTeam()).
@@ -397,6 +418,11 @@ BatchSpec BatchedEnv::spec() const {
     // No differential drive: its kinematics stay 0.
   }
   spec.observer.footprint_radius = robot_->footprintRadius();
+  if (config_.speed_limit.enabled || config_.speed_limit.deployed) {
+    const SpeedLimitSpec& l = speed_limit_spec_;
+    spec.observer.speed_limit_path = {l.front, l.left, l.right};
+    spec.observer.speed_limit_distances = {l.stop_distance, l.slow_distance};
+  }
   if (keepsFinalImages()) {
     const CameraSpec& camera = cameras_[0]->spec();
     if (camera.rgb) spec.image_kinds.push_back("rgb");

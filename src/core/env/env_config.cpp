@@ -48,6 +48,7 @@ void checkFieldRules(const EnvConfig& config) {
   checkFieldRules(config.world);
   checkFieldRules(config.scan);
   checkFieldRules(config.camera);
+  checkFieldRules(config.speed_limit);
   if (config.movers.count() > 0 && !config.world.enabled()) {
     throwInvalid(config.movers.num_people > 0 ? "movers/num_people" : "movers/num_carts",
                  config.movers.count(),
@@ -61,6 +62,16 @@ void checkFieldRules(const EnvConfig& config) {
   if (config.twist_reverse_speed != -1.0 && config.action_space != ActionSpace::kTwist) {
     throwInvalid("twist_reverse_speed", config.twist_reverse_speed,
                  "bounds twist actions: it needs action_space twist");
+  }
+  const SpeedLimitConfig& limit = config.speed_limit;
+  if (limit.enabled || limit.deployed) {
+    const char* field = limit.enabled ? "speed_limit/enabled" : "speed_limit/deployed";
+    if (config.action_space != ActionSpace::kTwist) {
+      throwInvalid(field, "true", "caps a twist's forward v: it needs action_space twist");
+    }
+    if (!config.scan.enabled) {
+      throwInvalid(field, "true", "reads the scan ahead: it needs scan/enabled");
+    }
   }
   const double steps = config.episode_length_s / config.controlDt();
   if (steps < 2.0 || steps > 1e9) {

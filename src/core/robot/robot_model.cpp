@@ -134,32 +134,38 @@ CollisionGeometry collisionGeometry(const urdf::Link& link, const urdf::Collisio
   return g;
 }
 
-/// Lowest (`sign` -1) or highest (+1) point of a primitive along z of the frame it is expressed
-/// in [m]; a mesh without vertices (a visual's, read only for cameras): -inf for the highest.
-double extremeZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose, double sign) {
+/// Lowest (`sign` -1) or highest (+1) point of a primitive along axis `axis` (0 x, 1 y, 2 z) of
+/// the frame it is expressed in [m]; a mesh without vertices (a visual's, read only for cameras):
+/// -inf for the highest.
+double extremeAlong(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose, int axis,
+                    double sign) {
   const Eigen::Isometry3d pose = body_pose * g.origin;
   const Eigen::Matrix3d& r = pose.linear();
-  const double centre = pose.translation().z();
+  const double centre = pose.translation()(axis);
   switch (g.type) {
     case CollisionGeometry::Type::kBox:
       return centre + sign * 0.5 *
-                          (std::abs(r(2, 0)) * g.size(0) + std::abs(r(2, 1)) * g.size(1) +
-                           std::abs(r(2, 2)) * g.size(2));
+                          (std::abs(r(axis, 0)) * g.size(0) + std::abs(r(axis, 1)) * g.size(1) +
+                           std::abs(r(axis, 2)) * g.size(2));
     case CollisionGeometry::Type::kCylinder: {
-      const double axis_z = std::abs(r(2, 2));
-      return centre + sign * (0.5 * g.size(1) * axis_z +
-                              g.size(0) * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)));
+      const double along = std::abs(r(axis, 2));  // the cylinder's own axis is its z
+      return centre + sign * (0.5 * g.size(1) * along +
+                              g.size(0) * std::sqrt(std::max(0.0, 1.0 - along * along)));
     }
     case CollisionGeometry::Type::kSphere:
       return centre + sign * g.size(0);
     case CollisionGeometry::Type::kMesh: {
       double extreme = -sign * std::numeric_limits<double>::infinity();
       for (const auto& v : g.vertices)
-        extreme = sign * std::max(sign * extreme, sign * (pose * v).z());
+        extreme = sign * std::max(sign * extreme, sign * (pose * v)(axis));
       return extreme;
     }
   }
   return centre;
+}
+
+double extremeZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose, double sign) {
+  return extremeAlong(g, body_pose, 2, sign);
 }
 
 double lowestZ(const CollisionGeometry& g, const Eigen::Isometry3d& body_pose) {
@@ -335,6 +341,9 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
   for (std::size_t b = 0; b < model->bodies_.size(); ++b) {
     for (const auto& g : model->bodies_[b].collisions) {
       model->footprint_radius_ = std::max(model->footprint_radius_, horizontalReach(g, poses[b]));
+      model->front_reach_ = std::max(model->front_reach_, extremeAlong(g, poses[b], 0, 1.0));
+      model->half_width_ = std::max({model->half_width_, extremeAlong(g, poses[b], 1, 1.0),
+                                     -extremeAlong(g, poses[b], 1, -1.0)});
       top = std::max(top, extremeZ(g, poses[b], 1.0));
     }
     for (const auto& v : model->bodies_[b].visuals)

@@ -1,8 +1,38 @@
 #include "jetbot_rl/tasks/observer_spec.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace jetbot_rl {
+
+namespace {
+
+/// speed_limit_path and speed_limit_distances are both empty or [front, left > right] and
+/// [0 <= stop < slow], finite.
+void checkSpeedLimit(const ObserverSpec& s) {
+  const auto finite = [](const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+  };
+  const std::vector<double>& path = s.speed_limit_path;
+  const std::vector<double>& d = s.speed_limit_distances;
+  if (path.empty() != d.empty()) {
+    throwInvalid(path.empty() ? "speed_limit_distances" : "speed_limit_path",
+                 listText(path.empty() ? d : path),
+                 "speed_limit_path and speed_limit_distances are given together or not at all");
+  }
+  if (path.empty()) return;
+  if (path.size() != 3 || !finite(path) || !(path[1] > path[2])) {
+    throwInvalid("speed_limit_path", listText(path),
+                 "must be [front x, left y, right y] [m] with left > right");
+  }
+  if (d.size() != 2 || !finite(d) || !(d[0] >= 0.0 && d[0] < d[1])) {
+    throwInvalid("speed_limit_distances", listText(d),
+                 "must be [stop_distance, slow_distance] [m] with 0 <= stop < slow");
+  }
+}
+
+}  // namespace
 
 void checkFieldRules(const ObserverSpec& s) {
   if (!s.camera_image.empty() && s.camera_image != "rgb") {
@@ -27,6 +57,7 @@ void checkFieldRules(const ObserverSpec& s) {
                  s.scan_source.empty() ? "must be empty with a laser's scan"
                                        : "must be [min, max] with min < max with camera_depth");
   }
+  checkSpeedLimit(s);
   if (s.scan_beam_angles.empty()) {
     if (!s.scan_range.empty()) {
       throwInvalid("scan_range", listText(s.scan_range), "must be empty without scan beams");

@@ -4,6 +4,7 @@
 #include <ros/console.h>
 #include <ros/this_node.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -145,6 +146,10 @@ DeployDriver::DeployDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, ppo::Polic
            "robot's depth camera, deploy.launch depth_image:=TOPIC)";
     }
   }
+  if (trained_.speed_limit_distances.size() == 2 && !dwa_) {
+    s << "; forward speed limited as in training: 0 within " << trained_.speed_limit_distances[0]
+      << " m ahead of the front, full beyond " << trained_.speed_limit_distances[1] << " m";
+  }
   ROS_INFO("%s", s.str().c_str());
 }
 
@@ -242,6 +247,9 @@ geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
   } else {
     policy_.act(obs_, 1, actions_);
   }
+  // The limit it was trained behind, on the robot's own scan (a twist policy: the env refuses
+  // it for wheel actions); the capped v is the last action it observes, as in training.
+  if (run_.twist) actions_[0] = std::min(actions_[0], static_cast<float>(speedCap(actions_[0])));
   std::copy(actions_.begin(), actions_.begin() + last_action_.size(), last_action_.begin());
   geometry_msgs::Twist twist;
   if (run_.twist) {
@@ -253,6 +261,22 @@ geometry_msgs::Twist DeployDriver::act(const MeasuredState& state) {
     twist.angular.z = body.angular;
   }
   return twist;
+}
+
+double DeployDriver::speedCap(double v_max) {
+  if (trained_.speed_limit_path.size() != 3 || !scan_ || !scan_->latest()) return v_max;
+  const sensor_msgs::LaserScan& scan = *scan_->latest();
+  const ScanView view{scan.ranges.data(), static_cast<int>(scan.ranges.size()), scan.angle_min,
+                      scan.angle_increment};
+  if (!speed_limit_ || !speed_limit_->fits(view, scan.range_min)) {
+    const std::vector<double>& path = trained_.speed_limit_path;
+    const std::vector<double>& d = trained_.speed_limit_distances;
+    speed_limit_ =
+        std::make_unique<SpeedLimit>(SpeedLimitSpec{path[0], path[1], path[2], d[0], d[1]},
+                                     view.samples, view.angle_min, view.increment, scan.range_min);
+  }
+  clear_ahead_ = speed_limit_->clearAhead(view.ranges);
+  return speed_limit_->cap(view.ranges, v_max);
 }
 
 void DeployDriver::onStatus(const ros::WallTimerEvent&) {
@@ -273,6 +297,7 @@ void DeployDriver::onStatus(const ros::WallTimerEvent&) {
   if (image_) add("image age [s]", std::to_string(image_->age()));
   add("dropped input", std::to_string(drops_.count()));
   if (pursuit_) pursuit_->addStatus(add);
+  if (speed_limit_) add("speed limit: clear ahead [m]", std::to_string(clear_ahead_));
   if (dwa_) {
     add("local planner", "dwa");
     add("dwa steps without a clear trajectory", std::to_string(dwa_->blockedSteps()));

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "jetbot_rl/planning/speed_limit.h"
 #include "jetbot_rl/ppo/policy.h"
 #include "jetbot_rl/robot/diff_drive.h"
 #include "jetbot_rl/ros/common/drop_counter.h"
@@ -80,6 +81,9 @@ class DeployDriver {
   void onCommand(const geometry_msgs::Vector3::ConstPtr& msg);
   /// The twist of one policy step on the current inputs (which are fresh).
   geometry_msgs::Twist act(const MeasuredState& state);
+  /// The fastest forward v [m/s] the checkpoint's speed limit allows on the latest scan
+  /// (`v_max` without a limit).
+  double speedCap(double v_max);
   /// The twist of one DWA step (local_planner dwa) on the same inputs, along the goal's way.
   geometry_msgs::Twist dwaStep(const MeasuredState& state);
   /// Stops with a zero last action; `fresh_start`: the memory starts over too.
@@ -97,10 +101,12 @@ class DeployDriver {
   std::unique_ptr<FreshInput<sensor_msgs::LaserScan>> scan_;  // a task that observes a scan
   std::unique_ptr<ImageInput> image_;                         // a policy that observes images
   std::unique_ptr<GoalPursuit> pursuit_;                      // a task with goals
-  std::unique_ptr<DwaLocalPlanner> dwa_;  // local_planner dwa: it drives instead of the policy
-  std::vector<Eigen::Vector2d> way_;      // the DWA's path, reused
-  bool stopped_ = false;                  // the last Twist published was a stop
-  ros::Subscriber command_sub_;           // a task with a command
+  std::unique_ptr<DwaLocalPlanner> dwa_;     // local_planner dwa: it drives instead of the policy
+  std::unique_ptr<SpeedLimit> speed_limit_;  // the checkpoint's, for the latest scan's geometry
+  double clear_ahead_ = 0.0;                 // [m], what it last saw, for diagnostics
+  std::vector<Eigen::Vector2d> way_;         // the DWA's path, reused
+  bool stopped_ = false;                     // the last Twist published was a stop
+  ros::Subscriber command_sub_;              // a task with a command
   ros::Publisher cmd_vel_pub_, status_pub_;
   ros::WallTimer timer_, status_timer_;
   Eigen::Vector2d command_ = Eigen::Vector2d::UnitX();
