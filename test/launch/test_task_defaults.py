@@ -118,9 +118,11 @@ class TestTaskDefaults(unittest.TestCase):
     def test_train_launch_trains_the_navigators_mix(self):
         """task:=navigation mix:=true: the three parts of launch/navigation_mix.launch, as env nodes
         or under the trainer's ~env_config/NAME: the generated worlds of jetbot_env.launch
-        task:=navigation, the same with navigation_mix_team.yaml over them, and the swap with
-        the navigator's observation; all parts agree on what the batch needs alike."""
+        task:=navigation with navigation_mix_worlds.yaml over them, the same with
+        navigation_mix_team.yaml, and the swap with the navigator's observation; all parts agree
+        on what the batch needs alike (the speed limit deployed too)."""
         parts = ['jetbot_env_worlds', 'jetbot_env_team', 'jetbot_env_swap']
+        worlds = file_params(os.path.join(PKG, 'config', 'navigation_mix_worlds.yaml'))
         team = file_params(os.path.join(PKG, 'config', 'navigation_mix_team.yaml'))
         swap_files = [os.path.join(PKG, 'config', f)
                       for f in ('navigation_swap.yaml', 'navigation_mix_swap.yaml')]
@@ -139,7 +141,10 @@ class TestTaskDefaults(unittest.TestCase):
             self.assertEqual(params['/jetbot_ppo_trainer/env_in_process'], prefix == in_process,
                              what)
             envs = {p: under(params, prefix + p) for p in parts}
-            self.assertSameEnv(envs['jetbot_env_worlds'], what + ': worlds')
+            self.assertSameEnv(envs['jetbot_env_worlds'], what + ': worlds', also_differ=worlds)
+            for key, value in worlds.items():
+                self.assertEqual(envs['jetbot_env_worlds'][key], value,
+                                 '%s: worlds %s' % (what, key))
             self.assertEqual(envs['jetbot_env_worlds']['num_envs'], 24, what)
             self.assertSameEnv(envs['jetbot_env_team'], what + ': team', also_differ=team)
             for key, value in team.items():
@@ -147,6 +152,8 @@ class TestTaskDefaults(unittest.TestCase):
             for key, value in swap.items():
                 self.assertEqual(envs['jetbot_env_swap'][key], value, '%s: swap %s' % (what, key))
             self.assertNotIn('world/families', envs['jetbot_env_swap'], what)
+            for part in parts:  # every part's checkpoint spec must name the limit alike
+                self.assertIs(envs[part].get('speed_limit/deployed'), True, '%s: %s' % (what, part))
             for key in ('task', 'decimation', 'episode_length_s', 'action_space',
                         'twist_reverse_speed', 'scan/samples', 'scan/angles', 'scan/range',
                         'nav/beams', 'nav/path', 'nav/path_lookahead', 'nav/log_beams'):
