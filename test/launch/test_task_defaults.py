@@ -120,7 +120,8 @@ class TestTaskDefaults(unittest.TestCase):
         or under the trainer's ~env_config/NAME: the generated worlds of jetbot_env.launch
         task:=navigation with navigation_mix_worlds.yaml over them, the same with
         navigation_mix_team.yaml, and the swap with the navigator's observation; all parts agree
-        on what the batch needs alike (the speed limit deployed too)."""
+        on what the batch needs alike (the speed limit too: applied in the worlds, named in the
+        team's and the swap's spec)."""
         parts = ['jetbot_env_worlds', 'jetbot_env_team', 'jetbot_env_swap']
         worlds = file_params(os.path.join(PKG, 'config', 'navigation_mix_worlds.yaml'))
         team = file_params(os.path.join(PKG, 'config', 'navigation_mix_team.yaml'))
@@ -152,8 +153,12 @@ class TestTaskDefaults(unittest.TestCase):
             for key, value in swap.items():
                 self.assertEqual(envs['jetbot_env_swap'][key], value, '%s: swap %s' % (what, key))
             self.assertNotIn('world/families', envs['jetbot_env_swap'], what)
-            for part in parts:  # every part's checkpoint spec must name the limit alike
+            # every part's checkpoint spec must name the limit alike: applied in the worlds,
+            # only named (deployed) among people and robots
+            self.assertIs(envs['jetbot_env_worlds'].get('speed_limit/enabled'), True, what)
+            for part in parts[1:]:
                 self.assertIs(envs[part].get('speed_limit/deployed'), True, '%s: %s' % (what, part))
+                self.assertIsNot(envs[part].get('speed_limit/enabled'), True, '%s: %s' % (what, part))
             for key in ('task', 'decimation', 'episode_length_s', 'action_space',
                         'twist_reverse_speed', 'scan/samples', 'scan/angles', 'scan/range',
                         'nav/beams', 'nav/path', 'nav/path_lookahead', 'nav/log_beams'):
