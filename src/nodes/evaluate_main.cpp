@@ -57,10 +57,10 @@ int main(int argc, char** argv) {
     EnvSetup setup = env_options.setup();
     if (!task.empty()) fieldsFromYaml("task: " + task, setup);
     setup.env.seed = static_cast<std::uint64_t>(seed);
-    takeSpeedLimit(policy.meta().spec.observer, setup.env.speed_limit);  // as it was trained
-    const std::unique_ptr<BatchedEnv> batch = makeEnv(
-        RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver()),
-        setup);
+    const RobotModelConstPtr robot =
+        RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
+    takeSpeedLimit(policy.meta().spec.observer, *robot, setup.env.speed_limit);  // as trained
+    const std::unique_ptr<BatchedEnv> batch = makeEnv(robot, setup);
     BatchedEnv& env = *batch;
     const int envs = env.numEnvs(), steps = env_options.steps;
     for (const std::string& warning : policy.fitTo(env.spec())) {

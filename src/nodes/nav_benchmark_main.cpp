@@ -116,10 +116,10 @@ int main(int argc, char** argv) {
     validateConfig(dwa);
     EnvSetup base = env_options.setup();
     takeObservationContract(contract, base.task.navigation);
-    takeSpeedLimit(contract, base.env.speed_limit);  // the policy drives as it was trained
     base.env.seed = static_cast<std::uint64_t>(seed);
     const RobotModelConstPtr robot =
         RobotModel::fromUrdfFile(env_options.urdf, EnvProgramOptions::packagePathResolver());
+    takeSpeedLimit(contract, *robot, base.env.speed_limit);  // the policy drives as it was trained
     for (const BenchmarkWorld& world :
          navigationBenchmarkWorlds(base, map, gazebo_world, episode_s)) {
       if (!only.empty() && !only.count(world.name)) continue;

@@ -139,17 +139,38 @@ TEST(SpeedLimit, BadSettingsAreRefusedByName) {
 }
 
 TEST(SpeedLimit, AnEvaluationDrivesAPolicyAsItWasTrained) {
+  const RobotModelConstPtr robot = test::lidarJetbot();  // half width 0.06875 m
   ObserverSpec trained;
   trained.speed_limit_path = {0.06, 0.074, -0.074};
   trained.speed_limit_distances = {0.05, 0.3};
   SpeedLimitConfig config;
   config.deployed = true;  // the training's setting: an evaluation applies it
-  takeSpeedLimit(trained, config);
+  takeSpeedLimit(trained, *robot, config);
   EXPECT_TRUE(config.enabled);
   EXPECT_FALSE(config.deployed);
   EXPECT_EQ(config.stop_distance, 0.05);
   EXPECT_EQ(config.slow_distance, 0.3);
-  takeSpeedLimit(ObserverSpec(), config);  // trained without one: none, whatever the files say
+  EXPECT_NEAR(config.margin, 0.074 - 0.06875, 1e-12);  // the training's, not the default 5 mm
+  // A path trained with a 2 cm margin from an off-centre scanner is the path evaluated.
+  ScannerSpec scanner = test::fullTurnScanner(0.15, 3.5);
+  scanner.pose_in_body.translation() = Eigen::Vector3d(-0.03, 0.01, 0.075);
+  SpeedLimitConfig wide;
+  wide.enabled = true;
+  wide.margin = 0.02;
+  const SpeedLimitSpec made = makeSpeedLimitSpec(wide, *robot, scanner);
+  trained.speed_limit_path = {made.front, made.left, made.right};
+  SpeedLimitConfig evaluated;
+  takeSpeedLimit(trained, *robot, evaluated);
+  EXPECT_NEAR(evaluated.margin, 0.02, 1e-12);
+  const SpeedLimitSpec again = makeSpeedLimitSpec(evaluated, *robot, scanner);
+  EXPECT_NEAR(again.left, made.left, 1e-12);
+  EXPECT_NEAR(again.right, made.right, 1e-12);
+  // A narrower path than this robot (another robot's checkpoint) leaves no margin, not a negative.
+  trained.speed_limit_path = {0.06, 0.05, -0.05};
+  takeSpeedLimit(trained, *robot, evaluated);
+  EXPECT_EQ(evaluated.margin, 0.0);
+  takeSpeedLimit(ObserverSpec(), *robot,
+                 config);  // trained without one: none, whatever the files say
   EXPECT_FALSE(config.enabled);
 }
 
@@ -203,7 +224,7 @@ TEST(SpeedLimit, AJetbotFlatOutAtAWallStopsShortOfItBehindTheLimitAndHitsItWitho
   EXPECT_TRUE(collided);
   EXPECT_EQ(spec.observer.speed_limit_distances, (std::vector<double>{0.1, 0.25}));
   SpeedLimitConfig evaluated;
-  takeSpeedLimit(spec.observer, evaluated);
+  takeSpeedLimit(spec.observer, *test::lidarJetbot(), evaluated);
   EXPECT_TRUE(evaluated.enabled);
   EXPECT_FALSE(evaluated.deployed);
   EXPECT_NEAR(gapAfterDrivingAtTheWall(evaluated, collided, spec), gap, 1e-9);

@@ -69,9 +69,10 @@ SpeedLimitSpec makeSpeedLimitSpec(const SpeedLimitConfig& config, const RobotMod
                                   const ScannerSpec& scanner);
 
 /// Sets `config` to drive as `trained` (a checkpoint's contract) will drive: behind its limit,
-/// with its distances, or without one (an evaluation measures the policy as it will drive, also
-/// when it trained without the limit: speed_limit/deployed).
-void takeSpeedLimit(const ObserverSpec& trained, SpeedLimitConfig& config);
+/// with its distances and a margin giving `robot` a path as wide as the checkpoint's, or without
+/// one (an evaluation measures the policy as it will drive, also when it trained without the
+/// limit: speed_limit/deployed).
+void takeSpeedLimit(const ObserverSpec& trained, const RobotModel& robot, SpeedLimitConfig& config);
 
 /// Caps forward speed for scans of one geometry (its samples' directions computed once).
 class SpeedLimit {

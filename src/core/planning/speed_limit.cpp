@@ -49,12 +49,18 @@ SpeedLimitSpec makeSpeedLimitSpec(const SpeedLimitConfig& config, const RobotMod
   return spec;
 }
 
-void takeSpeedLimit(const ObserverSpec& trained, SpeedLimitConfig& config) {
+void takeSpeedLimit(const ObserverSpec& trained, const RobotModel& robot,
+                    SpeedLimitConfig& config) {
   config.enabled = trained.speed_limit_distances.size() == 2;
   config.deployed = false;
   if (!config.enabled) return;
   config.stop_distance = trained.speed_limit_distances[0];
   config.slow_distance = trained.speed_limit_distances[1];
+  // The path's width is the robot's plus twice the margin, wherever the scanner sits: the
+  // training's margin, not this config's. A narrower robot than the checkpoint's keeps margin 0
+  // (and the evaluator warns of the path's difference).
+  const std::vector<double>& path = trained.speed_limit_path;
+  if (path.size() == 3) config.margin = std::max(0.0, (path[1] - path[2]) / 2 - robot.halfWidth());
 }
 
 SpeedLimit::SpeedLimit(const SpeedLimitSpec& spec, int samples, double angle_min, double increment,
