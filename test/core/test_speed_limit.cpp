@@ -169,8 +169,8 @@ TEST(SpeedLimit, AnEvaluationDrivesAPolicyAsItWasTrained) {
   trained.speed_limit_path = {0.06, 0.05, -0.05};
   takeSpeedLimit(trained, *robot, evaluated);
   EXPECT_EQ(evaluated.margin, 0.0);
-  takeSpeedLimit(ObserverSpec(), *robot,
-                 config);  // trained without one: none, whatever the files say
+  // Trained without one: none, whatever the files say.
+  takeSpeedLimit(ObserverSpec(), *robot, config);
   EXPECT_FALSE(config.enabled);
 }
 

@@ -157,8 +157,9 @@ class TestTaskDefaults(unittest.TestCase):
             # only named (deployed) among people and robots
             self.assertIs(envs['jetbot_env_worlds'].get('speed_limit/enabled'), True, what)
             for part in parts[1:]:
-                self.assertIs(envs[part].get('speed_limit/deployed'), True, '%s: %s' % (what, part))
-                self.assertIsNot(envs[part].get('speed_limit/enabled'), True, '%s: %s' % (what, part))
+                where = '%s: %s' % (what, part)
+                self.assertIs(envs[part].get('speed_limit/deployed'), True, where)
+                self.assertIsNot(envs[part].get('speed_limit/enabled'), True, where)
             for key in ('task', 'decimation', 'episode_length_s', 'action_space',
                         'twist_reverse_speed', 'scan/samples', 'scan/angles', 'scan/range',
                         'nav/beams', 'nav/path', 'nav/path_lookahead', 'nav/log_beams'):
