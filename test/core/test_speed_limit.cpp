@@ -39,6 +39,11 @@ TEST(SpeedLimit, RampsFromTheStopToTheSlowDistanceAheadOfTheFront) {
   EXPECT_NEAR(limit.cap(scanWith(180, 0.30f).data(), 0.6), 0.6 * (0.25 - 0.1) / 0.3, 1e-6);
   EXPECT_NEAR(limit.cap(scanWith(180, 0.15f).data(), 0.6), 0.0, 1e-6);
   EXPECT_NEAR(limit.clearAhead(scanWith(180, 0.30f).data()), 0.25, 1e-6);
+  // From a known clear-ahead distance (the deploy node's one pass): the same ramp.
+  const std::vector<float> near = scanWith(180, 0.30f);
+  EXPECT_DOUBLE_EQ(limit.capAt(limit.clearAhead(near.data()), 0.6), limit.cap(near.data(), 0.6));
+  EXPECT_DOUBLE_EQ(limit.capAt(0.05, 0.6), 0.0);
+  EXPECT_DOUBLE_EQ(limit.capAt(0.5, 0.6), 0.6);
   // Too close to measure ahead: as if at range_min, inside the stop distance.
   EXPECT_DOUBLE_EQ(limit.cap(scanWith(180, -kInf).data(), 0.6), 0.0);
   // Nothing seen, or nothing known: no cap.

@@ -84,6 +84,8 @@ class SpeedLimit {
   /// The fastest forward v [m/s] allowed, as a fraction of `v_max` [m/s], given one scan of
   /// this geometry (REP 117 values: NaN and +inf see nothing, -inf one at range_min).
   double cap(const float* ranges, double v_max) const;
+  /// The same for a known clearAhead() distance `clear_ahead` [m] (one scan's pass for both).
+  double capAt(double clear_ahead, double v_max) const;
   /// Distance from the front to the nearest reading in the path ahead [m]; +inf: none.
   double clearAhead(const float* ranges) const;
   /// Whether scans of this geometry are what it was made for.

@@ -94,7 +94,10 @@ double SpeedLimit::clearAhead(const float* ranges) const {
 }
 
 double SpeedLimit::cap(const float* ranges, double v_max) const {
-  const double d = clearAhead(ranges);
+  return capAt(clearAhead(ranges), v_max);
+}
+
+double SpeedLimit::capAt(double d, double v_max) const {
   if (!(d < spec_.slow_distance)) return v_max;
   const double f = (d - spec_.stop_distance) / (spec_.slow_distance - spec_.stop_distance);
   return v_max * std::clamp(f, 0.0, 1.0);

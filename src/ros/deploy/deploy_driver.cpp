@@ -276,7 +276,7 @@ double DeployDriver::speedCap(double v_max) {
                                      view.samples, view.angle_min, view.increment, scan.range_min);
   }
   clear_ahead_ = speed_limit_->clearAhead(view.ranges);
-  return speed_limit_->cap(view.ranges, v_max);
+  return speed_limit_->capAt(clear_ahead_, v_max);
 }
 
 void DeployDriver::onStatus(const ros::WallTimerEvent&) {
